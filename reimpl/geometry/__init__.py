@@ -1,0 +1,58 @@
+"""The collision-filtering subset of ``pydrake.geometry``, reimplemented.
+
+Import from here exactly as from ``pydrake.geometry``; the names, overloads,
+keyword names, return types and error messages are pydrake's.
+"""
+
+from __future__ import annotations
+
+from reimpl.geometry.collision_filter_declaration import (
+    CollisionFilterDeclaration,
+    CollisionFilterScope,
+)
+from reimpl.geometry.collision_filter_manager import CollisionFilterManager
+from reimpl.geometry.geometry_instance import GeometryFrame, GeometryInstance
+from reimpl.geometry.geometry_roles import (
+    GeometryProperties,
+    IllustrationProperties,
+    PerceptionProperties,
+    ProximityProperties,
+    Role,
+    RoleAssign,
+)
+from reimpl.geometry.geometry_set import GeometrySet
+from reimpl.geometry.identifier import FilterId, FrameId, GeometryId, SourceId
+from reimpl.geometry.query_object import FramePoseVector, QueryObject
+from reimpl.geometry.scene_graph import SceneGraph
+from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
+from reimpl.geometry.shape import Box, Capsule, Cylinder, Ellipsoid, HalfSpace, Shape, Sphere
+
+__all__ = [
+    "Box",
+    "Capsule",
+    "CollisionFilterDeclaration",
+    "CollisionFilterManager",
+    "CollisionFilterScope",
+    "Cylinder",
+    "Ellipsoid",
+    "FilterId",
+    "FramePoseVector",
+    "FrameId",
+    "GeometryFrame",
+    "GeometryId",
+    "GeometryInstance",
+    "GeometryProperties",
+    "GeometrySet",
+    "HalfSpace",
+    "IllustrationProperties",
+    "PerceptionProperties",
+    "ProximityProperties",
+    "QueryObject",
+    "Role",
+    "RoleAssign",
+    "SceneGraph",
+    "SceneGraphInspector",
+    "Shape",
+    "SourceId",
+    "Sphere",
+]

@@ -1,0 +1,140 @@
+"""CollisionFilterDeclaration: an ordered list of statements that edit C.
+
+Each statement names the pairs P it speaks about and what it does to them
+(drake/geometry/collision_filter_declaration.h):
+
+- ExcludeBetween(A, B): C ← C − P,  P = {(a, b)} ∀ a ∈ A, b ∈ B, a ≠ b
+- ExcludeWithin(S):     C ← C − P,  P = {(gᵢ, gⱼ)} ∀ gᵢ, gⱼ ∈ S, i ≠ j
+- AllowBetween(A, B):   C ← C ∪ P*, P* = P − (Aₚ × Aₚ) − Fₚ − Iₚ
+- AllowWithin(S):       C ← C ∪ P*
+
+N.B. AllowBetween does not clear pairs inside A or inside B: only the cross
+pairs are in P. Statements are evaluated in invocation order, so a later
+statement can undo an earlier one. Nothing is validated here; ids are checked
+when the declaration is applied.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+from typing import Any, Self
+
+from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.geometry.geometry_set import GeometrySet
+
+__all__ = [
+    "CollisionFilterDeclaration",
+    "CollisionFilterScope",
+    "Pairing",
+    "Statement",
+    "StatementOp",
+]
+
+
+class CollisionFilterScope(enum.IntEnum):
+    """Which geometries a declaration's sets resolve to (pydrake ≥ 1.45 binds it)."""
+
+    kAll = 0
+    kOmitDeformable = 1
+
+    def __repr__(self) -> str:
+        return f"<CollisionFilterScope.{self.name}: {self.value}>"
+
+    def __str__(self) -> str:
+        return f"CollisionFilterScope.{self.name}"
+
+
+class Pairing(enum.Enum):
+    """How a statement's sets become pairs."""
+
+    BETWEEN = "between"  # P = A × B
+    WITHIN = "within"  # P = S × S
+
+
+class StatementOp(enum.Enum):
+    """The four statements; ``filters`` says whether P leaves C (True) or joins it."""
+
+    kAllowBetween = (Pairing.BETWEEN, False)
+    kAllowWithin = (Pairing.WITHIN, False)
+    kExcludeBetween = (Pairing.BETWEEN, True)
+    kExcludeWithin = (Pairing.WITHIN, True)
+
+    @property
+    def pairing(self) -> Pairing:
+        return self.value[0]  # type: ignore[no-any-return]
+
+    @property
+    def filters(self) -> bool:
+        return self.value[1]  # type: ignore[no-any-return]
+
+
+@dataclass(frozen=True)
+class Statement:
+    """One recorded statement; ``set_B`` is empty for the *Within ops."""
+
+    op: StatementOp
+    set_A: GeometrySet
+    set_B: GeometrySet
+
+
+class CollisionFilterDeclaration:
+    """Statements to apply to C, in order; every method returns ``self``.
+
+    >>> from reimpl.geometry import GeometrySet
+    >>> d = CollisionFilterDeclaration().ExcludeWithin(geometry_set=GeometrySet())
+    >>> len(d.statements())
+    1
+    """
+
+    __slots__ = ("_scope", "_statements")
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        self._statements: list[Statement] = []
+        self._scope = CollisionFilterScope.kAll
+        dispatch(
+            "reimpl.geometry.CollisionFilterDeclaration",
+            "__init__",
+            (
+                Overload((), lambda: None),
+                Overload(
+                    (Param("scope", instance_of(CollisionFilterScope)),),
+                    self._set_scope,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def _set_scope(self, scope: CollisionFilterScope) -> None:
+        self._scope = scope
+
+    def _append(self, op: StatementOp, set_A: object, set_B: object) -> Self:
+        for value in (set_A, set_B):
+            if not isinstance(value, GeometrySet):
+                raise TypeError(
+                    f"{op.name[1:]}(): incompatible function arguments; "
+                    f"expected reimpl.geometry.GeometrySet, got {type(value).__name__}"
+                )
+        # Sets are copied: editing a GeometrySet later does not edit the statement.
+        self._statements.append(Statement(op, set_A.__copy__(), set_B.__copy__()))  # type: ignore[attr-defined]
+        return self
+
+    def AllowBetween(self, set_A: GeometrySet, set_B: GeometrySet) -> Self:
+        return self._append(StatementOp.kAllowBetween, set_A, set_B)
+
+    def AllowWithin(self, geometry_set: GeometrySet) -> Self:
+        return self._append(StatementOp.kAllowWithin, geometry_set, GeometrySet())
+
+    def ExcludeBetween(self, set_A: GeometrySet, set_B: GeometrySet) -> Self:
+        return self._append(StatementOp.kExcludeBetween, set_A, set_B)
+
+    def ExcludeWithin(self, geometry_set: GeometrySet) -> Self:
+        return self._append(StatementOp.kExcludeWithin, geometry_set, GeometrySet())
+
+    # reimpl-only introspection (pydrake binds none).
+    def statements(self) -> tuple[Statement, ...]:
+        return tuple(self._statements)
+
+    def scope(self) -> CollisionFilterScope:
+        return self._scope

@@ -1,0 +1,83 @@
+"""CollisionFilterManager: the public handle that edits one state's C.
+
+Drake counterpart: drake/geometry/collision_filter_manager.h. A manager is a
+view: copies of it edit the same data, which is either the model's
+GeometryState or one context's copy of it.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from reimpl.geometry.collision_filter_declaration import (
+    CollisionFilterDeclaration,
+    CollisionFilterScope,
+)
+from reimpl.geometry.geometry_set import GeometrySet
+from reimpl.geometry.identifier import FilterId
+
+if TYPE_CHECKING:
+    from reimpl.geometry.geometry_state import GeometryState
+
+__all__ = ["CollisionFilterManager"]
+
+
+class CollisionFilterManager:
+    """Applies declarations to C, persistently or transiently.
+
+    C is the persistent base with the transient history replayed in order.
+    """
+
+    def __init__(self, *args: object, **kwargs: object) -> None:
+        raise TypeError("reimpl.geometry.CollisionFilterManager: No constructor defined!")
+
+    @classmethod
+    def _view(cls, state: GeometryState) -> CollisionFilterManager:
+        manager = object.__new__(cls)
+        manager._state = state
+        return manager
+
+    _state: GeometryState
+
+    def Apply(self, declaration: CollisionFilterDeclaration) -> None:
+        """Applies ``declaration`` to the persistent base, statement by statement.
+
+        Raises:
+            RuntimeError: an id in the declaration is not registered (statements
+                before it stay applied), or transient history is active.
+        """
+        _check_scope(declaration)
+        self._state.collision_filter.apply(declaration.statements(), self._state.collect_ids)
+
+    def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
+        """Appends ``declaration`` to the transient history and returns its id."""
+        _check_scope(declaration)
+        return self._state.collision_filter.apply_transient(
+            declaration.statements(), self._state.collect_ids
+        )
+
+    def RemoveDeclaration(self, filter_id: FilterId) -> bool:
+        """Removes a transient declaration; True iff ``IsActive(filter_id)`` was True."""
+        return self._state.collision_filter.remove_declaration(filter_id)
+
+    def IsActive(self, filter_id: FilterId) -> bool:
+        return self._state.collision_filter.is_active(filter_id)
+
+    def has_transient_history(self) -> bool:
+        return self._state.collision_filter.has_transient_history()
+
+    def Deactivate(self, geometry_set: GeometrySet) -> None:
+        """C ← C − {(a, b) : a ∈ S or b ∈ S}, until reactivated (Drake ≥ 1.55)."""
+        ids = self._state.collect_ids(geometry_set)
+        self._state.collision_filter.set_active(ids, active=False)
+
+    def Activate(self, geometry_set: GeometrySet) -> None:
+        """Undoes Deactivate for the geometries in S (Drake ≥ 1.55)."""
+        ids = self._state.collect_ids(geometry_set)
+        self._state.collision_filter.set_active(ids, active=True)
+
+
+def _check_scope(declaration: CollisionFilterDeclaration) -> None:
+    # N.B. reimpl registers no deformable geometry, so kOmitDeformable and kAll
+    # resolve every set identically.
+    assert declaration.scope() in CollisionFilterScope

@@ -1,0 +1,387 @@
+"""The registered world of one SceneGraph (model) or one context.
+
+Drake counterpart: drake/geometry/geometry_state.h (internal). It owns the
+sources, frames and geometries, their roles, and the CollisionFilter. Two rules
+that tie the scene to C live here:
+
+- Resolution (``collect_ids``). A GeometrySet becomes proximity geometry ids
+  when a declaration is applied: a FrameId gives the frame's *direct* child
+  geometries that have the proximity role at that moment (the world frame gives
+  every anchored one, from every source); a GeometryId without the proximity
+  role is dropped; an unknown id raises.
+- Invariants (``_assign_proximity``). When g gets the proximity role it joins
+  the filter and g is excluded, invariantly, from every proximity geometry on
+  its frame: V ← V ∪ {(g, h) : frame(h) = frame(g)}. For anchored g that frame
+  is the world frame, which yields Aₚ × Aₚ.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+
+from reimpl.geometry.collision_filter import CollisionFilter
+from reimpl.geometry.collision_filter_declaration import Statement, StatementOp
+from reimpl.geometry.errors import (
+    DuplicateRoleError,
+    GeometryStateError,
+    UnknownFrameError,
+    UnknownGeometryError,
+    UnknownSourceError,
+    UnqueryableGeometryError,
+)
+from reimpl.geometry.geometry_instance import GeometryFrame, GeometryInstance
+from reimpl.geometry.geometry_roles import GeometryProperties, Role, RoleAssign
+from reimpl.geometry.geometry_set import GeometrySet
+from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
+from reimpl.geometry.shape import Shape
+from reimpl.math import RigidTransform
+
+__all__ = ["WORLD_FRAME_ID", "GeometryState"]
+
+#: The world frame's id: one static id shared by every SceneGraph, as in Drake.
+WORLD_FRAME_ID = FrameId.get_new_id()
+_WORLD_FRAME_NAME = "world"
+_SELF_SOURCE_NAME = "SceneGraph"
+
+_ROLE_NAMES = {
+    Role.kProximity: "proximity",
+    Role.kIllustration: "illustration",
+    Role.kPerception: "perception",
+}
+
+
+@dataclass
+class _Source:
+    id: SourceId
+    name: str
+    frames: list[FrameId] = field(default_factory=list)
+    anchored: list[GeometryId] = field(default_factory=list)
+
+
+@dataclass
+class _Frame:
+    id: FrameId
+    name: str
+    source_id: SourceId | None
+    parent_id: FrameId
+    frame_group: int
+    geometries: list[GeometryId] = field(default_factory=list)
+
+
+@dataclass
+class _Geometry:
+    id: GeometryId
+    name: str
+    frame_id: FrameId
+    source_id: SourceId
+    shape: Shape
+    pose: RigidTransform
+    properties: dict[Role, GeometryProperties] = field(default_factory=dict)
+
+    @property
+    def is_anchored(self) -> bool:
+        return self.frame_id == WORLD_FRAME_ID
+
+
+class GeometryState:
+    """Sources, frames, geometries, roles and the collision filter of one state."""
+
+    def __init__(self) -> None:
+        self._sources: dict[SourceId, _Source] = {}
+        self._frames: dict[FrameId, _Frame] = {
+            WORLD_FRAME_ID: _Frame(WORLD_FRAME_ID, _WORLD_FRAME_NAME, None, WORLD_FRAME_ID, 0)
+        }
+        self._geometries: dict[GeometryId, _Geometry] = {}
+        self.collision_filter = CollisionFilter()
+
+    def clone(self) -> GeometryState:
+        """A deep copy, as a context's copy of the model is (filters and history too)."""
+        other = object.__new__(GeometryState)
+        other._sources = copy.deepcopy(self._sources)
+        other._frames = copy.deepcopy(self._frames)
+        other._geometries = {
+            g: _Geometry(
+                r.id, r.name, r.frame_id, r.source_id, r.shape, r.pose,
+                {role: type(p)(p) for role, p in r.properties.items()},
+            )
+            for g, r in self._geometries.items()
+        }
+        other.collision_filter = self.collision_filter.copy()
+        return other
+
+    # ------------------------------------------------------------- validation
+    def _source(self, source_id: SourceId) -> _Source:
+        try:
+            return self._sources[source_id]
+        except KeyError:
+            raise UnknownSourceError(
+                f"Referenced geometry source {source_id.get_value()} is not registered."
+            ) from None
+
+    def _frame(self, frame_id: FrameId) -> _Frame:
+        try:
+            return self._frames[frame_id]
+        except KeyError:
+            raise UnknownFrameError(
+                f"Referenced frame {frame_id.get_value()} has not been registered."
+            ) from None
+
+    def _geometry(self, geometry_id: GeometryId) -> _Geometry:
+        try:
+            return self._geometries[geometry_id]
+        except KeyError:
+            raise UnknownGeometryError(
+                f"Referenced geometry {geometry_id.get_value()} has not been registered."
+            ) from None
+
+    def _owned_geometry(self, source_id: SourceId, geometry_id: GeometryId) -> _Geometry:
+        self._source(source_id)
+        geometry = self._geometry(geometry_id)
+        if geometry.source_id != source_id:
+            raise GeometryStateError(
+                f"Given geometry id {geometry_id.get_value()} does not belong to the given "
+                f"source id {source_id.get_value()}"
+            )
+        return geometry
+
+    def _owned_frame(self, source_id: SourceId, frame_id: FrameId) -> _Frame:
+        self._source(source_id)
+        frame = self._frame(frame_id)
+        if frame.source_id != source_id and frame_id != WORLD_FRAME_ID:
+            raise GeometryStateError(
+                f"Frame id {frame_id.get_value()} does not belong to the given source id "
+                f"{source_id.get_value()}"
+            )
+        return frame
+
+    # ----------------------------------------------------------- registration
+    def register_source(self, name: str) -> SourceId:
+        if any(s.name == name for s in self._sources.values()):
+            raise GeometryStateError(
+                f"Registering new source with duplicate name: {name}."
+            )
+        source_id = SourceId.get_new_id()
+        self._sources[source_id] = _Source(source_id, name)
+        return source_id
+
+    def register_frame(
+        self, source_id: SourceId, parent_id: FrameId, frame: GeometryFrame
+    ) -> FrameId:
+        source = self._source(source_id)
+        if parent_id != WORLD_FRAME_ID:
+            self._owned_frame(source_id, parent_id)
+        if frame.id() in self._frames:
+            raise GeometryStateError(
+                f"Registering frame with an id that has already been registered: "
+                f"{frame.id().get_value()}"
+            )
+        self._frames[frame.id()] = _Frame(
+            frame.id(), frame.name(), source_id, parent_id, frame.frame_group()
+        )
+        source.frames.append(frame.id())
+        return frame.id()
+
+    def register_geometry(
+        self, source_id: SourceId, frame_id: FrameId, geometry: GeometryInstance
+    ) -> GeometryId:
+        frame = self._owned_frame(source_id, frame_id)
+        if geometry.id() in self._geometries:
+            raise GeometryStateError(
+                f"Registering geometry with an id that has already been registered: "
+                f"{geometry.id().get_value()}"
+            )
+        record = _Geometry(
+            geometry.id(), geometry.name(), frame_id, source_id,
+            geometry.shape(), geometry.pose(),
+        )
+        self._geometries[record.id] = record
+        frame.geometries.append(record.id)
+        if frame_id == WORLD_FRAME_ID:
+            self._sources[source_id].anchored.append(record.id)
+        for properties in (
+            geometry.illustration_properties(),
+            geometry.perception_properties(),
+            geometry.proximity_properties(),
+        ):
+            if properties is not None:
+                self.assign_role(source_id, record.id, properties, RoleAssign.kNew)
+        return record.id
+
+    # ----------------------------------------------------------------- roles
+    def assign_role(
+        self,
+        source_id: SourceId,
+        geometry_id: GeometryId,
+        properties: GeometryProperties,
+        assign: RoleAssign,
+    ) -> None:
+        """Assigns or replaces a role; a new proximity role joins C (see module doc)."""
+        geometry = self._owned_geometry(source_id, geometry_id)
+        role = properties.role
+        has_role = role in geometry.properties
+        if assign is RoleAssign.kNew and has_role:
+            raise DuplicateRoleError(
+                f"Trying to assign the '{_ROLE_NAMES[role]}' role to geometry id "
+                f"{geometry_id.get_value()} for the first time; it already has the role "
+                "assigned"
+            )
+        if assign is RoleAssign.kReplace and not has_role:
+            raise GeometryStateError(
+                f"Trying to replace the properties on geometry id {geometry_id.get_value()} "
+                f"for the '{_ROLE_NAMES[role]}' role; it has not had the role initially "
+                "assigned"
+            )
+        geometry.properties[role] = type(properties)(properties)
+        if role is Role.kProximity and assign is RoleAssign.kNew:
+            self._assign_proximity(geometry)
+
+    def _assign_proximity(self, geometry: _Geometry) -> None:
+        """V ← V ∪ {(g, h) : h ∈ Gₚ, frame(h) = frame(g)}.
+
+        N.B. With transient history active the invariant Apply raises after g
+        has joined the filter, so g keeps its role but gets no same-frame
+        invariant pairs: Drake's half-registered state, reproduced on purpose.
+        """
+        self.collision_filter.add_geometry(geometry.id)
+        statement = Statement(
+            StatementOp.kExcludeBetween,
+            GeometrySet(geometry_id=geometry.id),
+            GeometrySet(frame_id=geometry.frame_id),
+        )
+        self.collision_filter.apply([statement], self.collect_ids, is_invariant=True)
+
+    def remove_role(self, source_id: SourceId, geometry_id: GeometryId, role: Role) -> int:
+        geometry = self._owned_geometry(source_id, geometry_id)
+        return self._remove_role(geometry, role)
+
+    def remove_frame_role(self, source_id: SourceId, frame_id: FrameId, role: Role) -> int:
+        frame = self._owned_frame(source_id, frame_id)
+        geometries = (
+            self._sources[source_id].anchored if frame_id == WORLD_FRAME_ID else frame.geometries
+        )
+        return sum(self._remove_role(self._geometries[g], role) for g in list(geometries))
+
+    def _remove_role(self, geometry: _Geometry, role: Role) -> int:
+        if geometry.properties.pop(role, None) is None:
+            return 0
+        if role is Role.kProximity:
+            self.collision_filter.remove_geometry(geometry.id)
+        return 1
+
+    def remove_geometry(self, source_id: SourceId, geometry_id: GeometryId) -> None:
+        geometry = self._owned_geometry(source_id, geometry_id)
+        for role in list(geometry.properties):
+            self._remove_role(geometry, role)
+        self._frames[geometry.frame_id].geometries.remove(geometry_id)
+        if geometry.is_anchored:
+            self._sources[source_id].anchored.remove(geometry_id)
+        del self._geometries[geometry_id]
+
+    # ------------------------------------------------------------ resolution
+    def _proximity_on(self, frame_id: FrameId) -> list[GeometryId]:
+        return [
+            g for g in self._frames[frame_id].geometries
+            if Role.kProximity in self._geometries[g].properties
+        ]
+
+    def collect_ids(self, geometry_set: GeometrySet) -> list[GeometryId]:
+        """Resolves a set to proximity geometry ids, now (GeometryState::CollectIds).
+
+        Frames are checked before geometries, as in Drake.
+
+        Raises:
+            UnknownFrameError: a FrameId is not registered.
+            UnknownGeometryError: a GeometryId is not registered.
+        """
+        ids: dict[GeometryId, None] = {}
+        for frame_id in geometry_set.frame_ids():
+            self._frame(frame_id)
+            ids.update(dict.fromkeys(self._proximity_on(frame_id)))
+        for geometry_id in geometry_set.geometry_ids():
+            geometry = self._geometries.get(geometry_id)
+            if geometry is None:
+                raise UnknownGeometryError(
+                    "Geometry set includes a geometry id that doesn't belong to the "
+                    f"SceneGraph: {geometry_id.get_value()}"
+                )
+            if Role.kProximity in geometry.properties:
+                ids[geometry_id] = None
+        return list(ids)
+
+    # ---------------------------------------------------------------- queries
+    def collision_filtered(self, a: GeometryId, b: GeometryId) -> bool:
+        """True iff (a, b) ∉ C, for two proximity geometries (SceneGraphInspector)."""
+        prefix = (
+            f"Can't report collision filter status between geometries {a.get_value()} and "
+            f"{b.get_value()}; "
+        )
+        valid = [g in self._geometries for g in (a, b)]
+        if not all(valid):
+            if not any(valid):
+                raise UnqueryableGeometryError(prefix + "neither id is a valid geometry")
+            bad = a if not valid[0] else b
+            raise UnqueryableGeometryError(prefix + f"{bad.get_value()} is not a valid geometry")
+        proximity = [Role.kProximity in self._geometries[g].properties for g in (a, b)]
+        if not all(proximity):
+            if not any(proximity):
+                raise UnqueryableGeometryError(prefix + " neither id has a proximity role")
+            bad = a if not proximity[0] else b
+            raise UnqueryableGeometryError(
+                prefix + f"{bad.get_value()} does not have a proximity role"
+            )
+        return not self.collision_filter.can_collide_with(a, b)
+
+    def has_source(self, source_id: SourceId) -> bool:
+        return source_id in self._sources
+
+    def source_name(self, source_id: SourceId) -> str:
+        return self._source(source_id).name
+
+    def frame_name(self, frame_id: FrameId) -> str:
+        return self._frame(frame_id).name
+
+    def frame_group(self, frame_id: FrameId) -> int:
+        return self._frame(frame_id).frame_group
+
+    def parent_frame(self, frame_id: FrameId) -> FrameId:
+        return self._frame(frame_id).parent_id
+
+    def geometry_name(self, geometry_id: GeometryId) -> str:
+        return self._geometry(geometry_id).name
+
+    def geometry_frame(self, geometry_id: GeometryId) -> FrameId:
+        return self._geometry(geometry_id).frame_id
+
+    def geometry_source(self, geometry_id: GeometryId) -> SourceId:
+        return self._geometry(geometry_id).source_id
+
+    def geometry_shape(self, geometry_id: GeometryId) -> Shape:
+        return self._geometry(geometry_id).shape
+
+    def geometry_pose(self, geometry_id: GeometryId) -> RigidTransform:
+        return RigidTransform(self._geometry(geometry_id).pose)
+
+    def properties(self, geometry_id: GeometryId, role: Role) -> GeometryProperties | None:
+        return self._geometry(geometry_id).properties.get(role)
+
+    def has_role(self, geometry_id: GeometryId, role: Role) -> bool:
+        return role in self._geometry(geometry_id).properties
+
+    def source_ids(self) -> list[SourceId]:
+        return list(self._sources)
+
+    def frame_ids(self) -> list[FrameId]:
+        return list(self._frames)
+
+    def frames_of_source(self, source_id: SourceId) -> list[FrameId]:
+        return list(self._source(source_id).frames)
+
+    def geometry_ids(self) -> list[GeometryId]:
+        return list(self._geometries)
+
+    def geometries_on(self, frame_id: FrameId) -> list[GeometryId]:
+        return list(self._frame(frame_id).geometries)
+
+    def is_registered(self, geometry_id: GeometryId) -> bool:
+        return geometry_id in self._geometries

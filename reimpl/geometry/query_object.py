@@ -1,0 +1,62 @@
+"""QueryObject and FramePoseVector: the query port's value and the pose port's input.
+
+Only the inspector is served: reimpl answers which pairs are candidates, not
+where geometry is.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from reimpl.geometry.identifier import FrameId
+from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
+from reimpl.math import RigidTransform
+
+if TYPE_CHECKING:
+    from reimpl.geometry.geometry_state import GeometryState
+
+__all__ = ["FramePoseVector", "QueryObject"]
+
+
+class QueryObject:
+    """What SceneGraph's query output port evaluates to for one context."""
+
+    def __init__(self) -> None:
+        raise TypeError("reimpl.geometry.QueryObject: No constructor defined!")
+
+    _state: GeometryState
+
+    @classmethod
+    def _make(cls, state: GeometryState) -> QueryObject:
+        query = object.__new__(cls)
+        query._state = state
+        return query
+
+    def inspector(self) -> SceneGraphInspector:
+        """A live inspector of the context this object was evaluated on."""
+        return SceneGraphInspector._view(self._state)
+
+
+class FramePoseVector:
+    """Poses of a source's frames, keyed by FrameId."""
+
+    def __init__(self) -> None:
+        self._poses: dict[FrameId, RigidTransform] = {}
+
+    def set_value(self, id: FrameId, value: RigidTransform) -> None:  # noqa: A002 (pydrake name)
+        self._poses[id] = RigidTransform(value)
+
+    def value(self, id: FrameId) -> RigidTransform:  # noqa: A002
+        return RigidTransform(self._poses[id])
+
+    def has_id(self, id: FrameId) -> bool:  # noqa: A002
+        return id in self._poses
+
+    def ids(self) -> list[FrameId]:
+        return list(self._poses)
+
+    def size(self) -> int:
+        return len(self._poses)
+
+    def clear(self) -> None:
+        self._poses.clear()

@@ -1,0 +1,247 @@
+"""SceneGraph: registration, roles, contexts, and access to C's managers.
+
+Drake counterpart: drake/geometry/scene_graph.h. SceneGraph owns the *model*
+GeometryState. ``CreateDefaultContext()`` gives each context its own deep copy,
+filters and transient history included; from then on the model and the context
+are independent. ``collision_filter_manager()`` edits the model,
+``collision_filter_manager(context)`` edits that context only.
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import Any
+
+from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.geometry.collision_filter_manager import CollisionFilterManager
+from reimpl.geometry.geometry_instance import GeometryFrame, GeometryInstance
+from reimpl.geometry.geometry_roles import (
+    IllustrationProperties,
+    PerceptionProperties,
+    ProximityProperties,
+    Role,
+    RoleAssign,
+)
+from reimpl.geometry.geometry_state import WORLD_FRAME_ID, GeometryState
+from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
+from reimpl.geometry.query_object import QueryObject
+from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
+from reimpl.systems.framework import Context, InputPort, OutputPort
+
+__all__ = ["SceneGraph"]
+
+_OWNER = "reimpl.geometry.SceneGraph"
+_system_ids = itertools.count(1)
+
+_properties = instance_of(ProximityProperties, PerceptionProperties, IllustrationProperties)
+
+
+class SceneGraph:
+    """The geometry system: owns the model, makes contexts, hands out views."""
+
+    def __init__(self) -> None:
+        self._model = GeometryState()
+        self._system_id = next(_system_ids)
+        self._pose_ports: dict[SourceId, InputPort] = {}
+        self._query_port = OutputPort("query", self._eval_query)
+
+    # ------------------------------------------------------------- helpers
+    def _state_of(self, context: Context | None) -> GeometryState:
+        if context is None:
+            return self._model
+        if context._system_id != self._system_id:
+            raise RuntimeError(
+                "A function call on a SceneGraph system was passed the Context of a "
+                "different system."
+            )
+        return context._geometry_state
+
+    def _with_context(
+        self, name: str, params: tuple[Param, ...], impl: Any, args: Any, kwargs: Any
+    ) -> Any:
+        """Dispatches ``name`` over its model overload and its context overload."""
+        context_param = Param("context", instance_of(Context))
+        return dispatch(
+            _OWNER,
+            name,
+            (
+                Overload(params, lambda **kw: impl(None, **kw)),
+                Overload((context_param, *params), lambda context, **kw: impl(context, **kw)),
+            ),
+            args,
+            kwargs,
+        )
+
+    # -------------------------------------------------------- registration
+    def RegisterSource(self, name: str = "") -> SourceId:
+        if not name:
+            name = f"Source_{len(self._model.source_ids()) + 1}"
+        source_id = self._model.register_source(name)
+        self._pose_ports[source_id] = InputPort(f"{name}_pose", source_id.get_value())
+        return source_id
+
+    def RegisterFrame(self, *args: Any, **kwargs: Any) -> FrameId:
+        source = Param("source_id", instance_of(SourceId))
+        frame = Param("frame", instance_of(GeometryFrame))
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "RegisterFrame",
+            (
+                Overload(
+                    (source, frame),
+                    lambda source_id, frame: self._model.register_frame(
+                        source_id, WORLD_FRAME_ID, frame
+                    ),
+                ),
+                Overload(
+                    (source, Param("parent_id", instance_of(FrameId)), frame),
+                    self._model.register_frame,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def RegisterGeometry(self, *args: Any, **kwargs: Any) -> GeometryId:
+        def register(
+            context: Context | None,
+            source_id: SourceId,
+            frame_id: FrameId,
+            geometry: GeometryInstance,
+        ) -> GeometryId:
+            return self._state_of(context).register_geometry(source_id, frame_id, geometry)
+
+        return self._with_context(  # type: ignore[no-any-return]
+            "RegisterGeometry",
+            (
+                Param("source_id", instance_of(SourceId)),
+                Param("frame_id", instance_of(FrameId)),
+                Param("geometry", instance_of(GeometryInstance)),
+            ),
+            register,
+            args,
+            kwargs,
+        )
+
+    def RegisterAnchoredGeometry(
+        self, source_id: SourceId, geometry: GeometryInstance
+    ) -> GeometryId:
+        return self._model.register_geometry(source_id, WORLD_FRAME_ID, geometry)
+
+    # --------------------------------------------------------------- roles
+    def AssignRole(self, *args: Any, **kwargs: Any) -> None:
+        def assign_role(
+            context: Context | None,
+            source_id: SourceId,
+            geometry_id: GeometryId,
+            properties: ProximityProperties,
+            assign: RoleAssign,
+        ) -> None:
+            self._state_of(context).assign_role(source_id, geometry_id, properties, assign)
+
+        self._with_context(
+            "AssignRole",
+            (
+                Param("source_id", instance_of(SourceId)),
+                Param("geometry_id", instance_of(GeometryId)),
+                Param("properties", _properties),
+                Param("assign", instance_of(RoleAssign), RoleAssign.kNew),
+            ),
+            assign_role,
+            args,
+            kwargs,
+        )
+
+    def RemoveRole(self, *args: Any, **kwargs: Any) -> int:
+        """Removes ``role`` from one geometry, or from a frame's geometries; returns a count."""
+        context_param = Param("context", instance_of(Context))
+        source = Param("source_id", instance_of(SourceId))
+        role = Param("role", instance_of(Role))
+        frame = Param("frame_id", instance_of(FrameId))
+        geometry = Param("geometry_id", instance_of(GeometryId))
+
+        def by_frame(
+            source_id: SourceId, frame_id: FrameId, role: Role, context: Context | None = None
+        ) -> int:
+            return self._state_of(context).remove_frame_role(source_id, frame_id, role)
+
+        def by_geometry(
+            source_id: SourceId, geometry_id: GeometryId, role: Role, context: Context | None = None
+        ) -> int:
+            return self._state_of(context).remove_role(source_id, geometry_id, role)
+
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "RemoveRole",
+            (
+                Overload((source, frame, role), by_frame),
+                Overload((context_param, source, frame, role), by_frame),
+                Overload((source, geometry, role), by_geometry),
+                Overload((context_param, source, geometry, role), by_geometry),
+            ),
+            args,
+            kwargs,
+        )
+
+    def RemoveGeometry(self, *args: Any, **kwargs: Any) -> None:
+        def remove(context: Context | None, source_id: SourceId, geometry_id: GeometryId) -> None:
+            self._state_of(context).remove_geometry(source_id, geometry_id)
+
+        self._with_context(
+            "RemoveGeometry",
+            (
+                Param("source_id", instance_of(SourceId)),
+                Param("geometry_id", instance_of(GeometryId)),
+            ),
+            remove,
+            args,
+            kwargs,
+        )
+
+    # --------------------------------------------------------------- views
+    @staticmethod
+    def world_frame_id() -> FrameId:
+        return WORLD_FRAME_ID
+
+    def model_inspector(self) -> SceneGraphInspector:
+        return SceneGraphInspector._view(self._model)
+
+    def collision_filter_manager(self, *args: Any, **kwargs: Any) -> CollisionFilterManager:
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "collision_filter_manager",
+            (
+                Overload(
+                    (Param("context", instance_of(Context)),),
+                    lambda context: CollisionFilterManager._view(self._state_of(context)),
+                ),
+                Overload((), lambda: CollisionFilterManager._view(self._model)),
+            ),
+            args,
+            kwargs,
+        )
+
+    # ------------------------------------------------------------ contexts
+    def CreateDefaultContext(self) -> Context:
+        return Context._make(self._model.clone(), self._system_id)
+
+    def AllocateContext(self) -> Context:
+        return self.CreateDefaultContext()
+
+    def SetDefaultContext(self, context: Context) -> None:
+        """Resets the context's geometry state to a fresh copy of the model."""
+        self._state_of(context)
+        context._geometry_state = self._model.clone()
+
+    def get_query_output_port(self) -> OutputPort:
+        return self._query_port
+
+    def get_source_pose_port(self, source_id: SourceId) -> InputPort:
+        if source_id not in self._pose_ports:
+            raise RuntimeError(
+                f"Can't acquire pose port for unknown source id: {source_id.get_value()}."
+            )
+        return self._pose_ports[source_id]
+
+    def _eval_query(self, context: Context) -> QueryObject:
+        return QueryObject._make(self._state_of(context))

@@ -1,0 +1,216 @@
+"""SceneGraphInspector: read-only, live queries on one GeometryState.
+
+Drake counterpart: drake/geometry/scene_graph_inspector.h. The inspector is a
+view, not a snapshot: it sees later changes to the state it inspects.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.geometry.geometry_roles import (
+    GeometryProperties,
+    IllustrationProperties,
+    PerceptionProperties,
+    ProximityProperties,
+    Role,
+)
+from reimpl.geometry.geometry_set import GeometrySet
+from reimpl.geometry.geometry_state import WORLD_FRAME_ID
+from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
+from reimpl.geometry.shape import Shape
+from reimpl.math import RigidTransform
+
+if TYPE_CHECKING:
+    from reimpl.geometry.geometry_state import GeometryState
+
+__all__ = ["SceneGraphInspector"]
+
+_OWNER = "reimpl.geometry.SceneGraphInspector"
+
+
+class SceneGraphInspector:
+    """Queries on a model or context state; get one from SceneGraph or a QueryObject."""
+
+    def __init__(self, *args: object, **kwargs: object) -> None:
+        raise TypeError("reimpl.geometry.SceneGraphInspector: No constructor defined!")
+
+    _state: GeometryState
+
+    @classmethod
+    def _view(cls, state: GeometryState) -> SceneGraphInspector:
+        inspector = object.__new__(cls)
+        inspector._state = state
+        return inspector
+
+    # ---------------------------------------------------------- filtering
+    def GetCollisionCandidates(self) -> set[tuple[GeometryId, GeometryId]]:
+        """C, each pair as (a, b) with a.get_value() < b.get_value()."""
+        return self._state.collision_filter.candidates()
+
+    def CollisionFiltered(self, geometry_id1: GeometryId, geometry_id2: GeometryId) -> bool:
+        """True iff the pair is not in C; raises unless both are proximity geometries."""
+        return self._state.collision_filtered(geometry_id1, geometry_id2)
+
+    # ------------------------------------------------------------- counts
+    def num_sources(self) -> int:
+        return len(self._state.source_ids()) + 1  # SceneGraph's own source.
+
+    def num_frames(self) -> int:
+        return len(self._state.frame_ids())
+
+    def num_geometries(self) -> int:
+        return len(self._state.geometry_ids())
+
+    def NumGeometriesWithRole(self, role: Role) -> int:
+        return len(self.GetAllGeometryIds(role))
+
+    def NumAnchoredGeometries(self) -> int:
+        return len(self._state.geometries_on(WORLD_FRAME_ID))
+
+    def NumDynamicGeometries(self) -> int:
+        return self.num_geometries() - self.NumAnchoredGeometries()
+
+    def NumFramesForSource(self, source_id: SourceId) -> int:
+        return len(self._state.frames_of_source(source_id))
+
+    def NumGeometriesForFrame(self, frame_id: FrameId) -> int:
+        return len(self._state.geometries_on(frame_id))
+
+    def NumGeometriesForFrameWithRole(self, frame_id: FrameId, role: Role) -> int:
+        return sum(1 for g in self._state.geometries_on(frame_id) if self._has(g, role))
+
+    # ---------------------------------------------------------------- ids
+    @staticmethod
+    def world_frame_id() -> FrameId:
+        return WORLD_FRAME_ID
+
+    def GetAllSourceIds(self) -> list[SourceId]:
+        return self._state.source_ids()
+
+    def GetAllFrameIds(self) -> list[FrameId]:
+        return self._state.frame_ids()
+
+    def FramesForSource(self, source_id: SourceId) -> set[FrameId]:
+        return set(self._state.frames_of_source(source_id))
+
+    def SourceIsRegistered(self, source_id: SourceId) -> bool:
+        return self._state.has_source(source_id)
+
+    def GetAllGeometryIds(self, role: Role | None = None) -> list[GeometryId]:
+        ids = sorted(self._state.geometry_ids())
+        return ids if role is None else [g for g in ids if self._has(g, role)]
+
+    def GetGeometryIds(
+        self, geometry_set: GeometrySet, role: Role | None = None
+    ) -> set[GeometryId]:
+        ids: set[GeometryId] = set()
+        for frame_id in geometry_set.frame_ids():
+            ids.update(self._state.geometries_on(frame_id))
+        for geometry_id in geometry_set.geometry_ids():
+            self._state.geometry_frame(geometry_id)  # validates
+            ids.add(geometry_id)
+        return ids if role is None else {g for g in ids if self._has(g, role)}
+
+    def _has(self, geometry_id: GeometryId, role: Role) -> bool:
+        if role is Role.kUnassigned:
+            return not any(self._state.has_role(geometry_id, r) for r in _ROLES)
+        return self._state.has_role(geometry_id, role)
+
+    def GetGeometryIdByName(self, frame_id: FrameId, role: Role, name: str) -> GeometryId:
+        for g in self._state.geometries_on(frame_id):
+            if self._state.geometry_name(g) == name and self._has(g, role):
+                return g
+        raise RuntimeError(
+            f"The frame '{self._state.frame_name(frame_id)}' ({frame_id.get_value()}) has no "
+            f"geometry with the role '{role}' and the canonical name '{name}'"
+        )
+
+    # -------------------------------------------------------------- names
+    def GetName(self, *args: Any, **kwargs: Any) -> str:
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "GetName",
+            (
+                Overload((Param("source_id", instance_of(SourceId)),), self._state.source_name),
+                Overload((Param("frame_id", instance_of(FrameId)),), self._state.frame_name),
+                Overload(
+                    (Param("geometry_id", instance_of(GeometryId)),), self._state.geometry_name
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def GetOwningSourceName(self, *args: Any, **kwargs: Any) -> str:
+        state = self._state
+
+        def of_frame(frame_id: FrameId) -> str:
+            source = state._frame(frame_id).source_id
+            return "SceneGraph" if source is None else state.source_name(source)
+
+        def of_geometry(geometry_id: GeometryId) -> str:
+            return state.source_name(state.geometry_source(geometry_id))
+
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "GetOwningSourceName",
+            (
+                Overload((Param("frame_id", instance_of(FrameId)),), of_frame),
+                Overload((Param("geometry_id", instance_of(GeometryId)),), of_geometry),
+            ),
+            args,
+            kwargs,
+        )
+
+    def BelongsToSource(self, *args: Any, **kwargs: Any) -> bool:
+        state = self._state
+
+        def frame_in(frame_id: FrameId, source_id: SourceId) -> bool:
+            return state._frame(frame_id).source_id == source_id
+
+        def geometry_in(geometry_id: GeometryId, source_id: SourceId) -> bool:
+            return state.geometry_source(geometry_id) == source_id
+
+        source = Param("source_id", instance_of(SourceId))
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "BelongsToSource",
+            (
+                Overload((Param("frame_id", instance_of(FrameId)), source), frame_in),
+                Overload((Param("geometry_id", instance_of(GeometryId)), source), geometry_in),
+            ),
+            args,
+            kwargs,
+        )
+
+    def GetFrameId(self, geometry_id: GeometryId) -> FrameId:
+        return self._state.geometry_frame(geometry_id)
+
+    def GetFrameGroup(self, frame_id: FrameId) -> int:
+        return self._state.frame_group(frame_id)
+
+    def GetShape(self, geometry_id: GeometryId) -> Shape:
+        return self._state.geometry_shape(geometry_id)
+
+    def GetPoseInFrame(self, geometry_id: GeometryId) -> RigidTransform:
+        return self._state.geometry_pose(geometry_id)
+
+    # --------------------------------------------------------- properties
+    def GetProperties(self, geometry_id: GeometryId, role: Role) -> GeometryProperties | None:
+        return self._state.properties(geometry_id, role)
+
+    def GetProximityProperties(self, geometry_id: GeometryId) -> ProximityProperties | None:
+        return self._state.properties(geometry_id, Role.kProximity)  # type: ignore[return-value]
+
+    def GetIllustrationProperties(
+        self, geometry_id: GeometryId
+    ) -> IllustrationProperties | None:
+        return self._state.properties(geometry_id, Role.kIllustration)  # type: ignore[return-value]
+
+    def GetPerceptionProperties(self, geometry_id: GeometryId) -> PerceptionProperties | None:
+        return self._state.properties(geometry_id, Role.kPerception)  # type: ignore[return-value]
+
+
+_ROLES = (Role.kProximity, Role.kIllustration, Role.kPerception)

@@ -1,0 +1,235 @@
+"""Rigid transforms, enough to pose geometry (drake/math/rigid_transform.h).
+
+Collision filtering never reads a pose; these types exist so that a pydrake
+script that builds poses runs unchanged. They hold numpy arrays and print as
+pydrake prints them.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from reimpl._overload import Overload, Param, any_of, dispatch, instance_of
+
+__all__ = ["RigidTransform", "RollPitchYaw", "RotationMatrix"]
+
+Vector3 = npt.NDArray[np.float64]
+
+
+def _is_vector3(value: object) -> bool:
+    try:
+        return np.asarray(value, dtype=float).shape in {(3,), (3, 1)}
+    except (TypeError, ValueError):
+        return False
+
+
+def _is_matrix(shape: tuple[int, ...]) -> Any:
+    def check(value: object) -> bool:
+        try:
+            return np.asarray(value, dtype=float).shape == shape
+        except (TypeError, ValueError):
+            return False
+
+    check.__name__ = f"numpy.ndarray[{shape}]"
+    return check
+
+
+_is_vector3.__name__ = "numpy.ndarray[3]"
+
+
+def _rows(matrix: npt.NDArray[np.float64], indent: str) -> str:
+    lines = [f"{indent}  [{', '.join(repr(float(x)) for x in row)}]," for row in matrix]
+    return "\n".join(lines)
+
+
+class RollPitchYaw:
+    """Space-fixed X-Y-Z angles [r, p, y]."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        self._rpy = np.zeros(3)
+
+        def set_angles(roll: float, pitch: float, yaw: float) -> None:
+            self._rpy = np.array([roll, pitch, yaw], dtype=float)
+
+        def set_vector(rpy: Vector3) -> None:
+            self._rpy = np.asarray(rpy, dtype=float).reshape(3)
+
+        number = instance_of(int, float)
+        dispatch(
+            "reimpl.math.RollPitchYaw",
+            "__init__",
+            (
+                Overload((Param("rpy", _is_vector3),), set_vector),
+                Overload(
+                    (Param("roll", number), Param("pitch", number), Param("yaw", number)),
+                    set_angles,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def vector(self) -> Vector3:
+        return self._rpy.copy()
+
+    def ToRotationMatrix(self) -> RotationMatrix:
+        r, p, y = self._rpy
+        return RotationMatrix.MakeZRotation(y) @ RotationMatrix.MakeYRotation(
+            p
+        ) @ RotationMatrix.MakeXRotation(r)
+
+
+class RotationMatrix:
+    """An orthonormal 3×3 rotation R_AB."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        self._R = np.eye(3)
+
+        def copy_from(other: RotationMatrix) -> None:
+            self._R = other._R.copy()
+
+        def from_matrix(R: npt.NDArray[np.float64]) -> None:
+            self._R = np.asarray(R, dtype=float).copy()
+
+        def from_rpy(rpy: RollPitchYaw) -> None:
+            self._R = rpy.ToRotationMatrix()._R
+
+        dispatch(
+            "reimpl.math.RotationMatrix",
+            "__init__",
+            (
+                Overload((), lambda: None),
+                Overload((Param("other", instance_of(RotationMatrix)),), copy_from),
+                Overload((Param("R", _is_matrix((3, 3))),), from_matrix),
+                Overload((Param("rpy", instance_of(RollPitchYaw)),), from_rpy),
+            ),
+            args,
+            kwargs,
+        )
+
+    @staticmethod
+    def _about(axis: int, theta: float) -> RotationMatrix:
+        c, s = np.cos(theta), np.sin(theta)
+        i, j = [k for k in range(3) if k != axis]
+        R = np.eye(3)
+        R[i, i], R[i, j], R[j, i], R[j, j] = c, -s, s, c
+        if axis == 1:  # y: z × x ordering flips the sign of the sines.
+            R[i, j], R[j, i] = s, -s
+        return RotationMatrix(R)
+
+    @staticmethod
+    def Identity() -> RotationMatrix:
+        return RotationMatrix()
+
+    @staticmethod
+    def MakeXRotation(theta: float) -> RotationMatrix:
+        return RotationMatrix._about(0, theta)
+
+    @staticmethod
+    def MakeYRotation(theta: float) -> RotationMatrix:
+        return RotationMatrix._about(1, theta)
+
+    @staticmethod
+    def MakeZRotation(theta: float) -> RotationMatrix:
+        return RotationMatrix._about(2, theta)
+
+    def matrix(self) -> npt.NDArray[np.float64]:
+        return self._R.copy()
+
+    def inverse(self) -> RotationMatrix:
+        return RotationMatrix(self._R.T)
+
+    def multiply(self, other: RotationMatrix) -> RotationMatrix:
+        return RotationMatrix(self._R @ other._R)
+
+    def __matmul__(self, other: RotationMatrix) -> RotationMatrix:
+        return self.multiply(other)
+
+    def __repr__(self) -> str:
+        return f"RotationMatrix([\n{_rows(self._R, '')}\n])"
+
+
+class RigidTransform:
+    """A pose X_AB = (R_AB, p_AoBo_A)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        self._R = RotationMatrix()
+        self._p = np.zeros(3)
+
+        def set_pose(R: RotationMatrix | None = None, p: Vector3 | None = None) -> None:
+            if R is not None:
+                self._R = RotationMatrix(R)
+            if p is not None:
+                self._p = np.asarray(p, dtype=float).reshape(3).copy()
+
+        def copy_from(other: RigidTransform) -> None:
+            set_pose(other._R, other._p)
+
+        def from_rpy(rpy: RollPitchYaw, p: Vector3) -> None:
+            set_pose(rpy.ToRotationMatrix(), p)
+
+        def from_matrix(pose: npt.NDArray[np.float64]) -> None:
+            m = np.asarray(pose, dtype=float)
+            set_pose(RotationMatrix(m[:3, :3]), m[:3, 3])
+
+        rotation = instance_of(RotationMatrix)
+        dispatch(
+            "reimpl.math.RigidTransform",
+            "__init__",
+            (
+                Overload((), lambda: None),
+                Overload((Param("other", instance_of(RigidTransform)),), copy_from),
+                Overload((Param("R", rotation), Param("p", _is_vector3)), set_pose),
+                Overload(
+                    (Param("rpy", instance_of(RollPitchYaw)), Param("p", _is_vector3)), from_rpy
+                ),
+                Overload((Param("R", rotation),), set_pose),
+                Overload((Param("p", _is_vector3),), set_pose),
+                Overload(
+                    (Param("pose", any_of(_is_matrix((4, 4)), _is_matrix((3, 4)))),),
+                    from_matrix,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    @staticmethod
+    def Identity() -> RigidTransform:
+        return RigidTransform()
+
+    def rotation(self) -> RotationMatrix:
+        return RotationMatrix(self._R)
+
+    def translation(self) -> Vector3:
+        return self._p.copy()
+
+    def set_translation(self, p: Vector3) -> None:
+        self._p = np.asarray(p, dtype=float).reshape(3).copy()
+
+    def set_rotation(self, R: RotationMatrix) -> None:
+        self._R = RotationMatrix(R)
+
+    def GetAsMatrix4(self) -> npt.NDArray[np.float64]:
+        m = np.eye(4)
+        m[:3, :3] = self._R.matrix()
+        m[:3, 3] = self._p
+        return m
+
+    def inverse(self) -> RigidTransform:
+        R_inv = self._R.inverse()
+        return RigidTransform(R_inv, -(R_inv.matrix() @ self._p))
+
+    def multiply(self, other: RigidTransform) -> RigidTransform:
+        return RigidTransform(self._R @ other._R, self._R.matrix() @ other._p + self._p)
+
+    def __matmul__(self, other: RigidTransform) -> RigidTransform:
+        return self.multiply(other)
+
+    def __repr__(self) -> str:
+        R = _rows(self._R.matrix(), "  ")
+        p = ", ".join(repr(float(x)) for x in self._p)
+        return f"RigidTransform(\n  R=RotationMatrix([\n{R}\n  ]),\n  p=[{p}],\n)"

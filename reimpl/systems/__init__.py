@@ -1,0 +1,1 @@
+"""Systems-framework stand-ins needed by SceneGraph scripts (pydrake.systems)."""
