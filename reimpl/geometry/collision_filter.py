@@ -136,6 +136,8 @@ class CollisionFilter:
         self._composite: BoolMatrix = np.zeros((cap, cap), dtype=bool)
         self._invariant: BoolMatrix = np.zeros((cap, cap), dtype=bool)
         self._history: list[_Delta] = []
+        # Slots whose rows in C may hold leftovers of a failed, partial apply.
+        self._leftover: set[int] = set()
 
     # ----------------------------------------------------------------- copies
     def copy(self) -> CollisionFilter:
@@ -151,6 +153,7 @@ class CollisionFilter:
         other._composite = self._composite.copy()
         other._invariant = self._invariant.copy()
         other._history = list(self._history)  # deltas are immutable
+        other._leftover = set(self._leftover)
         return other
 
     # ------------------------------------------------------------- geometries
@@ -186,8 +189,7 @@ class CollisionFilter:
         self._inactive[slot] = False
         self._id_at[slot] = None
         self._history = [
-            _Delta(d.filter_id, tuple(s.without(slot) for s in d.statements))
-            for d in self._history
+            _Delta(d.filter_id, tuple(s.without(slot) for s in d.statements)) for d in self._history
         ]
         self._free.append(slot)
 
@@ -231,58 +233,82 @@ class CollisionFilter:
         *,
         is_invariant: bool = False,
     ) -> None:
-        """Applies statements, in order, to the persistent base (and to C).
+        """Applies statements, in order, to the persistent base (and so to C).
+
+        Each statement is resolved, then written to C; the base is written only
+        once every statement has resolved.
 
         Raises:
             TransientHistoryActiveError: if any transient declaration is active.
-            UnknownGeometryError, UnknownFrameError: from ``resolve``. N.B. Like
-                Drake ≤ 1.51, statements before the bad one stay applied.
+            UnknownGeometryError, UnknownFrameError: from ``resolve``. N.B. As in
+                Drake ≤ 1.51, statements before the bad one stay in C (not in the
+                base) until C is next re-derived from the base.
         """
         if self._history:
             raise TransientHistoryActiveError(_PERSISTENT_WITH_HISTORY)
-        for statement in statements:
-            resolved = self._resolve(statement, resolve)
-            if is_invariant:
-                if not resolved.op.filters:
-                    raise AssertionError("an Allow statement cannot be invariant")
-                _write(self._invariant, resolved)
-            else:
-                _write(self._base, resolved)
-                _write(self._composite, resolved)
+        if is_invariant and any(not s.op.filters for s in statements):
+            raise AssertionError("an Allow statement cannot be invariant")
+        target = self._invariant if is_invariant else self._composite
+        resolved = self._apply_to(target, statements, resolve)
+        if not is_invariant:
+            for item in resolved:
+                _write(self._base, item)
 
     def apply_transient(self, statements: Sequence[Statement], resolve: Resolver) -> FilterId:
-        """Appends a declaration to the history; C ← replay(C, declaration).
+        """Appends a declaration to the history; C ← C then the declaration.
 
         Returns the new declaration's FilterId. If resolution fails part way,
-        no history entry is made; statements applied before the failure stay
-        in C until the next RemoveDeclaration re-derives it (Drake ≤ 1.51).
+        no history entry is made and the statements before the failure stay in
+        C until it is next re-derived (Drake ≤ 1.51).
         """
-        resolved: list[ResolvedStatement] = []
-        for statement in statements:
-            item = self._resolve(statement, resolve)
-            _write(self._composite, item)
-            resolved.append(item)
+        resolved = self._apply_to(self._composite, statements, resolve)
         filter_id = FilterId.get_new_id()
-        self._history.append(_Delta(filter_id, tuple(resolved)))
+        self._history.append(_Delta(filter_id, resolved))
+        self._rederive(np.empty(0, np.intp))
         return filter_id
+
+    def _apply_to(
+        self, target: BoolMatrix, statements: Sequence[Statement], resolve: Resolver
+    ) -> tuple[ResolvedStatement, ...]:
+        """Resolves and writes each statement in turn; remembers partial work on failure."""
+        resolved: list[ResolvedStatement] = []
+        try:
+            for statement in statements:
+                item = self._resolve(statement, resolve)
+                _write(target, item)
+                resolved.append(item)
+        except Exception:
+            if target is self._composite:
+                for item in resolved:
+                    self._leftover.update(item.mentioned().tolist())
+            raise
+        return tuple(resolved)
 
     def remove_declaration(self, filter_id: FilterId) -> bool:
         """Removes a transient declaration; C ← replay(base, remaining history).
 
-        Returns True iff ``filter_id`` was active. Only the rows of the slots
-        the removed declaration mentions (R) can change, so only they are
-        re-derived: rows_R ← base_R, then every remaining statement, in order.
+        Returns True iff ``filter_id`` was active.
         """
-        index = next(
-            (i for i, d in enumerate(self._history) if d.filter_id == filter_id), None
-        )
+        index = next((i for i, d in enumerate(self._history) if d.filter_id == filter_id), None)
         if index is None:
             return False
         removed = self._history.pop(index)
         mentioned = [s.mentioned() for s in removed.statements]
-        R = np.unique(np.concatenate(mentioned)) if mentioned else np.empty(0, np.intp)
+        self._rederive(np.concatenate(mentioned) if mentioned else np.empty(0, np.intp))
+        return True
+
+    def _rederive(self, slots: Slots) -> None:
+        """C ← replay(base, history) on the rows of ``slots`` and of any leftovers.
+
+        Only a pair whose two geometries a statement mentions can change, so
+        re-deriving the rows R of the mentioned slots suffices: rows_R ← base_R,
+        then every live statement in order, restricted to R. Cost
+        O(|R|·n + replay), never a full O(n²) rebuild.
+        """
+        R = np.unique(np.concatenate([slots, np.fromiter(self._leftover, np.intp)]))
+        self._leftover.clear()
         if R.size == 0:
-            return True
+            return
         row_of = np.full(len(self._registered), -1, dtype=np.intp)
         row_of[R] = np.arange(R.size)
         rows = self._base[R, :].copy()
@@ -291,7 +317,6 @@ class CollisionFilter:
                 _write_rows(rows, row_of, statement)
         self._composite[R, :] = rows
         self._composite[:, R] = rows.T
-        return True
 
     def is_active(self, filter_id: FilterId) -> bool:
         return any(d.filter_id == filter_id for d in self._history)

@@ -62,11 +62,11 @@ class StatementOp(enum.Enum):
 
     @property
     def pairing(self) -> Pairing:
-        return self.value[0]  # type: ignore[no-any-return]
+        return self.value[0]
 
     @property
     def filters(self) -> bool:
-        return self.value[1]  # type: ignore[no-any-return]
+        return self.value[1]
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,7 @@ GeometryState or one context's copy of it.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from reimpl.geometry.collision_filter_declaration import (
@@ -31,13 +32,18 @@ class CollisionFilterManager:
     def __init__(self, *args: object, **kwargs: object) -> None:
         raise TypeError("reimpl.geometry.CollisionFilterManager: No constructor defined!")
 
+    _state_of: Callable[[], GeometryState]
+
     @classmethod
-    def _view(cls, state: GeometryState) -> CollisionFilterManager:
+    def _view(cls, state_of: Callable[[], GeometryState]) -> CollisionFilterManager:
+        """A view of whatever state ``state_of()`` returns at each call."""
         manager = object.__new__(cls)
-        manager._state = state
+        manager._state_of = state_of
         return manager
 
-    _state: GeometryState
+    @property
+    def _state(self) -> GeometryState:
+        return self._state_of()
 
     def Apply(self, declaration: CollisionFilterDeclaration) -> None:
         """Applies ``declaration`` to the persistent base, statement by statement.

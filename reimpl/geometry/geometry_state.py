@@ -42,7 +42,7 @@ __all__ = ["WORLD_FRAME_ID", "GeometryState"]
 #: The world frame's id: one static id shared by every SceneGraph, as in Drake.
 WORLD_FRAME_ID = FrameId.get_new_id()
 _WORLD_FRAME_NAME = "world"
-_SELF_SOURCE_NAME = "SceneGraph"
+_INTERNAL_SOURCE_NAME = "SceneGraphInternal"
 
 _ROLE_NAMES = {
     Role.kProximity: "proximity",
@@ -88,9 +88,13 @@ class GeometryState:
     """Sources, frames, geometries, roles and the collision filter of one state."""
 
     def __init__(self) -> None:
-        self._sources: dict[SourceId, _Source] = {}
+        internal = SourceId.get_new_id()
+        self._internal_source = internal
+        self._sources: dict[SourceId, _Source] = {
+            internal: _Source(internal, _INTERNAL_SOURCE_NAME)
+        }
         self._frames: dict[FrameId, _Frame] = {
-            WORLD_FRAME_ID: _Frame(WORLD_FRAME_ID, _WORLD_FRAME_NAME, None, WORLD_FRAME_ID, 0)
+            WORLD_FRAME_ID: _Frame(WORLD_FRAME_ID, _WORLD_FRAME_NAME, internal, WORLD_FRAME_ID, 0)
         }
         self._geometries: dict[GeometryId, _Geometry] = {}
         self.collision_filter = CollisionFilter()
@@ -98,11 +102,17 @@ class GeometryState:
     def clone(self) -> GeometryState:
         """A deep copy, as a context's copy of the model is (filters and history too)."""
         other = object.__new__(GeometryState)
+        other._internal_source = self._internal_source
         other._sources = copy.deepcopy(self._sources)
         other._frames = copy.deepcopy(self._frames)
         other._geometries = {
             g: _Geometry(
-                r.id, r.name, r.frame_id, r.source_id, r.shape, r.pose,
+                r.id,
+                r.name,
+                r.frame_id,
+                r.source_id,
+                r.shape,
+                r.pose,
                 {role: type(p)(p) for role, p in r.properties.items()},
             )
             for g, r in self._geometries.items()
@@ -127,40 +137,28 @@ class GeometryState:
                 f"Referenced frame {frame_id.get_value()} has not been registered."
             ) from None
 
-    def _geometry(self, geometry_id: GeometryId) -> _Geometry:
+    def _geometry(self, geometry_id: GeometryId, *, period: str = ".") -> _Geometry:
         try:
             return self._geometries[geometry_id]
         except KeyError:
             raise UnknownGeometryError(
-                f"Referenced geometry {geometry_id.get_value()} has not been registered."
+                f"Referenced geometry {geometry_id.get_value()} has not been registered{period}"
             ) from None
 
-    def _owned_geometry(self, source_id: SourceId, geometry_id: GeometryId) -> _Geometry:
-        self._source(source_id)
-        geometry = self._geometry(geometry_id)
-        if geometry.source_id != source_id:
-            raise GeometryStateError(
-                f"Given geometry id {geometry_id.get_value()} does not belong to the given "
-                f"source id {source_id.get_value()}"
-            )
-        return geometry
-
-    def _owned_frame(self, source_id: SourceId, frame_id: FrameId) -> _Frame:
-        self._source(source_id)
-        frame = self._frame(frame_id)
-        if frame.source_id != source_id and frame_id != WORLD_FRAME_ID:
-            raise GeometryStateError(
-                f"Frame id {frame_id.get_value()} does not belong to the given source id "
-                f"{source_id.get_value()}"
+    def _frame_of_source(self, source_id: SourceId, frame_id: FrameId) -> _Frame:
+        """The frame, if ``source_id`` may hang geometry on it (the world frame: any source)."""
+        frame = self._frames.get(frame_id)
+        if frame is None or (frame_id != WORLD_FRAME_ID and frame.source_id != source_id):
+            raise UnknownFrameError(
+                f"Referenced frame {frame_id.get_value()} for source {source_id.get_value()}, "
+                "but the frame doesn't belong to the source."
             )
         return frame
 
     # ----------------------------------------------------------- registration
     def register_source(self, name: str) -> SourceId:
         if any(s.name == name for s in self._sources.values()):
-            raise GeometryStateError(
-                f"Registering new source with duplicate name: {name}."
-            )
+            raise GeometryStateError(f"Registering new source with duplicate name: {name}.")
         source_id = SourceId.get_new_id()
         self._sources[source_id] = _Source(source_id, name)
         return source_id
@@ -169,12 +167,21 @@ class GeometryState:
         self, source_id: SourceId, parent_id: FrameId, frame: GeometryFrame
     ) -> FrameId:
         source = self._source(source_id)
-        if parent_id != WORLD_FRAME_ID:
-            self._owned_frame(source_id, parent_id)
+        parent = self._frames.get(parent_id)
+        if parent is None or (parent_id != WORLD_FRAME_ID and parent.source_id != source_id):
+            raise UnknownFrameError(
+                f"Indicated parent id {parent_id.get_value()} does not belong to the indicated "
+                f"source id {source_id.get_value()}."
+            )
         if frame.id() in self._frames:
             raise GeometryStateError(
-                f"Registering frame with an id that has already been registered: "
+                "Registering frame with an id that has already been registered: "
                 f"{frame.id().get_value()}"
+            )
+        if any(self._frames[f].name == frame.name() for f in source.frames):
+            raise GeometryStateError(
+                f"Registering frame for source '{source.name}' with a duplicate name "
+                f"'{frame.name()}'"
             )
         self._frames[frame.id()] = _Frame(
             frame.id(), frame.name(), source_id, parent_id, frame.frame_group()
@@ -185,24 +192,30 @@ class GeometryState:
     def register_geometry(
         self, source_id: SourceId, frame_id: FrameId, geometry: GeometryInstance
     ) -> GeometryId:
-        frame = self._owned_frame(source_id, frame_id)
+        """Registers the geometry, then assigns the roles its instance carries.
+
+        N.B. As in Drake, a role assignment that fails here (a duplicate name,
+        or transient history for proximity) raises with the geometry left
+        registered.
+        """
+        self._source(source_id)
+        frame = self._frame_of_source(source_id, frame_id)
         if geometry.id() in self._geometries:
             raise GeometryStateError(
-                f"Registering geometry with an id that has already been registered: "
+                "Registering geometry with an id that has already been registered: "
                 f"{geometry.id().get_value()}"
             )
         record = _Geometry(
-            geometry.id(), geometry.name(), frame_id, source_id,
-            geometry.shape(), geometry.pose(),
+            geometry.id(), geometry.name(), frame_id, source_id, geometry.shape(), geometry.pose()
         )
         self._geometries[record.id] = record
         frame.geometries.append(record.id)
         if frame_id == WORLD_FRAME_ID:
             self._sources[source_id].anchored.append(record.id)
         for properties in (
-            geometry.illustration_properties(),
-            geometry.perception_properties(),
             geometry.proximity_properties(),
+            geometry.perception_properties(),
+            geometry.illustration_properties(),
         ):
             if properties is not None:
                 self.assign_role(source_id, record.id, properties, RoleAssign.kNew)
@@ -217,23 +230,46 @@ class GeometryState:
         assign: RoleAssign,
     ) -> None:
         """Assigns or replaces a role; a new proximity role joins C (see module doc)."""
-        geometry = self._owned_geometry(source_id, geometry_id)
+        self._source(source_id)
+        geometry = self._geometry(geometry_id)
+        if geometry.source_id != source_id:
+            raise GeometryStateError(
+                f"Given geometry id {geometry_id.get_value()} does not belong to the given "
+                f"source id {source_id.get_value()}"
+            )
         role = properties.role
+        role_name = _ROLE_NAMES[role]
         has_role = role in geometry.properties
-        if assign is RoleAssign.kNew and has_role:
+        if assign is RoleAssign.kReplace:
+            if role is Role.kPerception:
+                raise GeometryStateError(
+                    "AssignRole() with RoleAssign::kReplace does not work for perception properties"
+                )
+            if not has_role:
+                raise GeometryStateError(
+                    f"Trying to replace the properties on geometry id "
+                    f"{geometry_id.get_value()} for the '{role_name}' role; it has not had the "
+                    "role initially assigned"
+                )
+            geometry.properties[role] = type(properties)(properties)
+            return
+        if has_role:
             raise DuplicateRoleError(
-                f"Trying to assign the '{_ROLE_NAMES[role]}' role to geometry id "
+                f"Trying to assign the '{role_name}' role to geometry id "
                 f"{geometry_id.get_value()} for the first time; it already has the role "
                 "assigned"
             )
-        if assign is RoleAssign.kReplace and not has_role:
+        if any(
+            self._geometries[other].name == geometry.name
+            and role in self._geometries[other].properties
+            for other in self._frames[geometry.frame_id].geometries
+        ):
             raise GeometryStateError(
-                f"Trying to replace the properties on geometry id {geometry_id.get_value()} "
-                f"for the '{_ROLE_NAMES[role]}' role; it has not had the role initially "
-                "assigned"
+                f"The name '{geometry.name}' has already been used by a geometry with the "
+                f"'{role_name}' role."
             )
         geometry.properties[role] = type(properties)(properties)
-        if role is Role.kProximity and assign is RoleAssign.kNew:
+        if role is Role.kProximity:
             self._assign_proximity(geometry)
 
     def _assign_proximity(self, geometry: _Geometry) -> None:
@@ -252,11 +288,19 @@ class GeometryState:
         self.collision_filter.apply([statement], self.collect_ids, is_invariant=True)
 
     def remove_role(self, source_id: SourceId, geometry_id: GeometryId, role: Role) -> int:
-        geometry = self._owned_geometry(source_id, geometry_id)
+        self._source(source_id)
+        geometry = self._geometry(geometry_id)
+        if geometry.source_id != source_id:
+            raise GeometryStateError(
+                f"Trying to remove the role {_ROLE_NAMES.get(role, 'unassigned')} from the "
+                f"geometry {geometry_id.get_value()} from source {source_id.get_value()}, but "
+                "the geometry doesn't belong to that source."
+            )
         return self._remove_role(geometry, role)
 
     def remove_frame_role(self, source_id: SourceId, frame_id: FrameId, role: Role) -> int:
-        frame = self._owned_frame(source_id, frame_id)
+        self._source(source_id)
+        frame = self._frame_of_source(source_id, frame_id)
         geometries = (
             self._sources[source_id].anchored if frame_id == WORLD_FRAME_ID else frame.geometries
         )
@@ -270,7 +314,13 @@ class GeometryState:
         return 1
 
     def remove_geometry(self, source_id: SourceId, geometry_id: GeometryId) -> None:
-        geometry = self._owned_geometry(source_id, geometry_id)
+        self._source(source_id)
+        geometry = self._geometry(geometry_id)
+        if geometry.source_id != source_id:
+            raise GeometryStateError(
+                f"Trying to remove geometry {geometry_id.get_value()} from source "
+                f"{source_id.get_value()}, but the geometry doesn't belong to that source."
+            )
         for role in list(geometry.properties):
             self._remove_role(geometry, role)
         self._frames[geometry.frame_id].geometries.remove(geometry_id)
@@ -281,7 +331,8 @@ class GeometryState:
     # ------------------------------------------------------------ resolution
     def _proximity_on(self, frame_id: FrameId) -> list[GeometryId]:
         return [
-            g for g in self._frames[frame_id].geometries
+            g
+            for g in self._frames[frame_id].geometries
             if Role.kProximity in self._geometries[g].properties
         ]
 
@@ -336,10 +387,18 @@ class GeometryState:
         return source_id in self._sources
 
     def source_name(self, source_id: SourceId) -> str:
-        return self._source(source_id).name
+        if source_id not in self._sources:
+            raise UnknownSourceError(
+                f"Querying source name for an invalid source id: {source_id.get_value()}."
+            )
+        return self._sources[source_id].name
 
     def frame_name(self, frame_id: FrameId) -> str:
-        return self._frame(frame_id).name
+        if frame_id not in self._frames:
+            raise UnknownFrameError(
+                f"No frame name available for invalid frame id: {frame_id.get_value()}"
+            )
+        return self._frames[frame_id].name
 
     def frame_group(self, frame_id: FrameId) -> int:
         return self._frame(frame_id).frame_group
@@ -348,7 +407,11 @@ class GeometryState:
         return self._frame(frame_id).parent_id
 
     def geometry_name(self, geometry_id: GeometryId) -> str:
-        return self._geometry(geometry_id).name
+        if geometry_id not in self._geometries:
+            raise UnknownGeometryError(
+                f"No geometry available for invalid geometry id: {geometry_id.get_value()}"
+            )
+        return self._geometries[geometry_id].name
 
     def geometry_frame(self, geometry_id: GeometryId) -> FrameId:
         return self._geometry(geometry_id).frame_id
@@ -363,13 +426,16 @@ class GeometryState:
         return RigidTransform(self._geometry(geometry_id).pose)
 
     def properties(self, geometry_id: GeometryId, role: Role) -> GeometryProperties | None:
-        return self._geometry(geometry_id).properties.get(role)
+        return self._geometry(geometry_id, period="").properties.get(role)
 
     def has_role(self, geometry_id: GeometryId, role: Role) -> bool:
         return role in self._geometry(geometry_id).properties
 
     def source_ids(self) -> list[SourceId]:
         return list(self._sources)
+
+    def internal_source(self) -> SourceId:
+        return self._internal_source
 
     def frame_ids(self) -> list[FrameId]:
         return list(self._frames)

@@ -48,12 +48,12 @@ class Identifier:
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
             return NotImplemented
-        return self._value == other._value  # type: ignore[attr-defined, no-any-return]
+        return self._value == other._value
 
     def __lt__(self, other: object) -> bool:
         if type(other) is not type(self):
             return NotImplemented
-        return self._value < other._value  # type: ignore[attr-defined, no-any-return]
+        return self._value < other._value
 
     def __hash__(self) -> int:
         return hash(self._value)

@@ -6,6 +6,7 @@ where geometry is.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from reimpl.geometry.identifier import FrameId
@@ -24,17 +25,17 @@ class QueryObject:
     def __init__(self) -> None:
         raise TypeError("reimpl.geometry.QueryObject: No constructor defined!")
 
-    _state: GeometryState
+    _state_of: Callable[[], GeometryState]
 
     @classmethod
-    def _make(cls, state: GeometryState) -> QueryObject:
+    def _make(cls, state_of: Callable[[], GeometryState]) -> QueryObject:
         query = object.__new__(cls)
-        query._state = state
+        query._state_of = state_of
         return query
 
     def inspector(self) -> SceneGraphInspector:
         """A live inspector of the context this object was evaluated on."""
-        return SceneGraphInspector._view(self._state)
+        return SceneGraphInspector._view(self._state_of)
 
 
 class FramePoseVector:
@@ -43,13 +44,13 @@ class FramePoseVector:
     def __init__(self) -> None:
         self._poses: dict[FrameId, RigidTransform] = {}
 
-    def set_value(self, id: FrameId, value: RigidTransform) -> None:  # noqa: A002 (pydrake name)
+    def set_value(self, id: FrameId, value: RigidTransform) -> None:
         self._poses[id] = RigidTransform(value)
 
-    def value(self, id: FrameId) -> RigidTransform:  # noqa: A002
+    def value(self, id: FrameId) -> RigidTransform:
         return RigidTransform(self._poses[id])
 
-    def has_id(self, id: FrameId) -> bool:  # noqa: A002
+    def has_id(self, id: FrameId) -> bool:
         return id in self._poses
 
     def ids(self) -> list[FrameId]:

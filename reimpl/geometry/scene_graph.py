@@ -5,6 +5,13 @@ GeometryState. ``CreateDefaultContext()`` gives each context its own deep copy,
 filters and transient history included; from then on the model and the context
 are independent. ``collision_filter_manager()`` edits the model,
 ``collision_filter_manager(context)`` edits that context only.
+
+N.B. Contexts copy a *cached* model (measured on pydrake 1.12-1.58; the
+"stale manager" of pydrake-observed.md §2). The cache is refreshed by
+CreateDefaultContext/SetDefaultContext only when it is marked dirty, and only
+SceneGraph's own model-editing methods, and ``collision_filter_manager()``,
+mark it, even when they then raise. Edits through a manager held from earlier
+do not, so contexts made afterwards miss them until one of those calls.
 """
 
 from __future__ import annotations
@@ -41,14 +48,29 @@ class SceneGraph:
 
     def __init__(self) -> None:
         self._model = GeometryState()
+        self._cache = self._model
+        self._dirty = True
         self._system_id = next(_system_ids)
         self._pose_ports: dict[SourceId, InputPort] = {}
         self._query_port = OutputPort("query", self._eval_query)
+        self._model_inspector = SceneGraphInspector._view(lambda: self._model)
 
     # ------------------------------------------------------------- helpers
+    def _edit_model(self) -> GeometryState:
+        """The model, for one of the calls that mark the context cache dirty."""
+        self._dirty = True
+        return self._model
+
+    def _default_state(self) -> GeometryState:
+        """A copy of the cached model, refreshing the cache first if it is dirty."""
+        if self._dirty:
+            self._cache = self._model.clone()
+            self._dirty = False
+        return self._cache.clone()
+
     def _state_of(self, context: Context | None) -> GeometryState:
         if context is None:
-            return self._model
+            return self._edit_model()
         if context._system_id != self._system_id:
             raise RuntimeError(
                 "A function call on a SceneGraph system was passed the Context of a "
@@ -74,9 +96,10 @@ class SceneGraph:
 
     # -------------------------------------------------------- registration
     def RegisterSource(self, name: str = "") -> SourceId:
+        model = self._edit_model()
         if not name:
-            name = f"Source_{len(self._model.source_ids()) + 1}"
-        source_id = self._model.register_source(name)
+            name = f"Source_{SourceId.get_new_id().get_value()}"
+        source_id = model.register_source(name)
         self._pose_ports[source_id] = InputPort(f"{name}_pose", source_id.get_value())
         return source_id
 
@@ -89,13 +112,13 @@ class SceneGraph:
             (
                 Overload(
                     (source, frame),
-                    lambda source_id, frame: self._model.register_frame(
+                    lambda source_id, frame: self._edit_model().register_frame(
                         source_id, WORLD_FRAME_ID, frame
                     ),
                 ),
                 Overload(
                     (source, Param("parent_id", instance_of(FrameId)), frame),
-                    self._model.register_frame,
+                    lambda **kw: self._edit_model().register_frame(**kw),
                 ),
             ),
             args,
@@ -126,7 +149,7 @@ class SceneGraph:
     def RegisterAnchoredGeometry(
         self, source_id: SourceId, geometry: GeometryInstance
     ) -> GeometryId:
-        return self._model.register_geometry(source_id, WORLD_FRAME_ID, geometry)
+        return self._edit_model().register_geometry(source_id, WORLD_FRAME_ID, geometry)
 
     # --------------------------------------------------------------- roles
     def AssignRole(self, *args: Any, **kwargs: Any) -> None:
@@ -204,39 +227,45 @@ class SceneGraph:
         return WORLD_FRAME_ID
 
     def model_inspector(self) -> SceneGraphInspector:
-        return SceneGraphInspector._view(self._model)
+        """The model's inspector: one live view, the same object on every call."""
+        return self._model_inspector
 
     def collision_filter_manager(self, *args: Any, **kwargs: Any) -> CollisionFilterManager:
         return dispatch(  # type: ignore[no-any-return]
             _OWNER,
             "collision_filter_manager",
             (
-                Overload(
-                    (Param("context", instance_of(Context)),),
-                    lambda context: CollisionFilterManager._view(self._state_of(context)),
-                ),
-                Overload((), lambda: CollisionFilterManager._view(self._model)),
+                Overload((Param("context", instance_of(Context)),), self._context_manager),
+                Overload((), self._model_manager),
             ),
             args,
             kwargs,
         )
 
     # ------------------------------------------------------------ contexts
+    def _model_manager(self) -> CollisionFilterManager:
+        self._edit_model()
+        return CollisionFilterManager._view(lambda: self._model)
+
+    def _context_manager(self, context: Context) -> CollisionFilterManager:
+        self._state_of(context)
+        return CollisionFilterManager._view(lambda: context._geometry_state)
+
     def CreateDefaultContext(self) -> Context:
-        return Context._make(self._model.clone(), self._system_id)
+        return Context._make(self._default_state(), self._system_id)
 
     def AllocateContext(self) -> Context:
         return self.CreateDefaultContext()
 
     def SetDefaultContext(self, context: Context) -> None:
-        """Resets the context's geometry state to a fresh copy of the model."""
+        """Resets the context's geometry state to a copy of the (cached) model."""
         self._state_of(context)
-        context._geometry_state = self._model.clone()
+        context._geometry_state = self._default_state()
 
     def get_query_output_port(self) -> OutputPort:
         return self._query_port
 
-    def get_source_pose_port(self, source_id: SourceId) -> InputPort:
+    def get_source_pose_port(self, source_id: SourceId, /) -> InputPort:
         if source_id not in self._pose_ports:
             raise RuntimeError(
                 f"Can't acquire pose port for unknown source id: {source_id.get_value()}."
@@ -244,4 +273,33 @@ class SceneGraph:
         return self._pose_ports[source_id]
 
     def _eval_query(self, context: Context) -> QueryObject:
-        return QueryObject._make(self._state_of(context))
+        self._state_of(context)
+        context._clone_check = self._check_pose_inputs
+        return QueryObject._make(lambda: context._geometry_state)
+
+    def _check_pose_inputs(self, context: Context) -> None:
+        """Why Clone() fails after the query port was evaluated without poses.
+
+        N.B. Measured on pydrake: once the query port has been evaluated,
+        cloning the context needs every source with frames to have its pose
+        port fixed with one pose per frame.
+        """
+        state = context._geometry_state
+        for source_id in state.source_ids():
+            frames = state.frames_of_source(source_id)
+            if not frames:
+                continue
+            port = self._pose_ports[source_id]
+            if not port.HasValue(context):
+                raise RuntimeError(
+                    f"Source '{state.source_name(source_id)}' (id: {source_id.get_value()}) "
+                    "has registered dynamic frames but is not connected to the appropriate "
+                    "input port."
+                )
+            given = context._fixed_inputs[port._index]
+            size = given.size() if hasattr(given, "size") else len(frames)
+            if size != len(frames):
+                raise RuntimeError(
+                    f"Disagreement in expected number of frames ({len(frames)}) and the given "
+                    f"number of frames ({size})."
+                )

@@ -6,6 +6,7 @@ view, not a snapshot: it sees later changes to the state it inspects.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
@@ -36,13 +37,18 @@ class SceneGraphInspector:
     def __init__(self, *args: object, **kwargs: object) -> None:
         raise TypeError("reimpl.geometry.SceneGraphInspector: No constructor defined!")
 
-    _state: GeometryState
+    _state_of: Callable[[], GeometryState]
 
     @classmethod
-    def _view(cls, state: GeometryState) -> SceneGraphInspector:
+    def _view(cls, state_of: Callable[[], GeometryState]) -> SceneGraphInspector:
+        """A live view of whatever state ``state_of()`` returns at each call."""
         inspector = object.__new__(cls)
-        inspector._state = state
+        inspector._state_of = state_of
         return inspector
+
+    @property
+    def _state(self) -> GeometryState:
+        return self._state_of()
 
     # ---------------------------------------------------------- filtering
     def GetCollisionCandidates(self) -> set[tuple[GeometryId, GeometryId]]:
@@ -55,7 +61,7 @@ class SceneGraphInspector:
 
     # ------------------------------------------------------------- counts
     def num_sources(self) -> int:
-        return len(self._state.source_ids()) + 1  # SceneGraph's own source.
+        return len(self._state.source_ids())
 
     def num_frames(self) -> int:
         return len(self._state.frame_ids())
@@ -105,11 +111,13 @@ class SceneGraphInspector:
     def GetGeometryIds(
         self, geometry_set: GeometrySet, role: Role | None = None
     ) -> set[GeometryId]:
+        """The set's geometries (frames expanded to their direct children), by role."""
         ids: set[GeometryId] = set()
         for frame_id in geometry_set.frame_ids():
+            self._state.collect_ids(GeometrySet(frame_id=frame_id))  # validates
             ids.update(self._state.geometries_on(frame_id))
         for geometry_id in geometry_set.geometry_ids():
-            self._state.geometry_frame(geometry_id)  # validates
+            self._state.collect_ids(GeometrySet(geometry_id=geometry_id))  # validates
             ids.add(geometry_id)
         return ids if role is None else {g for g in ids if self._has(g, role)}
 
@@ -148,7 +156,7 @@ class SceneGraphInspector:
 
         def of_frame(frame_id: FrameId) -> str:
             source = state._frame(frame_id).source_id
-            return "SceneGraph" if source is None else state.source_name(source)
+            return state.source_name(source if source is not None else state.internal_source())
 
         def of_geometry(geometry_id: GeometryId) -> str:
             return state.source_name(state.geometry_source(geometry_id))
@@ -204,9 +212,7 @@ class SceneGraphInspector:
     def GetProximityProperties(self, geometry_id: GeometryId) -> ProximityProperties | None:
         return self._state.properties(geometry_id, Role.kProximity)  # type: ignore[return-value]
 
-    def GetIllustrationProperties(
-        self, geometry_id: GeometryId
-    ) -> IllustrationProperties | None:
+    def GetIllustrationProperties(self, geometry_id: GeometryId) -> IllustrationProperties | None:
         return self._state.properties(geometry_id, Role.kIllustration)  # type: ignore[return-value]
 
     def GetPerceptionProperties(self, geometry_id: GeometryId) -> PerceptionProperties | None:

@@ -77,9 +77,11 @@ class RollPitchYaw:
 
     def ToRotationMatrix(self) -> RotationMatrix:
         r, p, y = self._rpy
-        return RotationMatrix.MakeZRotation(y) @ RotationMatrix.MakeYRotation(
-            p
-        ) @ RotationMatrix.MakeXRotation(r)
+        return (
+            RotationMatrix.MakeZRotation(y)
+            @ RotationMatrix.MakeYRotation(p)
+            @ RotationMatrix.MakeXRotation(r)
+        )
 
 
 class RotationMatrix:

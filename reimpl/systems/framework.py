@@ -24,6 +24,7 @@ class Context:
     _geometry_state: GeometryState
     _system_id: int
     _fixed_inputs: dict[int, Any]
+    _clone_check: Callable[[Context], None] | None
 
     @classmethod
     def _make(cls, state: GeometryState, system_id: int) -> Context:
@@ -31,12 +32,16 @@ class Context:
         context._geometry_state = state
         context._system_id = system_id
         context._fixed_inputs = {}
+        context._clone_check = None
         return context
 
     def Clone(self) -> Context:
         """A deep copy: filters and transient history (same FilterIds) included."""
+        if self._clone_check is not None:
+            self._clone_check(self)
         clone = Context._make(self._geometry_state.clone(), self._system_id)
         clone._fixed_inputs = dict(self._fixed_inputs)
+        clone._clone_check = self._clone_check
         return clone
 
 

@@ -1,0 +1,23 @@
+"""Conformance harness: drive implementations with identical scenarios, compare pair by pair."""
+
+from conformance.backend import (
+    MODEL,
+    Backend,
+    Command,
+    ErrorInfo,
+    ErrorKind,
+    LocationState,
+    Observation,
+    Result,
+)
+
+__all__ = [
+    "MODEL",
+    "Backend",
+    "Command",
+    "ErrorInfo",
+    "ErrorKind",
+    "LocationState",
+    "Observation",
+    "Result",
+]

@@ -1,0 +1,178 @@
+"""The backend protocol: what an implementation under test must provide.
+
+A backend executes scenario commands, which refer to everything by *name*
+(sources, frames, geometries, contexts, declaration labels), and reports the
+canonical observable state. Because nothing crosses the boundary but names,
+booleans and strings, a backend can live in this process (``reimpl``,
+``pydrake``), in another Python environment, or in another language.
+
+Observable state, compared pair by pair (collision_filter.h, "two filters are
+equivalent iff they report the same CanCollideWith for every pair"):
+
+- candidate pairs, as sorted name pairs, for the model and for every context;
+- for every declaration label, whether its FilterId is active, per location;
+- ``has_transient_history()`` per location;
+- errors as (kind, message), with id values normalised out of the message.
+
+Write a third-party backend as a class with these methods (no base class is
+required) and load it with ``--backend package.module:attribute``, where the
+attribute is the class or a zero-argument factory.
+"""
+
+from __future__ import annotations
+
+import enum
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, Protocol, runtime_checkable
+
+__all__ = [
+    "MODEL",
+    "Backend",
+    "Command",
+    "ErrorInfo",
+    "ErrorKind",
+    "LocationState",
+    "Observation",
+    "Pair",
+    "Result",
+    "classify_error",
+    "normalise_message",
+]
+
+#: The location name of the model (contexts are named by the scenario).
+MODEL = "model"
+
+Pair = tuple[str, str]
+
+
+class ErrorKind(enum.Enum):
+    """What went wrong, independent of the exact wording or the exception class."""
+
+    UNKNOWN_GEOMETRY = "unknown_geometry"
+    UNKNOWN_FRAME = "unknown_frame"
+    UNKNOWN_SOURCE = "unknown_source"
+    TRANSIENT_HISTORY = "transient_history"
+    DUPLICATE_ROLE = "duplicate_role"
+    MISSING_ROLE = "missing_role"
+    NOT_OWNED = "not_owned"
+    INVALID_QUERY = "invalid_query"
+    BINDING = "binding"  # TypeError: no overload accepts the arguments.
+    OTHER = "other"
+
+
+# Message prefixes (after normalisation), checked in order; the first match names the kind.
+_KIND_BY_PREFIX: tuple[tuple[str, ErrorKind], ...] = (
+    ("Geometry set includes a geometry id that doesn't belong", ErrorKind.UNKNOWN_GEOMETRY),
+    ("Referenced geometry #", ErrorKind.UNKNOWN_GEOMETRY),
+    ("Referenced frame #", ErrorKind.UNKNOWN_FRAME),
+    ("Referenced geometry source #", ErrorKind.UNKNOWN_SOURCE),
+    ("You cannot attempt to modify the persistent collision filter", ErrorKind.TRANSIENT_HISTORY),
+    ("Trying to assign the '", ErrorKind.DUPLICATE_ROLE),
+    ("Trying to replace the properties", ErrorKind.MISSING_ROLE),
+    ("Can't report collision filter status", ErrorKind.INVALID_QUERY),
+    ("Given geometry id # does not belong", ErrorKind.NOT_OWNED),
+    ("Frame id # does not belong", ErrorKind.NOT_OWNED),
+)
+
+_ID_VALUE = re.compile(r"\b\d+\b")
+
+
+def normalise_message(message: str) -> str:
+    """Replaces id values (every integer) with ``#``: ids differ between runs."""
+    return _ID_VALUE.sub("#", message.strip())
+
+
+def classify_error(exception: BaseException) -> ErrorInfo:
+    """Maps an exception from any backend to its (kind, normalised message)."""
+    message = normalise_message(str(exception).splitlines()[0] if str(exception) else "")
+    if isinstance(exception, TypeError):
+        return ErrorInfo(ErrorKind.BINDING, message)
+    for prefix, kind in _KIND_BY_PREFIX:
+        if message.startswith(prefix):
+            return ErrorInfo(kind, message)
+    return ErrorInfo(ErrorKind.OTHER, message)
+
+
+@dataclass(frozen=True)
+class ErrorInfo:
+    kind: ErrorKind
+    message: str
+
+    def to_json(self) -> dict[str, str]:
+        return {"kind": self.kind.value, "message": self.message}
+
+
+@dataclass(frozen=True)
+class Result:
+    """What one command did: a return value, or an error."""
+
+    value: Any = None
+    error: ErrorInfo | None = None
+
+    def to_json(self) -> dict[str, Any]:
+        if self.error is not None:
+            return {"error": self.error.to_json()}
+        return {"value": self.value}
+
+
+@dataclass(frozen=True)
+class LocationState:
+    """The observable filter state of the model or of one context."""
+
+    candidates: frozenset[Pair]
+    has_transient_history: bool
+    active: Mapping[str, bool] = field(default_factory=dict)
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "candidates": sorted(list(p) for p in self.candidates),
+            "has_transient_history": self.has_transient_history,
+            "active": dict(sorted(self.active.items())),
+        }
+
+
+@dataclass(frozen=True)
+class Observation:
+    """The canonical state of a backend: one LocationState per location."""
+
+    locations: Mapping[str, LocationState]
+
+    def to_json(self) -> dict[str, Any]:
+        return {name: state.to_json() for name, state in sorted(self.locations.items())}
+
+
+@dataclass(frozen=True)
+class Command:
+    """One scenario command: ``op`` plus its arguments, all by name."""
+
+    op: str
+    args: Mapping[str, Any]
+
+    def to_json(self) -> dict[str, Any]:
+        return {"op": self.op, **self.args}
+
+
+@runtime_checkable
+class Backend(Protocol):
+    """An implementation under test.
+
+    ``reset`` starts a fresh, empty SceneGraph. ``execute`` runs one command and
+    never raises for a failure of the implementation: it returns the error in
+    the Result. ``observe`` reports the canonical state. ``features`` names the
+    scenario feature tags the backend supports (e.g. ``"activation"``), so
+    cases that need more are skipped rather than failed.
+    """
+
+    name: str
+
+    def version(self) -> str: ...
+
+    def features(self) -> frozenset[str]: ...
+
+    def reset(self) -> None: ...
+
+    def execute(self, command: Command) -> Result: ...
+
+    def observe(self) -> Observation: ...

@@ -1,0 +1,408 @@
+"""A backend over any pydrake-compatible API: real pydrake, or reimpl.
+
+The same code drives both, so every run also checks that reimpl is a drop-in:
+it calls the API only with Drake's keyword names (``declaration=``,
+``set_A=``, ``geometry_set=``, ``filter_id=``), which also catches binding
+drift between Drake releases.
+
+Names in commands resolve as follows: ``world`` is the world frame;
+``@unknown`` is an id this SceneGraph never issued; ``@foreign`` is an id
+issued by another SceneGraph; a removed geometry's name still resolves to its
+(now stale) id.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Any
+
+from conformance.backend import (
+    MODEL,
+    Command,
+    LocationState,
+    Observation,
+    Pair,
+    Result,
+    classify_error,
+)
+
+__all__ = ["Api", "SceneGraphBackend", "UnknownNameError"]
+
+WORLD = "world"
+UNKNOWN = "@unknown"
+FOREIGN = "@foreign"
+DEFAULT_SOURCE = "source"
+
+
+class UnknownNameError(KeyError):
+    """Raised when a command names a source, frame, geometry, context or label never declared."""
+
+    def __init__(self, kind: str, name: str) -> None:
+        super().__init__(f"unknown {kind} name {name!r}")
+        self.kind = kind
+        self.name = name
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+@dataclass(frozen=True)
+class Api:
+    """The modules of a pydrake-compatible implementation."""
+
+    name: str
+    #: The Drake release whose behaviour this implementation has (for since/until).
+    version: str
+    geometry: ModuleType
+    math: ModuleType
+
+
+@dataclass
+class _Label:
+    filter_id: Any
+    location: str
+
+
+class SceneGraphBackend:
+    """Executes scenario commands on ``api.geometry.SceneGraph``."""
+
+    def __init__(self, api: Api) -> None:
+        self.api = api
+        self.name = api.name
+        self.reset()
+
+    # ------------------------------------------------------------ protocol
+    def version(self) -> str:
+        return self.api.version
+
+    def features(self) -> frozenset[str]:
+        g = self.api.geometry
+        features = {"core"}
+        if hasattr(g.CollisionFilterManager, "Deactivate"):
+            features.add("activation")
+        if hasattr(g, "CollisionFilterScope"):
+            features.add("scope")
+        return frozenset(features)
+
+    def reset(self) -> None:
+        g = self.api.geometry
+        self.scene_graph = g.SceneGraph()
+        self.sources: dict[str, Any] = {}
+        self.frames: dict[str, Any] = {WORLD: self.scene_graph.world_frame_id()}
+        self.geometries: dict[str, Any] = {}
+        self.names_by_value: dict[int, str] = {}
+        self.contexts: dict[str, Any] = {}
+        self.labels: dict[str, _Label] = {}
+        self._unknown: dict[str, Any] = {}
+        self._foreign: dict[str, Any] = {}
+
+    def execute(self, command: Command) -> Result:
+        handler = _HANDLERS.get(command.op)
+        if handler is None:
+            raise UnknownNameError("command", command.op)
+        try:
+            return Result(value=handler(self, command.args))
+        except UnknownNameError:
+            raise
+        except (RuntimeError, TypeError, ValueError) as exc:
+            return Result(error=classify_error(exc))
+
+    def observe(self) -> Observation:
+        locations = {MODEL: self._observe(None)}
+        for name, context in self.contexts.items():
+            locations[name] = self._observe(context)
+        return Observation(locations)
+
+    # ------------------------------------------------------------- helpers
+    def _observe(self, context: Any) -> LocationState:
+        inspector = self._inspector(context)
+        manager = self._manager(context)
+        pairs: set[Pair] = set()
+        for a, b in inspector.GetCollisionCandidates():
+            na, nb = self.names_by_value[a.get_value()], self.names_by_value[b.get_value()]
+            pairs.add((na, nb) if na < nb else (nb, na))
+        active = {
+            label: bool(manager.IsActive(filter_id=entry.filter_id))
+            for label, entry in self.labels.items()
+        }
+        return LocationState(frozenset(pairs), bool(manager.has_transient_history()), active)
+
+    def _context(self, args: Mapping[str, Any]) -> Any:
+        name = args.get("context")
+        if name is None or name == MODEL:
+            return None
+        try:
+            return self.contexts[name]
+        except KeyError:
+            raise UnknownNameError("context", name) from None
+
+    def _inspector(self, context: Any) -> Any:
+        if context is None:
+            return self.scene_graph.model_inspector()
+        return self.scene_graph.get_query_output_port().Eval(context).inspector()
+
+    def _manager(self, context: Any) -> Any:
+        # N.B. Always a fresh manager: a model manager held across
+        # CreateDefaultContext() goes stale in pydrake >= 1.30.
+        if context is None:
+            return self.scene_graph.collision_filter_manager()
+        return self.scene_graph.collision_filter_manager(context=context)
+
+    def _source(self, args: Mapping[str, Any]) -> Any:
+        name = args.get("source", DEFAULT_SOURCE)
+        if name not in self.sources:
+            if name != DEFAULT_SOURCE:
+                raise UnknownNameError("source", name)
+            self.sources[name] = self.scene_graph.RegisterSource(name=name)
+        return self.sources[name]
+
+    def _foreign_ids(self) -> Mapping[str, Any]:
+        if not self._foreign:
+            g, m = self.api.geometry, self.api.math
+            other = g.SceneGraph()
+            source = other.RegisterSource(name="foreign")
+            frame = other.RegisterFrame(source_id=source, frame=g.GeometryFrame(frame_name="f"))
+            geometry = other.RegisterGeometry(
+                source_id=source,
+                frame_id=frame,
+                geometry=g.GeometryInstance(
+                    X_PG=m.RigidTransform(), shape=g.Sphere(radius=1.0), name="foreign"
+                ),
+            )
+            other.AssignRole(
+                source_id=source, geometry_id=geometry, properties=g.ProximityProperties()
+            )
+            self._foreign = {"frame": frame, "geometry": geometry, "scene_graph": other}
+        return self._foreign
+
+    def _special(self, kind: str, name: str) -> Any:
+        g = self.api.geometry
+        if name == FOREIGN:
+            return self._foreign_ids()[kind]
+        if kind not in self._unknown:
+            id_type = g.GeometryId if kind == "geometry" else g.FrameId
+            self._unknown[kind] = id_type.get_new_id()
+        return self._unknown[kind]
+
+    def _geometry(self, name: str) -> Any:
+        if name in (UNKNOWN, FOREIGN):
+            return self._special("geometry", name)
+        try:
+            return self.geometries[name]
+        except KeyError:
+            raise UnknownNameError("geometry", name) from None
+
+    def _frame(self, name: str) -> Any:
+        if name in (UNKNOWN, FOREIGN):
+            return self._special("frame", name)
+        try:
+            return self.frames[name]
+        except KeyError:
+            raise UnknownNameError("frame", name) from None
+
+    def _label(self, name: str) -> Any:
+        if name == UNKNOWN:
+            if "filter" not in self._unknown:
+                self._unknown["filter"] = self.api.geometry.FilterId.get_new_id()
+            return self._unknown["filter"]
+        try:
+            return self.labels[name].filter_id
+        except KeyError:
+            raise UnknownNameError("declaration label", name) from None
+
+    def geometry_set(self, spec: Mapping[str, Sequence[str]]) -> Any:
+        """``{"geometries": [...], "frames": [...]}`` → GeometrySet (keyword form)."""
+        return self.api.geometry.GeometrySet(
+            geometry_ids=[self._geometry(n) for n in spec.get("geometries", ())],
+            frame_ids=[self._frame(n) for n in spec.get("frames", ())],
+        )
+
+    def declaration(self, spec: Mapping[str, Any]) -> Any:
+        g = self.api.geometry
+        scope = spec.get("scope")
+        if scope is None:
+            declaration = g.CollisionFilterDeclaration()
+        else:
+            value = {"all": "kAll", "omit_deformable": "kOmitDeformable"}[scope]
+            declaration = g.CollisionFilterDeclaration(scope=getattr(g.CollisionFilterScope, value))
+        for statement in spec.get("statements", ()):
+            op = statement["op"]
+            if op.endswith("_within"):
+                method = "ExcludeWithin" if op == "exclude_within" else "AllowWithin"
+                result = getattr(declaration, method)(
+                    geometry_set=self.geometry_set(statement["set"])
+                )
+            else:
+                method = "ExcludeBetween" if op == "exclude_between" else "AllowBetween"
+                result = getattr(declaration, method)(
+                    set_A=self.geometry_set(statement["a"]),
+                    set_B=self.geometry_set(statement["b"]),
+                )
+            if result is not declaration:
+                raise RuntimeError(f"{method} did not return the declaration itself")
+        return declaration
+
+    def _properties(self, role: str) -> Any:
+        g = self.api.geometry
+        return {
+            "proximity": g.ProximityProperties,
+            "illustration": g.IllustrationProperties,
+            "perception": g.PerceptionProperties,
+        }[role]()
+
+    def _role(self, role: str) -> Any:
+        g = self.api.geometry
+        return {
+            "proximity": g.Role.kProximity,
+            "illustration": g.Role.kIllustration,
+            "perception": g.Role.kPerception,
+            "unassigned": g.Role.kUnassigned,
+        }[role]
+
+    # ------------------------------------------------------------ commands
+    def register_source(self, args: Mapping[str, Any]) -> None:
+        self.sources[args["name"]] = self.scene_graph.RegisterSource(name=args["name"])
+
+    def register_frame(self, args: Mapping[str, Any]) -> None:
+        g = self.api.geometry
+        source = self._source(args)
+        frame = g.GeometryFrame(frame_name=args["name"])
+        parent = args.get("parent")
+        if parent is None:
+            frame_id = self.scene_graph.RegisterFrame(source_id=source, frame=frame)
+        else:
+            frame_id = self.scene_graph.RegisterFrame(
+                source_id=source, parent_id=self._frame(parent), frame=frame
+            )
+        self.frames[args["name"]] = frame_id
+
+    def register_geometry(self, args: Mapping[str, Any]) -> None:
+        g, m = self.api.geometry, self.api.math
+        source = self._source(args)
+        name = args["name"]
+        instance = g.GeometryInstance(
+            X_PG=m.RigidTransform(), shape=g.Sphere(radius=0.1), name=name
+        )
+        frame = args.get("frame", WORLD)
+        context = self._context(args)
+        if context is not None:
+            geometry_id = self.scene_graph.RegisterGeometry(
+                context=context, source_id=source, frame_id=self._frame(frame), geometry=instance
+            )
+        elif frame == WORLD:
+            geometry_id = self.scene_graph.RegisterAnchoredGeometry(
+                source_id=source, geometry=instance
+            )
+        else:
+            geometry_id = self.scene_graph.RegisterGeometry(
+                source_id=source, frame_id=self._frame(frame), geometry=instance
+            )
+        self.geometries[name] = geometry_id
+        self.names_by_value[geometry_id.get_value()] = name
+        for role in args.get("roles", ()):
+            self.assign_role({**args, "geometry": name, "role": role})
+
+    def assign_role(self, args: Mapping[str, Any]) -> None:
+        g = self.api.geometry
+        kwargs = {
+            "source_id": self._source(args),
+            "geometry_id": self._geometry(args["geometry"]),
+            "properties": self._properties(args["role"]),
+            "assign": g.RoleAssign.kReplace
+            if args.get("assign") == "replace"
+            else g.RoleAssign.kNew,
+        }
+        context = self._context(args)
+        if context is not None:
+            kwargs["context"] = context
+        self.scene_graph.AssignRole(**kwargs)
+
+    def remove_role(self, args: Mapping[str, Any]) -> int:
+        kwargs: dict[str, Any] = {"source_id": self._source(args), "role": self._role(args["role"])}
+        if "frame" in args:
+            kwargs["frame_id"] = self._frame(args["frame"])
+        else:
+            kwargs["geometry_id"] = self._geometry(args["geometry"])
+        context = self._context(args)
+        if context is not None:
+            kwargs["context"] = context
+        return int(self.scene_graph.RemoveRole(**kwargs))
+
+    def remove_geometry(self, args: Mapping[str, Any]) -> None:
+        kwargs = {"source_id": self._source(args), "geometry_id": self._geometry(args["geometry"])}
+        context = self._context(args)
+        if context is not None:
+            kwargs["context"] = context
+        self.scene_graph.RemoveGeometry(**kwargs)
+
+    def apply(self, args: Mapping[str, Any]) -> None:
+        declaration = self.declaration(args["declaration"])
+        self._manager(self._context(args)).Apply(declaration=declaration)
+
+    def apply_transient(self, args: Mapping[str, Any]) -> None:
+        declaration = self.declaration(args["declaration"])
+        location = args.get("context", MODEL)
+        filter_id = self._manager(self._context(args)).ApplyTransient(declaration=declaration)
+        self.labels[args["label"]] = _Label(filter_id, location)
+
+    def remove_declaration(self, args: Mapping[str, Any]) -> bool:
+        filter_id = self._label(args["label"])
+        return bool(self._manager(self._context(args)).RemoveDeclaration(filter_id=filter_id))
+
+    def is_active(self, args: Mapping[str, Any]) -> bool:
+        filter_id = self._label(args["label"])
+        return bool(self._manager(self._context(args)).IsActive(filter_id=filter_id))
+
+    def has_transient_history(self, args: Mapping[str, Any]) -> bool:
+        return bool(self._manager(self._context(args)).has_transient_history())
+
+    def activate(self, args: Mapping[str, Any]) -> None:
+        self._manager(self._context(args)).Activate(geometry_set=self.geometry_set(args["set"]))
+
+    def deactivate(self, args: Mapping[str, Any]) -> None:
+        self._manager(self._context(args)).Deactivate(geometry_set=self.geometry_set(args["set"]))
+
+    def collision_filtered(self, args: Mapping[str, Any]) -> bool:
+        a, b = args["pair"]
+        inspector = self._inspector(self._context(args))
+        return bool(
+            inspector.CollisionFiltered(
+                geometry_id1=self._geometry(a), geometry_id2=self._geometry(b)
+            )
+        )
+
+    def create_context(self, args: Mapping[str, Any]) -> None:
+        self.contexts[args["name"]] = self.scene_graph.CreateDefaultContext()
+
+    def clone_context(self, args: Mapping[str, Any]) -> None:
+        source = self._context({"context": args["from"]})
+        self.contexts[args["name"]] = source.Clone()
+
+    def set_default_context(self, args: Mapping[str, Any]) -> None:
+        self.scene_graph.SetDefaultContext(context=self._context(args))
+
+
+_HANDLERS: dict[str, Callable[[SceneGraphBackend, Mapping[str, Any]], Any]] = {
+    "register_source": SceneGraphBackend.register_source,
+    "register_frame": SceneGraphBackend.register_frame,
+    "register_geometry": SceneGraphBackend.register_geometry,
+    "assign_role": SceneGraphBackend.assign_role,
+    "remove_role": SceneGraphBackend.remove_role,
+    "remove_geometry": SceneGraphBackend.remove_geometry,
+    "apply": SceneGraphBackend.apply,
+    "apply_transient": SceneGraphBackend.apply_transient,
+    "remove_declaration": SceneGraphBackend.remove_declaration,
+    "is_active": SceneGraphBackend.is_active,
+    "has_transient_history": SceneGraphBackend.has_transient_history,
+    "activate": SceneGraphBackend.activate,
+    "deactivate": SceneGraphBackend.deactivate,
+    "collision_filtered": SceneGraphBackend.collision_filtered,
+    "create_context": SceneGraphBackend.create_context,
+    "clone_context": SceneGraphBackend.clone_context,
+    "set_default_context": SceneGraphBackend.set_default_context,
+}
+
+#: The commands every SceneGraphBackend understands (the scenario grammar's ops).
+COMMANDS = frozenset(_HANDLERS)

@@ -1,0 +1,150 @@
+"""Shared fixtures: the two implementations under test, and a small scene builder."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any
+
+import pytest
+
+from conformance.pydrake_api import pydrake_api
+from conformance.reimpl_api import reimpl_api
+from conformance.scene_graph_backend import Api
+
+IMPLEMENTATIONS = ("reimpl", "pydrake")
+
+
+@pytest.fixture(params=IMPLEMENTATIONS)
+def api(request: pytest.FixtureRequest) -> Api:
+    """Each test using ``api`` runs once on reimpl and once on real pydrake."""
+    return reimpl_api() if request.param == "reimpl" else pydrake_api()
+
+
+class Scene:
+    """A SceneGraph built through the public API, with names for everything.
+
+    It calls the API exactly as a pydrake script would (keyword arguments), so
+    the same test body runs unchanged on either implementation.
+    """
+
+    def __init__(self, api: Api) -> None:
+        self.api = api
+        self.g = api.geometry
+        self.sg = self.g.SceneGraph()
+        self.source = self.sg.RegisterSource(name="source")
+        self.frames: dict[str, Any] = {"world": self.sg.world_frame_id()}
+        self.ids: dict[str, Any] = {}
+        self.names: dict[int, str] = {}
+
+    # registration
+    def frame(self, name: str, parent: str | None = None) -> Any:
+        frame = self.g.GeometryFrame(frame_name=name)
+        if parent is None:
+            fid = self.sg.RegisterFrame(source_id=self.source, frame=frame)
+        else:
+            fid = self.sg.RegisterFrame(
+                source_id=self.source, parent_id=self.frames[parent], frame=frame
+            )
+        self.frames[name] = fid
+        return fid
+
+    def geometry(
+        self, name: str, frame: str, *, proximity: bool = True, context: Any = None
+    ) -> Any:
+        instance = self.g.GeometryInstance(
+            X_PG=self.api.math.RigidTransform(), shape=self.g.Sphere(radius=0.1), name=name
+        )
+        if context is not None:
+            gid = self.sg.RegisterGeometry(
+                context=context,
+                source_id=self.source,
+                frame_id=self.frames[frame],
+                geometry=instance,
+            )
+        elif frame == "world":
+            gid = self.sg.RegisterAnchoredGeometry(source_id=self.source, geometry=instance)
+        else:
+            gid = self.sg.RegisterGeometry(
+                source_id=self.source, frame_id=self.frames[frame], geometry=instance
+            )
+        self.ids[name] = gid
+        self.names[gid.get_value()] = name
+        if proximity:
+            self.assign_proximity(name, context=context)
+        return gid
+
+    def geometries(self, *names: str) -> None:
+        """One frame per geometry: ``g0`` on ``f_g0``, and so on."""
+        for name in names:
+            self.frame(f"f_{name}")
+            self.geometry(name, f"f_{name}")
+
+    def assign_proximity(self, name: str, *, replace: bool = False, context: Any = None) -> None:
+        kwargs: dict[str, Any] = {
+            "source_id": self.source,
+            "geometry_id": self.ids[name],
+            "properties": self.g.ProximityProperties(),
+            "assign": self.g.RoleAssign.kReplace if replace else self.g.RoleAssign.kNew,
+        }
+        if context is not None:
+            kwargs["context"] = context
+        self.sg.AssignRole(**kwargs)
+
+    def remove_proximity(self, name: str) -> int:
+        return int(
+            self.sg.RemoveRole(
+                source_id=self.source, geometry_id=self.ids[name], role=self.g.Role.kProximity
+            )
+        )
+
+    # declarations
+    def set(self, *names: str, frames: Iterable[str] = ()) -> Any:
+        return self.g.GeometrySet(
+            geometry_ids=[self.ids[n] for n in names], frame_ids=[self.frames[f] for f in frames]
+        )
+
+    def decl(self) -> Any:
+        return self.g.CollisionFilterDeclaration()
+
+    def manager(self, context: Any = None) -> Any:
+        if context is None:
+            return self.sg.collision_filter_manager()
+        return self.sg.collision_filter_manager(context=context)
+
+    def apply(self, declaration: Any, context: Any = None) -> None:
+        self.manager(context).Apply(declaration=declaration)
+
+    def apply_transient(self, declaration: Any, context: Any = None) -> Any:
+        return self.manager(context).ApplyTransient(declaration=declaration)
+
+    def remove(self, filter_id: Any, context: Any = None) -> bool:
+        return bool(self.manager(context).RemoveDeclaration(filter_id=filter_id))
+
+    # observation
+    def inspector(self, context: Any = None) -> Any:
+        if context is None:
+            return self.sg.model_inspector()
+        return self.sg.get_query_output_port().Eval(context).inspector()
+
+    def C(self, context: Any = None) -> set[str]:
+        """Candidate pairs as 'a-b' strings, names sorted within each pair."""
+        pairs = set()
+        for a, b in self.inspector(context).GetCollisionCandidates():
+            pairs.add("-".join(sorted((self.names[a.get_value()], self.names[b.get_value()]))))
+        return pairs
+
+    def filtered(self, a: str, b: str, context: Any = None) -> bool:
+        inspector = self.inspector(context)
+        forward = inspector.CollisionFiltered(geometry_id1=self.ids[a], geometry_id2=self.ids[b])
+        backward = inspector.CollisionFiltered(geometry_id1=self.ids[b], geometry_id2=self.ids[a])
+        assert forward == backward, f"CollisionFiltered({a}, {b}) is not symmetric"
+        return bool(forward)
+
+
+@pytest.fixture
+def scene(api: Api) -> Scene:
+    return Scene(api)
+
+
+def all_pairs(*names: str) -> set[str]:
+    return {f"{a}-{b}" for i, a in enumerate(sorted(names)) for b in sorted(names)[i + 1 :]}
