@@ -404,11 +404,14 @@ class TestTransientHistory:
         )
         after_id1 = {"A-B", "A-C", "A-D", "A-E", "B-D", "C-E"}
         assert scene.C() == after_id1
-        second = lambda: (
-            scene.decl()
-            .ExcludeBetween(set_A=s("A"), set_B=s("B", "C"))
-            .AllowBetween(set_A=s("B"), set_B=s("C", "E"))
-        )
+
+        def second():
+            return (
+                scene.decl()
+                .ExcludeBetween(set_A=s("A"), set_B=s("B", "C"))
+                .AllowBetween(set_A=s("B"), set_B=s("C", "E"))
+            )
+
         id2 = scene.apply_transient(second())
         assert scene.C() == {"A-D", "A-E", "B-C", "B-D", "B-E", "C-E"}
         assert scene.remove(scene.g.FilterId.get_new_id()) is False
