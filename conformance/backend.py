@@ -59,6 +59,7 @@ class ErrorKind(enum.Enum):
     NOT_OWNED = "not_owned"
     INVALID_QUERY = "invalid_query"
     BINDING = "binding"  # TypeError: no overload accepts the arguments.
+    REFUSED = "refused"  # The harness would not send this call (it crashes some release).
     OTHER = "other"
 
 

@@ -21,6 +21,8 @@ from typing import Any
 from conformance.backend import (
     MODEL,
     Command,
+    ErrorInfo,
+    ErrorKind,
     LocationState,
     Observation,
     Pair,
@@ -28,12 +30,26 @@ from conformance.backend import (
     classify_error,
 )
 
-__all__ = ["Api", "SceneGraphBackend", "UnknownNameError"]
+__all__ = [
+    "BASE_FEATURES",
+    "COMMANDS",
+    "Api",
+    "RefusedCallError",
+    "SceneGraphBackend",
+    "UnknownNameError",
+]
 
 WORLD = "world"
 UNKNOWN = "@unknown"
 FOREIGN = "@foreign"
 DEFAULT_SOURCE = "source"
+
+#: Feature tags every SceneGraph-based backend supports; others depend on the release.
+BASE_FEATURES = frozenset({"core", "transient", "contexts", "errors", "roles", "quirk"})
+
+
+class RefusedCallError(Exception):
+    """Raised (and reported as ErrorKind.REFUSED) for a call the harness will not make."""
 
 
 class UnknownNameError(KeyError):
@@ -79,7 +95,7 @@ class SceneGraphBackend:
 
     def features(self) -> frozenset[str]:
         g = self.api.geometry
-        features = {"core"}
+        features = set(BASE_FEATURES)
         if hasattr(g.CollisionFilterManager, "Deactivate"):
             features.add("activation")
         if hasattr(g, "CollisionFilterScope"):
@@ -106,6 +122,8 @@ class SceneGraphBackend:
             return Result(value=handler(self, command.args))
         except UnknownNameError:
             raise
+        except RefusedCallError as exc:
+            return Result(error=ErrorInfo(ErrorKind.REFUSED, str(exc)))
         except (RuntimeError, TypeError, ValueError) as exc:
             return Result(error=classify_error(exc))
 
@@ -358,11 +376,37 @@ class SceneGraphBackend:
     def has_transient_history(self, args: Mapping[str, Any]) -> bool:
         return bool(self._manager(self._context(args)).has_transient_history())
 
+    def _refuse_anchored(self, geometry_set: Any, context: Any) -> None:
+        """Refuses (de)activation of anchored proximity geometry, on every backend alike.
+
+        N.B. pydrake 1.55-1.58 abort the process in
+        ProximityEngine::ApplyActiveStatusChange for anchored geometry (see
+        conformance/known_divergences.json, "deactivate-anchored-aborts").
+        """
+        inspector = self._inspector(context)
+        try:
+            ids = inspector.GetGeometryIds(
+                geometry_set=geometry_set, role=self.api.geometry.Role.kProximity
+            )
+        except RuntimeError:
+            return  # Unknown ids: let the implementation report them.
+        world = self.scene_graph.world_frame_id()
+        if any(inspector.GetFrameId(geometry_id=g) == world for g in ids):
+            raise RefusedCallError(
+                "refused: (de)activating anchored geometry aborts pydrake 1.55-1.58"
+            )
+
     def activate(self, args: Mapping[str, Any]) -> None:
-        self._manager(self._context(args)).Activate(geometry_set=self.geometry_set(args["set"]))
+        context = self._context(args)
+        geometry_set = self.geometry_set(args["set"])
+        self._refuse_anchored(geometry_set, context)
+        self._manager(context).Activate(geometry_set=geometry_set)
 
     def deactivate(self, args: Mapping[str, Any]) -> None:
-        self._manager(self._context(args)).Deactivate(geometry_set=self.geometry_set(args["set"]))
+        context = self._context(args)
+        geometry_set = self.geometry_set(args["set"])
+        self._refuse_anchored(geometry_set, context)
+        self._manager(context).Deactivate(geometry_set=geometry_set)
 
     def collision_filtered(self, args: Mapping[str, Any]) -> bool:
         a, b = args["pair"]

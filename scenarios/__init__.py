@@ -1,0 +1,1 @@
+"""The embedded default scenario corpus (JSON files; see README.md here)."""
