@@ -101,7 +101,7 @@ def _validator() -> jsonschema.protocols.Validator:
     schema = json.loads(default_corpus_root().joinpath(SCENARIO_SCHEMA).read_text())
     cls = jsonschema.validators.validator_for(schema)
     cls.check_schema(schema)
-    return cls(schema)  # type: ignore[no-any-return]
+    return cls(schema)
 
 
 def default_corpus_root() -> Path:
@@ -145,8 +145,8 @@ def load_file(path: Path, *, root: Path | None = None) -> ScenarioFile:
         ) from None
     errors = sorted(_validator().iter_errors(data), key=lambda e: list(e.absolute_path))
     if errors:
-        case, message = _describe_schema_error(data, errors[0])
-        raise ScenarioError(shown, f"schema violation at {message}", case=case)
+        where, message = _describe_schema_error(data, errors[0])
+        raise ScenarioError(shown, f"schema violation at {message}", case=where)
     try:
         name = path.resolve().relative_to((root or path.parent).resolve()).with_suffix("")
     except ValueError:
@@ -201,44 +201,46 @@ def _set_refs(spec: Mapping[str, Sequence[str]]) -> Iterator[tuple[str, str]]:
         yield "frame", name
 
 
+#: Arguments that name something, per op ("*" applies to every op): arg → kind.
+_ARG_REFS: Mapping[str, Mapping[str, str]] = {
+    "*": {"source": "source", "context": "context", "geometry": "geometry"},
+    "register_frame": {"parent": "frame"},
+    "register_geometry": {"frame": "frame"},
+    "remove_role": {"frame": "frame"},
+    "clone_context": {"from": "context"},
+    "remove_declaration": {"label": "label"},
+    "is_active": {"label": "label"},
+}
+
+
 def _refs(step: Step) -> Iterator[tuple[str, str, str]]:
     """(kind, name, field) for every name the step refers to (not declares)."""
     a = step.args
-    if "source" in a:
-        yield "source", a["source"], "source"
-    if "context" in a:
-        yield "context", a["context"], "context"
-    if step.op in {"register_frame"} and "parent" in a:
-        yield "frame", a["parent"], "parent"
-    if step.op == "register_geometry":
-        yield "frame", a["frame"], "frame"
-    if "geometry" in a:
-        yield "geometry", a["geometry"], "geometry"
-    if step.op == "remove_role" and "frame" in a:
-        yield "frame", a["frame"], "frame"
-    if "pair" in a:
-        for name in a["pair"]:
-            yield "geometry", name, "pair"
-    if "set" in a:
-        for kind, name in _set_refs(a["set"]):
-            yield kind, name, "set"
-    if step.op in {"remove_declaration", "is_active"}:
-        yield "label", a["label"], "label"
-    if step.op == "clone_context":
-        yield "context", a["from"], "from"
+    for table in (_ARG_REFS["*"], _ARG_REFS.get(step.op, {})):
+        for arg, kind in table.items():
+            if arg in a:
+                yield kind, a[arg], arg
+    for name in a.get("pair", ()):
+        yield "geometry", name, "pair"
+    for kind, name in _set_refs(a.get("set", {})):
+        yield kind, name, "set"
     for i, statement in enumerate(a.get("declaration", {}).get("statements", ()), 1):
         for key in ("set", "a", "b"):
             for kind, name in _set_refs(statement.get(key, {})):
                 yield kind, name, f"declaration.statements[{i}].{key}"
     for expectation in step.expect:
-        if "at" in expectation:
-            yield "context", expectation["at"], "expect.at"
-        for key in ("candidates", "filtered", "unfiltered"):
-            for pair in expectation.get(key, ()):
-                for name in pair:
-                    yield "geometry", name, f"expect.{key}"
-        for label in expectation.get("active", {}):
-            yield "label", label, "expect.active"
+        yield from _expectation_refs(expectation)
+
+
+def _expectation_refs(expectation: Mapping[str, Any]) -> Iterator[tuple[str, str, str]]:
+    if "at" in expectation:
+        yield "context", expectation["at"], "expect.at"
+    for key in ("candidates", "filtered", "unfiltered"):
+        for pair in expectation.get(key, ()):
+            for name in pair:
+                yield "geometry", name, f"expect.{key}"
+    for label in expectation.get("active", {}):
+        yield "label", label, "expect.active"
 
 
 def _declares(step: Step) -> Iterator[tuple[str, str]]:

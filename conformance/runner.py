@@ -19,6 +19,7 @@ from conformance.backend import (
     Backend,
     Command,
     ErrorKind,
+    LocationState,
     Observation,
     Result,
     normalise_message,
@@ -91,10 +92,7 @@ def _fmt_pairs(pairs: Iterable[tuple[str, str]]) -> list[str]:
     return sorted(f"{a}-{b}" for a, b in pairs)
 
 
-def _check(
-    step: Step, expectation: Mapping[str, Any], result: Result, observation: Observation
-) -> Iterator[tuple[str, Any, Any]]:
-    """(what, expected, actual) for every part of ``expectation`` that does not hold."""
+def _check_result(expectation: Mapping[str, Any], result: Result) -> Iterator[tuple[str, Any, Any]]:
     error = expectation.get("error")
     if error is not None:
         actual = result.error.to_json() if result.error else "no error"
@@ -106,11 +104,11 @@ def _check(
         yield "no error", None, result.error.to_json()
     if "returns" in expectation and result.error is None and result.value != expectation["returns"]:
         yield "return value", expectation["returns"], result.value
-    at = expectation.get("at", step.args.get("context", MODEL))
-    state = observation.locations.get(at)
-    if state is None:
-        yield f"location {at!r} exists", at, sorted(observation.locations)
-        return
+
+
+def _check_state(
+    expectation: Mapping[str, Any], at: str, state: LocationState
+) -> Iterator[tuple[str, Any, Any]]:
     if "candidates" in expectation:
         expected = _pairs(expectation["candidates"])
         if state.candidates != expected:
@@ -120,11 +118,23 @@ def _check(
             if (pair in state.candidates) != want_in:
                 yield f"{'-'.join(pair)} {key} at {at}", want_in, not want_in
     for label, active in expectation.get("active", {}).items():
-        actual_active = state.active.get(label)
-        if actual_active != active:
-            yield f"IsActive({label}) at {at}", active, actual_active
+        if state.active.get(label) != active:
+            yield f"IsActive({label}) at {at}", active, state.active.get(label)
     if "history" in expectation and state.has_transient_history != expectation["history"]:
         yield f"has_transient_history at {at}", expectation["history"], state.has_transient_history
+
+
+def _check(
+    step: Step, expectation: Mapping[str, Any], result: Result, observation: Observation
+) -> Iterator[tuple[str, Any, Any]]:
+    """(what, expected, actual) for every part of ``expectation`` that does not hold."""
+    yield from _check_result(expectation, result)
+    at = expectation.get("at", step.args.get("context", MODEL))
+    state = observation.locations.get(at)
+    if state is None:
+        yield f"location {at!r} exists", at, sorted(observation.locations)
+    else:
+        yield from _check_state(expectation, at, state)
 
 
 def _results_agree(a: Result, b: Result) -> bool:
@@ -171,6 +181,34 @@ def _execute(backend: Backend, step: Step) -> Result:
         ) from exc
 
 
+def _expectation_failures(
+    step: Step, backend: Backend, result: Result, observation: Observation
+) -> Iterator[Failure]:
+    for expectation in step.expect:
+        if version_in_range(backend.version(), expectation.get("since"), expectation.get("until")):
+            for what, expected, actual in _check(step, expectation, result, observation):
+                yield Failure(step.label, what, expected, actual, backend.name)
+    if step.index == 0 and result.error is not None:
+        what = f"scene {step.op} {step.args.get('name')}"
+        yield Failure(step.label, what, None, result.error.to_json(), backend.name)
+
+
+def _disagreements(
+    step: Step,
+    reference: Backend,
+    other: Backend,
+    results: Mapping[str, Result],
+    observations: Mapping[str, Observation],
+) -> Iterator[Failure]:
+    pair = f"{reference.name} vs {other.name}"
+    ra, rb = results[reference.name], results[other.name]
+    if not _results_agree(ra, rb):
+        yield Failure(step.label, f"{step.op} result", ra.to_json(), rb.to_json(), pair)
+    observed = _observation_diff(observations[reference.name], observations[other.name])
+    for what, va, vb in observed:
+        yield Failure(step.label, what, va, vb, pair)
+
+
 def run_case(case: Case, backends: Sequence[Backend]) -> CaseReport:
     """Runs ``case`` on every backend whose features cover it; compares them pairwise."""
     report = CaseReport(case)
@@ -187,41 +225,15 @@ def run_case(case: Case, backends: Sequence[Backend]) -> CaseReport:
         results = {b.name: _execute(b, step) for b in active}
         observations = {b.name: b.observe() for b in active}
         for backend in active:
-            for expectation in step.expect:
-                if not version_in_range(
-                    backend.version(), expectation.get("since"), expectation.get("until")
-                ):
-                    continue
-                for what, expected, actual in _check(
-                    step, expectation, results[backend.name], observations[backend.name]
-                ):
-                    report.failures.append(
-                        Failure(step.label, what, expected, actual, backend.name)
-                    )
-            if step.index == 0 and results[backend.name].error is not None:
-                report.failures.append(
-                    Failure(
-                        step.label,
-                        f"scene {step.op} {step.args.get('name')}",
-                        None,
-                        results[backend.name].error.to_json(),
-                        backend.name,
-                    )  # type: ignore[union-attr]
+            report.failures.extend(
+                _expectation_failures(
+                    step, backend, results[backend.name], observations[backend.name]
                 )
-        reference = active[0] if active else None
+            )
         for other in active[1:]:
-            assert reference is not None
-            pair = f"{reference.name} vs {other.name}"
-            ra, rb = results[reference.name], results[other.name]
-            if not _results_agree(ra, rb):
-                report.failures.append(
-                    Failure(step.label, f"{step.op} result", ra.to_json(), rb.to_json(), pair)
-                )
-            for what, va, vb in _observation_diff(
-                observations[reference.name], observations[other.name]
-            ):
-                report.failures.append(Failure(step.label, what, va, vb, pair))
+            report.failures.extend(_disagreements(step, active[0], other, results, observations))
     for backend in active:
-        failed = report.failures_of(backend.name)
-        report.status[backend.name] = Status.FAIL if failed else Status.PASS
+        report.status[backend.name] = (
+            Status.FAIL if report.failures_of(backend.name) else Status.PASS
+        )
     return report
