@@ -47,11 +47,7 @@ def pytest_collect_file(parent: pytest.Collector, file_path: Path) -> pytest.Col
         return None
     if _corpus_root(file_path) is None:
         return None
-    return ScenarioFileCollector.from_parent(parent, path=file_path)  # type: ignore[no-any-return]
-
-
-class _ScenarioLoadFailure(Exception):
-    pass
+    return ScenarioFileCollector.from_parent(parent, path=file_path)
 
 
 class ScenarioFileCollector(pytest.File):
@@ -66,7 +62,7 @@ class ScenarioFileCollector(pytest.File):
             yield ScenarioCaseItem.from_parent(self, name=case.qualified_name, case=case)
 
 
-class _ConformanceFailure(Exception):
+class _ConformanceError(Exception):
     def __init__(self, report: CaseReport) -> None:
         super().__init__(report.case.qualified_name)
         self.report = report
@@ -102,12 +98,12 @@ class ScenarioCaseItem(pytest.Item):
                 (f"{backend.name}_status", report.status[backend.name].value)
             )
         if report.failures:
-            raise _ConformanceFailure(report)
+            raise _ConformanceError(report)
         if all(s is Status.SKIP for s in report.status.values()):
             pytest.skip("; ".join(f"{b}: {r}" for b, r in report.skip_reasons.items()))
 
     def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> str:
-        if isinstance(excinfo.value, _ConformanceFailure):
+        if isinstance(excinfo.value, _ConformanceError):
             lines = [f"{self.case.qualified_name} ({self.case.file.path})"]
             for failure in excinfo.value.report.failures:
                 lines.append(f"  {failure.step}: {failure.what} [{failure.backend}]")

@@ -92,10 +92,6 @@ class RunReport:
         }
 
 
-def _version(backend: Backend) -> str:
-    return f"({backend.version()})"
-
-
 def _cell(counts: Any) -> str:
     passed, failed, skipped = counts
     return f"{passed} pass, {failed} fail, {skipped} skip"
@@ -141,6 +137,4 @@ def write_junit(report: RunReport, path: Path) -> None:
         suite.set(key, str(value))
     suite.set("errors", "0")
     ET.indent(suite)
-    ET.ElementTree(ET.Element("testsuites")).getroot().append(suite)
-    tree = ET.ElementTree(suite)
-    tree.write(path, encoding="utf-8", xml_declaration=True)
+    ET.ElementTree(suite).write(path, encoding="utf-8", xml_declaration=True)
