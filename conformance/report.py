@@ -39,7 +39,7 @@ class RunReport:
         header = [
             "scenario file",
             "cases",
-            *[f"{n} {_version(b)}" for n, b in zip(names, self.backends, strict=True)],
+            *[f"{b.name} ({b.version()})" for b in self.backends],
         ]
         rows = [header]
         for file, cases in files.items():
