@@ -102,6 +102,7 @@ def _show(value: Any) -> str:
 
 
 def write_json(report: RunReport, path: Path) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(report.to_json(), indent=2, sort_keys=True) + "\n")
 
 
@@ -137,4 +138,5 @@ def write_junit(report: RunReport, path: Path) -> None:
         suite.set(key, str(value))
     suite.set("errors", "0")
     ET.indent(suite)
+    path.parent.mkdir(parents=True, exist_ok=True)
     ET.ElementTree(suite).write(path, encoding="utf-8", xml_declaration=True)
