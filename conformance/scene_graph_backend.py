@@ -421,7 +421,24 @@ class SceneGraphBackend:
         self.contexts[args["name"]] = self.scene_graph.CreateDefaultContext()
 
     def clone_context(self, args: Mapping[str, Any]) -> None:
+        """Clones a context, after fixing identity poses for every source's frames.
+
+        N.B. pydrake refuses to clone a context whose query port was evaluated
+        (the harness observes after every step) unless each source with frames
+        has its pose port fixed with one pose per frame.
+        """
         source = self._context({"context": args["from"]})
+        g, m = self.api.geometry, self.api.math
+        inspector = self._inspector(source)
+        for source_id in self.sources.values():
+            frames = inspector.FramesForSource(source_id=source_id)
+            if frames:
+                poses = g.FramePoseVector()
+                for frame_id in frames:
+                    poses.set_value(id=frame_id, value=m.RigidTransform())
+                self.scene_graph.get_source_pose_port(source_id).FixValue(
+                    context=source, value=poses
+                )
         self.contexts[args["name"]] = source.Clone()
 
     def set_default_context(self, args: Mapping[str, Any]) -> None:

@@ -242,7 +242,7 @@ class CollisionFilter:
             TransientHistoryActiveError: if any transient declaration is active.
             UnknownGeometryError, UnknownFrameError: from ``resolve``. N.B. As in
                 Drake ≤ 1.51, statements before the bad one stay in C (not in the
-                base) until C is next re-derived from the base.
+                base) until C is next re-derived from the base by RemoveDeclaration.
         """
         if self._history:
             raise TransientHistoryActiveError(_PERSISTENT_WITH_HISTORY)
@@ -259,12 +259,13 @@ class CollisionFilter:
 
         Returns the new declaration's FilterId. If resolution fails part way,
         no history entry is made and the statements before the failure stay in
-        C until it is next re-derived (Drake ≤ 1.51).
+        C until it is next re-derived (Drake ≤ 1.51): a successful
+        ApplyTransient writes onto C as it is, only RemoveDeclaration (or
+        removing a geometry under history) re-derives C from the base.
         """
         resolved = self._apply_to(self._composite, statements, resolve)
         filter_id = FilterId.get_new_id()
         self._history.append(_Delta(filter_id, resolved))
-        self._rederive(np.empty(0, np.intp))
         return filter_id
 
     def _apply_to(
