@@ -21,7 +21,8 @@ def _require_positive(owner: str, **measures: float) -> None:
 
 
 def _fmt(value: float) -> str:
-    return f"{value:g}"
+    """As pydrake prints a measure: integral values without a point, others round-trip."""
+    return str(int(value)) if value.is_integer() else repr(value)
 
 
 class Shape:

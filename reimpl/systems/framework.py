@@ -41,7 +41,6 @@ class Context:
             self._clone_check(self)
         clone = Context._make(self._geometry_state.clone(), self._system_id)
         clone._fixed_inputs = dict(self._fixed_inputs)
-        clone._clone_check = self._clone_check
         return clone
 
 
