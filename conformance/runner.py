@@ -26,7 +26,15 @@ from conformance.backend import (
 )
 from conformance.corpus import Case, Step
 
-__all__ = ["BackendError", "CaseReport", "Failure", "Status", "run_case", "version_in_range"]
+__all__ = [
+    "BackendError",
+    "CaseReport",
+    "Failure",
+    "Status",
+    "results_agree",
+    "run_case",
+    "version_in_range",
+]
 
 
 class Status(enum.Enum):
@@ -137,7 +145,8 @@ def _check(
         yield from _check_state(expectation, at, state)
 
 
-def _results_agree(a: Result, b: Result) -> bool:
+def results_agree(a: Result, b: Result) -> bool:
+    """Same value; or same error kind and, unless BINDING, the same normalised message."""
     if (a.error is None) != (b.error is None):
         return False
     if a.error is None or b.error is None:
@@ -202,7 +211,7 @@ def _disagreements(
 ) -> Iterator[Failure]:
     pair = f"{reference.name} vs {other.name}"
     ra, rb = results[reference.name], results[other.name]
-    if not _results_agree(ra, rb):
+    if not results_agree(ra, rb):
         yield Failure(step.label, f"{step.op} result", ra.to_json(), rb.to_json(), pair)
     observed = _observation_diff(observations[reference.name], observations[other.name])
     for what, va, vb in observed:

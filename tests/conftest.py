@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import builtins
 from collections.abc import Iterable
 from typing import Any
 
@@ -126,7 +127,7 @@ class Scene:
             return self.sg.model_inspector()
         return self.sg.get_query_output_port().Eval(context).inspector()
 
-    def C(self, context: Any = None) -> set[str]:
+    def C(self, context: Any = None) -> builtins.set[str]:
         """Candidate pairs as 'a-b' strings, names sorted within each pair."""
         pairs = set()
         for a, b in self.inspector(context).GetCollisionCandidates():
