@@ -204,21 +204,21 @@ class SceneGraphBackend:
             self._unknown[kind] = id_type.get_new_id()
         return self._unknown[kind]
 
-    def _geometry(self, name: str) -> Any:
+    def _ref(self, kind: str, name: str) -> Any:
+        """The id a geometry or frame name stands for (see the module doc)."""
         if name in (UNKNOWN, FOREIGN):
-            return self._special("geometry", name)
+            return self._special(kind, name)
+        table = self.geometries if kind == "geometry" else self.frames
         try:
-            return self.geometries[name]
+            return table[name]
         except KeyError:
-            raise UnknownNameError("geometry", name) from None
+            raise UnknownNameError(kind, name) from None
+
+    def _geometry(self, name: str) -> Any:
+        return self._ref("geometry", name)
 
     def _frame(self, name: str) -> Any:
-        if name in (UNKNOWN, FOREIGN):
-            return self._special("frame", name)
-        try:
-            return self.frames[name]
-        except KeyError:
-            raise UnknownNameError("frame", name) from None
+        return self._ref("frame", name)
 
     def _label(self, name: str) -> Any:
         if name == UNKNOWN:

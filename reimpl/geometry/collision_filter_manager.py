@@ -10,10 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from reimpl.geometry.collision_filter_declaration import (
-    CollisionFilterDeclaration,
-    CollisionFilterScope,
-)
+from reimpl.geometry.collision_filter_declaration import CollisionFilterDeclaration
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FilterId
 
@@ -27,6 +24,8 @@ class CollisionFilterManager:
     """Applies declarations to C, persistently or transiently.
 
     C is the persistent base with the transient history replayed in order.
+    N.B. reimpl registers no deformable geometry, so a declaration's
+    CollisionFilterScope (kAll or kOmitDeformable) resolves every set alike.
     """
 
     def __init__(self, *args: object, **kwargs: object) -> None:
@@ -52,12 +51,10 @@ class CollisionFilterManager:
             RuntimeError: an id in the declaration is not registered (statements
                 before it stay applied), or transient history is active.
         """
-        _check_scope(declaration)
         self._state.collision_filter.apply(declaration.statements(), self._state.collect_ids)
 
     def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
         """Appends ``declaration`` to the transient history and returns its id."""
-        _check_scope(declaration)
         return self._state.collision_filter.apply_transient(
             declaration.statements(), self._state.collect_ids
         )
@@ -81,9 +78,3 @@ class CollisionFilterManager:
         """Undoes Deactivate for the geometries in S (Drake ≥ 1.55)."""
         ids = self._state.collect_ids(geometry_set)
         self._state.collision_filter.set_active(ids, active=True)
-
-
-def _check_scope(declaration: CollisionFilterDeclaration) -> None:
-    # N.B. reimpl registers no deformable geometry, so kOmitDeformable and kAll
-    # resolve every set identically.
-    assert declaration.scope() in CollisionFilterScope

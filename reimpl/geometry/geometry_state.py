@@ -145,6 +145,19 @@ class GeometryState:
                 f"Referenced geometry {geometry_id.get_value()} has not been registered{period}"
             ) from None
 
+    def _owned_geometry(
+        self, source_id: SourceId, geometry_id: GeometryId, not_owned: str
+    ) -> _Geometry:
+        """The geometry, after checking the source, the id, then ownership (Drake's order).
+
+        ``not_owned`` is Drake's message for the operation when another source owns it.
+        """
+        self._source(source_id)
+        geometry = self._geometry(geometry_id)
+        if geometry.source_id != source_id:
+            raise GeometryStateError(not_owned)
+        return geometry
+
     def _frame_of_source(self, source_id: SourceId, frame_id: FrameId) -> _Frame:
         """The frame, if ``source_id`` may hang geometry on it (the world frame: any source)."""
         frame = self._frames.get(frame_id)
@@ -230,13 +243,12 @@ class GeometryState:
         assign: RoleAssign,
     ) -> None:
         """Assigns or replaces a role; a new proximity role joins C (see module doc)."""
-        self._source(source_id)
-        geometry = self._geometry(geometry_id)
-        if geometry.source_id != source_id:
-            raise GeometryStateError(
-                f"Given geometry id {geometry_id.get_value()} does not belong to the given "
-                f"source id {source_id.get_value()}"
-            )
+        geometry = self._owned_geometry(
+            source_id,
+            geometry_id,
+            f"Given geometry id {geometry_id.get_value()} does not belong to the given "
+            f"source id {source_id.get_value()}",
+        )
         role = properties.role
         role_name = _ROLE_NAMES[role]
         has_role = role in geometry.properties
@@ -288,14 +300,13 @@ class GeometryState:
         self.collision_filter.apply([statement], self.collect_ids, is_invariant=True)
 
     def remove_role(self, source_id: SourceId, geometry_id: GeometryId, role: Role) -> int:
-        self._source(source_id)
-        geometry = self._geometry(geometry_id)
-        if geometry.source_id != source_id:
-            raise GeometryStateError(
-                f"Trying to remove the role {_ROLE_NAMES.get(role, 'unassigned')} from the "
-                f"geometry {geometry_id.get_value()} from source {source_id.get_value()}, but "
-                "the geometry doesn't belong to that source."
-            )
+        geometry = self._owned_geometry(
+            source_id,
+            geometry_id,
+            f"Trying to remove the role {_ROLE_NAMES.get(role, 'unassigned')} from the "
+            f"geometry {geometry_id.get_value()} from source {source_id.get_value()}, but "
+            "the geometry doesn't belong to that source.",
+        )
         return self._remove_role(geometry, role)
 
     def remove_frame_role(self, source_id: SourceId, frame_id: FrameId, role: Role) -> int:
@@ -314,13 +325,12 @@ class GeometryState:
         return 1
 
     def remove_geometry(self, source_id: SourceId, geometry_id: GeometryId) -> None:
-        self._source(source_id)
-        geometry = self._geometry(geometry_id)
-        if geometry.source_id != source_id:
-            raise GeometryStateError(
-                f"Trying to remove geometry {geometry_id.get_value()} from source "
-                f"{source_id.get_value()}, but the geometry doesn't belong to that source."
-            )
+        geometry = self._owned_geometry(
+            source_id,
+            geometry_id,
+            f"Trying to remove geometry {geometry_id.get_value()} from source "
+            f"{source_id.get_value()}, but the geometry doesn't belong to that source.",
+        )
         for role in list(geometry.properties):
             self._remove_role(geometry, role)
         self._frames[geometry.frame_id].geometries.remove(geometry_id)
@@ -403,9 +413,6 @@ class GeometryState:
     def frame_group(self, frame_id: FrameId) -> int:
         return self._frame(frame_id).frame_group
 
-    def parent_frame(self, frame_id: FrameId) -> FrameId:
-        return self._frame(frame_id).parent_id
-
     def geometry_name(self, geometry_id: GeometryId) -> str:
         if geometry_id not in self._geometries:
             raise UnknownGeometryError(
@@ -448,6 +455,3 @@ class GeometryState:
 
     def geometries_on(self, frame_id: FrameId) -> list[GeometryId]:
         return list(self._frame(frame_id).geometries)
-
-    def is_registered(self, geometry_id: GeometryId) -> bool:
-        return geometry_id in self._geometries
