@@ -124,7 +124,8 @@ class SceneGraphBackend:
             raise
         except RefusedCallError as exc:
             return Result(error=ErrorInfo(ErrorKind.REFUSED, str(exc)))
-        except (RuntimeError, TypeError, ValueError) as exc:
+        except (RuntimeError, TypeError, ValueError, IndexError) as exc:
+            # N.B. IndexError is pybind11's std::out_of_range (see reimpl's ghost frames).
             return Result(error=classify_error(exc))
 
     def observe(self) -> Observation:
@@ -286,7 +287,7 @@ class SceneGraphBackend:
     def register_frame(self, args: Mapping[str, Any]) -> None:
         g = self.api.geometry
         source = self._source(args)
-        frame = g.GeometryFrame(frame_name=args["name"])
+        frame = g.GeometryFrame(frame_name=args.get("drake_name", args["name"]))
         parent = args.get("parent")
         if parent is None:
             frame_id = self.scene_graph.RegisterFrame(source_id=source, frame=frame)
@@ -301,7 +302,9 @@ class SceneGraphBackend:
         source = self._source(args)
         name = args["name"]
         instance = g.GeometryInstance(
-            X_PG=m.RigidTransform(), shape=g.Sphere(radius=0.1), name=name
+            X_PG=m.RigidTransform(),
+            shape=g.Sphere(radius=0.1),
+            name=args.get("drake_name", name),
         )
         frame = args.get("frame", WORLD)
         context = self._context(args)
@@ -425,14 +428,25 @@ class SceneGraphBackend:
 
         N.B. pydrake refuses to clone a context whose query port was evaluated
         (the harness observes after every step) unless each source with frames
-        has its pose port fixed with one pose per frame.
+        has its pose port fixed with one pose per frame. A context made before
+        a source was registered lacks that source's port; once SetDefaultContext
+        gives it the source's frames, fixing the port or cloning aborts
+        pydrake, so the harness refuses that clone on every backend alike.
         """
         source = self._context({"context": args["from"]})
         g, m = self.api.geometry, self.api.math
         inspector = self._inspector(source)
         for source_id in self.sources.values():
+            if not inspector.SourceIsRegistered(source_id=source_id):
+                continue
             frames = inspector.FramesForSource(source_id=source_id)
             if frames:
+                port = self.scene_graph.get_source_pose_port(source_id)
+                if int(port.get_index()) >= source.num_input_ports():
+                    raise RefusedCallError(
+                        "refused: the context predates this source's pose port; fixing "
+                        "or cloning it aborts pydrake (SetFixedInputPortValue)"
+                    )
                 poses = g.FramePoseVector()
                 for frame_id in frames:
                     poses.set_value(id=frame_id, value=m.RigidTransform())

@@ -43,6 +43,9 @@ _system_ids = itertools.count(1)
 _properties = instance_of(ProximityProperties, PerceptionProperties, IllustrationProperties)
 
 
+#: Input ports a source adds: its pose port and its configuration port.
+_PORTS_PER_SOURCE = 2
+
 class SceneGraph:
     """The geometry system: owns the model, makes contexts, hands out views."""
 
@@ -52,6 +55,7 @@ class SceneGraph:
         self._dirty = True
         self._system_id = next(_system_ids)
         self._pose_ports: dict[SourceId, InputPort] = {}
+        self._num_input_ports = 0
         self._query_port = OutputPort("query", self._eval_query)
         self._model_inspector = SceneGraphInspector._view(lambda: self._model)
 
@@ -100,8 +104,14 @@ class SceneGraph:
         if not name:
             name = f"Source_{SourceId.get_new_id().get_value()}"
         source_id = model.register_source(name)
-        self._pose_ports[source_id] = InputPort(f"{name}_pose", source_id.get_value())
+        # Drake gives every source two input ports: poses, then configurations.
+        index = self.num_input_ports()
+        self._pose_ports[source_id] = InputPort(f"{name}_pose", index)
+        self._num_input_ports = index + _PORTS_PER_SOURCE
         return source_id
+
+    def num_input_ports(self) -> int:
+        return self._num_input_ports
 
     def RegisterFrame(self, *args: Any, **kwargs: Any) -> FrameId:
         source = Param("source_id", instance_of(SourceId))
@@ -252,7 +262,7 @@ class SceneGraph:
         return CollisionFilterManager._view(lambda: context._geometry_state)
 
     def CreateDefaultContext(self) -> Context:
-        return Context._make(self._default_state(), self._system_id)
+        return Context._make(self._default_state(), self._system_id, self.num_input_ports())
 
     def AllocateContext(self) -> Context:
         return self.CreateDefaultContext()
@@ -303,3 +313,6 @@ class SceneGraph:
                     f"Disagreement in expected number of frames ({len(frames)}) and the given "
                     f"number of frames ({size})."
                 )
+        if state.ghost_frames:
+            # A duplicate-name RegisterFrame left a frame index without a frame.
+            raise IndexError("_Map_base::at")

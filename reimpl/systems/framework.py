@@ -25,21 +25,29 @@ class Context:
     _system_id: int
     _fixed_inputs: dict[int, Any]
     _clone_check: Callable[[Context], None] | None
+    _num_input_ports: int
 
     @classmethod
-    def _make(cls, state: GeometryState, system_id: int) -> Context:
+    def _make(cls, state: GeometryState, system_id: int, num_input_ports: int) -> Context:
         context = object.__new__(cls)
         context._geometry_state = state
         context._system_id = system_id
         context._fixed_inputs = {}
         context._clone_check = None
+        # N.B. Fixed at creation: ports of sources registered later are missing.
+        context._num_input_ports = num_input_ports
         return context
+
+    def num_input_ports(self) -> int:
+        return self._num_input_ports
 
     def Clone(self) -> Context:
         """A deep copy: filters and transient history (same FilterIds) included."""
         if self._clone_check is not None:
             self._clone_check(self)
-        clone = Context._make(self._geometry_state.clone(), self._system_id)
+        clone = Context._make(
+            self._geometry_state.clone(), self._system_id, self._num_input_ports
+        )
         clone._fixed_inputs = dict(self._fixed_inputs)
         return clone
 
@@ -77,6 +85,9 @@ class InputPort:
 
     def get_name(self) -> str:
         return self._name
+
+    def get_index(self) -> int:
+        return self._index
 
     def FixValue(self, context: Context, value: object) -> FixedInputPortValue:
         context._fixed_inputs[self._index] = value
