@@ -1,0 +1,343 @@
+"""The mutants of conformance.mutants: each one is caught, and none leaks into reimpl.
+
+Every mutant has a witness: a short command sequence on which real pydrake
+(the oracle) and plain reimpl agree, and the mutant reports something else.
+Each witness asserts the exact value pydrake gives and the exact value the
+mutant gives, so a mutant that stops injecting its bug fails here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import pytest
+
+import conformance.mutants
+from conformance.backend import MODEL, Command, ErrorKind, Observation, Result
+from conformance.backends import load_backend
+from conformance.mutants import MUTANTS, MutantBackend, mutant_backend
+from conformance.pydrake_api import pydrake_api
+from conformance.reimpl_api import reimpl_api
+from conformance.scene_graph_backend import SceneGraphBackend
+from reimpl.geometry.collision_filter import CollisionFilter
+from reimpl.geometry.collision_filter_declaration import CollisionFilterDeclaration
+from reimpl.geometry.collision_filter_manager import CollisionFilterManager
+from reimpl.geometry.geometry_state import GeometryState
+from reimpl.geometry.scene_graph import SceneGraph
+
+Run = tuple[list[Result], Observation]
+
+
+# ------------------------------------------------------------ command sugar
+def frame(name: str) -> Command:
+    return Command("register_frame", {"name": name})
+
+
+def geometry(name: str, frame: str, roles: Sequence[str] = ("proximity",)) -> Command:
+    return Command("register_geometry", {"name": name, "frame": frame, "roles": list(roles)})
+
+
+def on_own_frames(*names: str) -> list[Command]:
+    """``a`` on frame ``f_a``, and so on, each with the proximity role."""
+    return [c for n in names for c in (frame(f"f_{n}"), geometry(n, f"f_{n}"))]
+
+
+def gset(*geometries: str, frames: Sequence[str] = ()) -> dict[str, list[str]]:
+    return {"geometries": list(geometries), "frames": list(frames)}
+
+
+def exclude_within(s: dict[str, list[str]]) -> dict[str, Any]:
+    return {"op": "exclude_within", "set": s}
+
+
+def allow_within(s: dict[str, list[str]]) -> dict[str, Any]:
+    return {"op": "allow_within", "set": s}
+
+
+def exclude_between(a: dict[str, list[str]], b: dict[str, list[str]]) -> dict[str, Any]:
+    return {"op": "exclude_between", "a": a, "b": b}
+
+
+def allow_between(a: dict[str, list[str]], b: dict[str, list[str]]) -> dict[str, Any]:
+    return {"op": "allow_between", "a": a, "b": b}
+
+
+def apply(*statements: dict[str, Any], **args: str) -> Command:
+    return Command("apply", {"declaration": {"statements": list(statements)}, **args})
+
+
+def apply_transient(label: str, *statements: dict[str, Any]) -> Command:
+    declaration = {"statements": list(statements)}
+    return Command("apply_transient", {"declaration": declaration, "label": label})
+
+
+def remove_declaration(label: str) -> Command:
+    return Command("remove_declaration", {"label": label})
+
+
+# -------------------------------------------------------------- observation
+def run(backend: SceneGraphBackend, commands: Sequence[Command]) -> Run:
+    return [backend.execute(c) for c in commands], backend.observe()
+
+
+def candidates(location: str = MODEL) -> Callable[[Run], set[str]]:
+    """C at ``location`` as ``a-b`` strings."""
+    return lambda r: {"-".join(pair) for pair in r[1].locations[location].candidates}
+
+
+def history(r: Run) -> bool:
+    return r[1].locations[MODEL].has_transient_history
+
+
+def last_error_and_candidates(r: Run) -> tuple[ErrorKind | None, set[str]]:
+    error = r[0][-1].error
+    return (None if error is None else error.kind), candidates()(r)
+
+
+def both_locations(r: Run) -> tuple[set[str], set[str]]:
+    return candidates()(r), candidates("c")(r)
+
+
+# ---------------------------------------------------------------- witnesses
+@dataclass(frozen=True)
+class Witness:
+    mutant: str
+    commands: list[Command]
+    #: What is compared: a function of the step results and the final observation.
+    fact: Callable[[Run], object]
+    pydrake: object
+    mutated: object
+
+
+WITNESSES = [
+    Witness(
+        "allow_clears_invariants",
+        [
+            frame("f"),
+            geometry("a", "f"),
+            geometry("b", "f"),
+            apply(allow_within(gset(frames=["f"]))),
+        ],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "allow_between_clears_within",
+        [
+            *on_own_frames("a", "b", "c"),
+            apply(exclude_within(gset("a", "b", "c"))),
+            apply(allow_between(gset("a", "b"), gset("c"))),
+        ],
+        candidates(),
+        pydrake={"a-c", "b-c"},
+        mutated={"a-b", "a-c", "b-c"},
+    ),
+    Witness(
+        "reverse_statement_order",
+        [
+            *on_own_frames("a", "b"),
+            apply(exclude_within(gset("a", "b")), allow_within(gset("a", "b"))),
+        ],
+        candidates(),
+        pydrake={"a-b"},
+        mutated=set(),
+    ),
+    Witness(
+        "lazy_frame_resolution",
+        [
+            frame("f"),
+            geometry("a", "f"),
+            *on_own_frames("b"),
+            apply(exclude_between(gset(frames=["f"]), gset("b"))),
+            geometry("c", "f"),
+        ],
+        candidates(),
+        pydrake={"b-c"},
+        mutated=set(),
+    ),
+    Witness(
+        "remove_declaration_no_replay",
+        [
+            *on_own_frames("a", "b", "c"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            apply_transient("t2", exclude_within(gset("a", "b", "c"))),
+            remove_declaration("t2"),
+        ],
+        candidates(),
+        pydrake={"a-c", "b-c"},
+        mutated={"a-b", "a-c", "b-c"},
+    ),
+    Witness(
+        "context_managers_write_model",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            apply(exclude_within(gset("a", "b")), context="c"),
+        ],
+        both_locations,
+        pydrake=({"a-b"}, set()),
+        mutated=(set(), {"a-b"}),
+    ),
+    Witness(
+        "non_proximity_ids_raise",
+        [
+            *on_own_frames("a", "b"),
+            geometry("n", "world", roles=["illustration"]),
+            apply(exclude_within(gset("a", "b", "n"))),
+        ],
+        last_error_and_candidates,
+        pydrake=(None, set()),
+        mutated=(ErrorKind.OTHER, {"a-b"}),
+    ),
+    Witness(
+        "apply_during_history_allowed",
+        [
+            *on_own_frames("a", "b", "c"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            apply(exclude_within(gset("b", "c"))),
+        ],
+        last_error_and_candidates,
+        pydrake=(ErrorKind.TRANSIENT_HISTORY, {"a-c", "b-c"}),
+        mutated=(None, {"a-c"}),
+    ),
+    Witness(
+        "role_reassign_keeps_filters",
+        [
+            *on_own_frames("a", "b"),
+            apply(exclude_within(gset("a", "b"))),
+            Command("remove_role", {"geometry": "a", "role": "proximity"}),
+            Command("assign_role", {"geometry": "a", "role": "proximity"}),
+        ],
+        candidates(),
+        pydrake={"a-b"},
+        mutated=set(),
+    ),
+    Witness(
+        "stale_has_transient_history",
+        [
+            *on_own_frames("a", "b"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            remove_declaration("t1"),
+        ],
+        history,
+        pydrake=False,
+        mutated=True,
+    ),
+    Witness(
+        "world_frame_resolves_nothing",
+        [
+            geometry("a", "world"),
+            geometry("b", "world"),
+            *on_own_frames("c"),
+            apply(exclude_between(gset(frames=["world"]), gset("c"))),
+        ],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-c", "b-c"},
+    ),
+    Witness(
+        "no_same_frame_invariant",
+        [frame("f"), geometry("a", "f"), geometry("b", "f")],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+]
+
+
+def pydrake_backend() -> SceneGraphBackend:
+    return SceneGraphBackend(pydrake_api())
+
+
+def reimpl_backend() -> SceneGraphBackend:
+    return SceneGraphBackend(reimpl_api())
+
+
+def test_every_mutant_has_exactly_one_witness() -> None:
+    assert sorted(w.mutant for w in WITNESSES) == sorted(MUTANTS)
+    assert len(MUTANTS) >= 12
+
+
+@pytest.mark.parametrize("witness", WITNESSES, ids=lambda w: w.mutant)
+def test_plain_reimpl_matches_pydrake_on_the_witness(witness: Witness) -> None:
+    oracle = run(pydrake_backend(), witness.commands)
+    plain = run(reimpl_backend(), witness.commands)
+    assert witness.fact(oracle) == witness.pydrake
+    assert plain == oracle
+
+
+@pytest.mark.parametrize("witness", WITNESSES, ids=lambda w: w.mutant)
+def test_the_mutant_differs_from_pydrake_on_its_witness(witness: Witness) -> None:
+    mutated = run(mutant_backend(witness.mutant), witness.commands)
+    assert witness.fact(mutated) == witness.mutated
+    assert witness.mutated != witness.pydrake
+
+
+@pytest.mark.parametrize("witness", WITNESSES, ids=lambda w: w.mutant)
+def test_interleaved_mutant_calls_leave_plain_reimpl_unaffected(witness: Witness) -> None:
+    oracle = run(pydrake_backend(), witness.commands)
+    alone = run(mutant_backend(witness.mutant), witness.commands)
+    plain, mutant = reimpl_backend(), mutant_backend(witness.mutant)
+    plain_results, mutant_results = [], []
+    for command in witness.commands:
+        mutant_results.append(mutant.execute(command))
+        plain_results.append(plain.execute(command))
+        mutant.observe()
+    assert (plain_results, plain.observe()) == oracle
+    assert (mutant_results, mutant.observe()) == alone
+
+
+@pytest.mark.parametrize("name", sorted(MUTANTS))
+def test_reimpl_classes_are_restored_after_every_mutant_call(name: str) -> None:
+    targets = (
+        CollisionFilter,
+        CollisionFilterDeclaration,
+        CollisionFilterManager,
+        GeometryState,
+        SceneGraph,
+    )
+    before = [dict(vars(t)) for t in targets]
+    backend = mutant_backend(name)
+    backend.execute(frame("f"))
+    backend.execute(geometry("a", "f"))
+    backend.observe()
+    backend.reset()
+    assert [dict(vars(t)) for t in targets] == before
+
+
+def test_reset_gives_the_mutant_an_empty_scene_graph() -> None:
+    backend = mutant_backend("no_same_frame_invariant")
+    run(backend, [frame("f"), geometry("a", "f"), geometry("b", "f")])
+    backend.reset()
+    assert backend.observe().locations[MODEL].candidates == frozenset()
+
+
+def test_a_mutant_backend_is_named_after_its_mutant() -> None:
+    backend = mutant_backend("stale_has_transient_history")
+    assert isinstance(backend, MutantBackend)
+    assert backend.name == "mutant:stale_has_transient_history"
+    assert backend.version() == reimpl_backend().version()
+    assert backend.features() == reimpl_backend().features()
+
+
+def test_load_backend_resolves_a_mutant_spec() -> None:
+    backend = load_backend("conformance.mutants:reverse_statement_order")
+    assert backend.name == "mutant:reverse_statement_order"
+
+
+def test_the_module_offers_a_factory_per_mutant_and_nothing_else() -> None:
+    factory = conformance.mutants.allow_clears_invariants
+    assert factory().name == "mutant:allow_clears_invariants"
+    with pytest.raises(AttributeError, match="no_such_mutant"):
+        _ = conformance.mutants.no_such_mutant
+
+
+@pytest.mark.parametrize("name", sorted(MUTANTS))
+def test_every_mutant_bug_is_one_sentence(name: str) -> None:
+    bug = MUTANTS[name].bug
+    assert MUTANTS[name].name == name
+    assert bug.endswith(".")
+    assert bug.count(". ") == 0
