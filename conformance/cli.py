@@ -2,33 +2,38 @@
 
 ``run`` executes the corpus (by default the embedded one) on every chosen
 backend (by default reimpl and pydrake) and compares them pair by pair.
+``fuzz`` drives two backends (by default reimpl against pydrake) with
+Hypothesis-generated command sequences and writes each shrunk divergence as a
+scenario file that ``run`` replays.
 
-Exit codes: 0 every case passed; 1 a conformance failure; 2 a usage or input
-error (bad arguments, a malformed scenario, an unknown name or backend, a
-backend that breaks). Results found before an error are still printed and
-written to the --json/--junit files.
+Exit codes: 0 every case passed (no divergence); 1 a conformance failure (a
+divergence); 2 a usage or input error (bad arguments, a malformed scenario,
+an unknown name or backend, a backend that breaks) or an interrupted run
+that found nothing. Results found before an error are still printed and
+written to the --json/--junit files; findings are written as they are made.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import TextIO
+from typing import Any, TextIO
 
 from conformance.backend import Backend
 from conformance.backends import BackendLoadError, load_backend
 from conformance.corpus import ScenarioError, ScenarioFile, load_corpus
+from conformance.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.fuzz import BATCH_EXAMPLES, DEFAULT_STEPS
+from conformance.fuzz_command import fuzz_command
+from conformance.regression import DEFAULT_REGRESSIONS
 from conformance.report import RunReport, write_json, write_junit
 from conformance.runner import BackendError, Status, run_case
 from conformance.scene_graph_backend import UnknownNameError
 
 __all__ = ["EXIT_FAILURE", "EXIT_OK", "EXIT_USAGE", "main", "main_console"]
 
-EXIT_OK = 0
-EXIT_FAILURE = 1
-EXIT_USAGE = 2
 PROG = "python -m conformance"
 
 
@@ -55,7 +60,57 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
     run.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
     run.add_argument("-q", "--quiet", action="store_true", help="no per-case progress lines")
+    _add_fuzz(commands)
     return parser
+
+
+def _positive(kind: type[int] | type[float]) -> Callable[[str], float]:
+    def parse(text: str) -> float:
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+        if value <= 0:
+            raise argparse.ArgumentTypeError(f"must be positive, got {text}")
+        return value
+
+    return parse
+
+
+def _add_fuzz(commands: Any) -> None:
+    fuzz = commands.add_parser(
+        "fuzz", help="differential fuzzing of two backends; findings become scenario files"
+    )
+    fuzz.add_argument("--backend", default="reimpl", help="the backend under test (reimpl)")
+    fuzz.add_argument("--against", default="pydrake", help="the reference backend (pydrake)")
+    fuzz.add_argument("--seed", type=int, default=0, help="the same seed gives the same run (0)")
+    budget = fuzz.add_mutually_exclusive_group()
+    budget.add_argument(
+        "--max-examples", type=_positive(int), metavar="N", help="one batch of N examples (100)"
+    )
+    budget.add_argument(
+        "--time-budget",
+        type=_positive(float),
+        metavar="SEC",
+        help=f"batches of {BATCH_EXAMPLES} examples until SEC seconds have passed",
+    )
+    fuzz.add_argument(
+        "--steps", type=_positive(int), default=DEFAULT_STEPS, help="commands per example"
+    )
+    fuzz.add_argument(
+        "--out",
+        type=Path,
+        default=DEFAULT_REGRESSIONS,
+        metavar="DIR",
+        help=f"where findings are written ({DEFAULT_REGRESSIONS}/)",
+    )
+    fuzz.add_argument(
+        "--database", type=Path, metavar="DIR", help="a Hypothesis example database to share"
+    )
+    fuzz.add_argument(
+        "--keep-going", action="store_true", help="with --time-budget, go on after a finding"
+    )
+    fuzz.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
 
 
 def _backends(specs: Sequence[str] | None) -> list[Backend]:
@@ -128,6 +183,8 @@ def main(
     out, err = out or sys.stdout, err or sys.stderr
     if args.command == "run":
         return _run(args, out, err)
+    if args.command == "fuzz":
+        return fuzz_command(args, out, err)
     raise AssertionError(args.command)  # pragma: no cover
 
 

@@ -363,9 +363,18 @@ class SceneGraphBackend:
         self._manager(self._context(args)).Apply(declaration=declaration)
 
     def apply_transient(self, args: Mapping[str, Any]) -> None:
-        declaration = self.declaration(args["declaration"])
+        """ApplyTransient; the label names the FilterId it returns.
+
+        If the call fails, the label names a FilterId that was never issued
+        (as ``@unknown`` does), so later steps may still use it.
+        """
         location = args.get("context", MODEL)
-        filter_id = self._manager(self._context(args)).ApplyTransient(declaration=declaration)
+        try:
+            declaration = self.declaration(args["declaration"])
+            filter_id = self._manager(self._context(args)).ApplyTransient(declaration=declaration)
+        except (RuntimeError, TypeError, ValueError, IndexError):
+            self.labels[args["label"]] = _Label(self.api.geometry.FilterId.get_new_id(), location)
+            raise
         self.labels[args["label"]] = _Label(filter_id, location)
 
     def remove_declaration(self, args: Mapping[str, Any]) -> bool:

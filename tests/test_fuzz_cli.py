@@ -1,0 +1,130 @@
+"""``python -m conformance fuzz``: exit codes, findings on disk, determinism, Ctrl-C."""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from conformance.cli import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, main
+from conformance.corpus import load_file
+
+
+def fuzz(*argv: str) -> tuple[int, str, str]:
+    out, err = io.StringIO(), io.StringIO()
+    code = main(["fuzz", *argv], out=out, err=err)
+    return code, out.getvalue(), err.getvalue()
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ("--backend", "nonesuch"),
+        ("--against", "no.such.module:Backend"),
+        ("--backend", "reimpl", "--against", "reimpl"),
+    ],
+    ids=["unknown backend", "unimportable backend", "same backend twice"],
+)
+def test_fuzz_exits_2_with_a_message_for_a_bad_backend(argv: tuple[str, ...]) -> None:
+    code, _, err = fuzz(*argv, "--max-examples", "1")
+    assert code == EXIT_USAGE
+    assert err.startswith("error: ")
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ("--max-examples", "0"),
+        ("--max-examples", "3", "--time-budget", "1"),
+        ("--time-budget", "soon"),
+    ],
+)
+def test_fuzz_exits_2_on_bad_budget_arguments(argv: tuple[str, ...]) -> None:
+    with pytest.raises(SystemExit) as exited:
+        fuzz(*argv)
+    assert exited.value.code == EXIT_USAGE
+
+
+def test_fuzz_of_reimpl_against_pydrake_exits_0_and_writes_nothing(tmp_path: Path) -> None:
+    code, out, err = fuzz("--seed", "3", "--max-examples", "25", "--out", str(tmp_path / "r"))
+    assert code == EXIT_OK, out + err
+    assert "0 divergence(s)" in out
+    assert "against pydrake" in err
+    assert not (tmp_path / "r").exists()
+
+
+def test_a_divergence_exits_1_and_is_written_as_a_valid_scenario(tmp_path: Path) -> None:
+    spec = "conformance.mutants:reverse_statement_order"
+    code, out, _ = fuzz(
+        "--backend", spec, "--seed", "1", "--max-examples", "300", "--out", str(tmp_path)
+    )
+    assert code == EXIT_FAILURE
+    (path,) = tmp_path.glob("*.json")
+    assert "(reproduces)" in out
+    assert str(path) in out
+    scenario = load_file(path, root=tmp_path)
+    (case,) = scenario.cases
+    assert case.steps[-1].expect, "the last step records pydrake's state"
+
+
+def test_the_same_seed_gives_the_same_finding_and_counts(tmp_path: Path) -> None:
+    spec = "conformance.mutants:stale_has_transient_history"
+    runs = []
+    for attempt in ("a", "b"):
+        code, out, _ = fuzz(
+            "--backend",
+            spec,
+            "--seed",
+            "5",
+            "--max-examples",
+            "300",
+            "--out",
+            str(tmp_path / attempt),
+        )
+        assert code == EXIT_FAILURE
+        (path,) = (tmp_path / attempt).glob("*.json")
+        counts = out.splitlines()[-1].split(" in ")[0]  # "fuzz: 1 batch(es), N examples, M steps"
+        runs.append((path.name, json.loads(path.read_text()), counts))
+    assert runs[0] == runs[1]
+
+
+def test_ctrl_c_during_shrinking_keeps_the_finding(tmp_path: Path) -> None:
+    """A real SIGINT to a real fuzz process: the best sequence so far is written."""
+    process = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "conformance",
+            "fuzz",
+            "--backend",
+            "conformance.mutants:allow_between_clears_within",
+            "--seed",
+            "1",
+            "--max-examples",
+            "300",
+            "--out",
+            str(tmp_path),
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONUNBUFFERED": "1"},
+    )
+    assert process.stderr is not None
+    deadline = time.monotonic() + 240
+    for line in process.stderr:
+        if "(shrinking)" in line or time.monotonic() > deadline:
+            break
+    process.send_signal(signal.SIGINT)
+    out, _ = process.communicate(timeout=120)
+    assert process.returncode == EXIT_FAILURE, out
+    assert "interrupted" in out
+    (path,) = tmp_path.glob("*.json")
+    load_file(path, root=tmp_path)

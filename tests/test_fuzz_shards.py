@@ -1,0 +1,56 @@
+"""Fuzz shards: a long campaign split into seed ranges, run by pytest-xdist.
+
+Run with ``pytest -m fuzz -n auto``. The environment picks the shard:
+
+- ``CONFORMANCE_FUZZ_SEEDS``: seeds as ``first-last`` (default ``0-3``);
+- ``CONFORMANCE_FUZZ_EXAMPLES``: examples per seed (default 50);
+- ``CONFORMANCE_FUZZ_DB``: a Hypothesis example database directory to share
+  (failures found by one job are replayed first by the others);
+- ``CONFORMANCE_FUZZ_OUT``: where findings are written (default: a temporary
+  directory; set it to ``scenarios/regressions`` to keep them).
+
+Each seed is one test, so xdist spreads seeds over workers and a CI matrix
+spreads seed ranges over jobs (see the README).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from conformance.backends import load_backend
+from conformance.fuzz import Campaign
+from conformance.regression import write_regression
+
+
+def _seeds() -> range:
+    first, _, last = os.environ.get("CONFORMANCE_FUZZ_SEEDS", "0-3").partition("-")
+    return range(int(first), int(last or first) + 1)
+
+
+@pytest.mark.fuzz
+@pytest.mark.parametrize("seed", _seeds())
+def test_reimpl_matches_pydrake_on_a_fuzz_shard(seed: int, tmp_path: Path) -> None:
+    database = os.environ.get("CONFORMANCE_FUZZ_DB")
+    reimpl, pydrake = load_backend("reimpl"), load_backend("pydrake")
+    result = Campaign(
+        backend=lambda: reimpl,
+        reference=lambda: pydrake,
+        seed=seed,
+        max_examples=int(os.environ.get("CONFORMANCE_FUZZ_EXAMPLES", "50")),
+        database=Path(database) if database else None,
+    ).run()
+    assert result.stats.steps > 0
+    for divergence in result.divergences:
+        out = Path(os.environ.get("CONFORMANCE_FUZZ_OUT", str(tmp_path)))
+        path = write_regression(
+            divergence,
+            out,
+            backend="reimpl",
+            reference="pydrake",
+            reference_version=pydrake.version(),
+            seed=seed,
+        )
+        pytest.fail(f"seed {seed}: {divergence}\nwritten: {path}")
