@@ -46,7 +46,7 @@ __all__ = [
 ]
 
 BATCH_EXAMPLES = 50
-DEFAULT_STEPS = 30
+DEFAULT_STEPS = 50
 
 
 @cache

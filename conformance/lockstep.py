@@ -69,6 +69,11 @@ DEFAULT_SOURCE = "source"
 MAX_CONTEXTS = 3
 
 
+def _kept(name: str, result: Result) -> Any:
+    """``name`` for the target bundle if the command succeeded, else nothing."""
+    return multiple(name) if result.error is None else multiple()
+
+
 def _is_final_run() -> bool:
     """True while Hypothesis replays the example it reports (False outside a run)."""
     try:
@@ -158,8 +163,8 @@ class LockstepMachine(RuleBasedStateMachine):
     )
     stats: ClassVar[FuzzStats] = FuzzStats()
     #: Bounds (inclusive) on the initial scene's frames and geometries.
-    scene_frames: ClassVar[tuple[int, int]] = (0, 4)
-    scene_geometries: ClassVar[tuple[int, int]] = (0, 6)
+    scene_frames: ClassVar[tuple[int, int]] = (1, 4)
+    scene_geometries: ClassVar[tuple[int, int]] = (2, 8)
     _pair: ClassVar[tuple[Backend, Backend] | None] = None
 
     sources = Bundle("sources")
@@ -293,9 +298,7 @@ class LockstepMachine(RuleBasedStateMachine):
     def register_source(self) -> Any:
         name = self.fresh("s")
         self._sources += 1
-        return (
-            multiple(name) if self.step("register_source", name=name).error is None else multiple()
-        )
+        return _kept(name, self.step("register_source", name=name))
 
     @rule(target=frames, parent=st.none() | frames, source=owners, reuse=st.none() | frames)
     def register_frame(self, parent: str | None, source: str | None, reuse: str | None) -> Any:
@@ -304,7 +307,7 @@ class LockstepMachine(RuleBasedStateMachine):
         result = self.step(
             "register_frame", name=name, drake_name=reuse, parent=parent, source=source
         )
-        return multiple(name) if result.error is None else multiple()
+        return _kept(name, result)
 
     @rule(
         target=geometries,
@@ -394,7 +397,7 @@ class LockstepMachine(RuleBasedStateMachine):
     def apply_transient(self, declaration: dict[str, Any], context: str | None) -> Any:
         label = self.fresh("t")
         result = self.step("apply_transient", declaration=declaration, label=label, context=context)
-        return multiple(label) if result.error is None else multiple()
+        return _kept(label, result)
 
     @rule(declaration=cs.declarations(geometries=geometries, frames=frames), context=locations)
     def transient_round_trip(self, declaration: dict[str, Any], context: str | None) -> None:
@@ -407,6 +410,28 @@ class LockstepMachine(RuleBasedStateMachine):
         result = self.step("apply_transient", declaration=declaration, label=label, context=context)
         if result.error is None:
             self.step("remove_declaration", label=label, context=context)
+
+    @rule(
+        target=filter_ids,
+        first=cs.declarations(geometries=geometries, frames=frames),
+        second=cs.declarations(geometries=geometries, frames=frames),
+        context=locations,
+    )
+    def stacked_transients(
+        self, first: dict[str, Any], second: dict[str, Any], context: str | None
+    ) -> Any:
+        """Two transient declarations, then the first removed: the second must be replayed.
+
+        Table 1, lines 5-7: removing a declaration re-derives C from the base
+        and every declaration still active, in order.
+        """
+        labels = [self.fresh("t"), self.fresh("t")]
+        results = [
+            self.step("apply_transient", declaration=d, label=label, context=context)
+            for d, label in zip((first, second), labels, strict=True)
+        ]
+        self.step("remove_declaration", label=labels[0], context=context)
+        return _kept(labels[1], results[1])
 
     @rule(label=filter_ids | st.just(cs.UNKNOWN), context=locations)
     def remove_declaration(self, label: str, context: str | None) -> None:
@@ -444,9 +469,7 @@ class LockstepMachine(RuleBasedStateMachine):
     def create_context(self) -> Any:
         name = self.fresh("c")
         self._contexts += 1
-        return (
-            multiple(name) if self.step("create_context", name=name).error is None else multiple()
-        )
+        return _kept(name, self.step("create_context", name=name))
 
     @precondition(lambda self: self._contexts < MAX_CONTEXTS)
     @rule(target=contexts, origin=contexts)
@@ -454,7 +477,7 @@ class LockstepMachine(RuleBasedStateMachine):
         name = self.fresh("c")
         self._contexts += 1
         result = self.step("clone_context", name=name, **{"from": origin})
-        return multiple(name) if result.error is None else multiple()
+        return _kept(name, result)
 
     @rule(context=contexts)
     def set_default_context(self, context: str) -> None:

@@ -45,6 +45,7 @@ __all__ = [
     "geometry_sets",
     "roles",
     "scenes",
+    "set_spec",
     "statements",
 ]
 
@@ -182,6 +183,16 @@ def scenes(
 
 
 # ---------------------------------------------------------- sets, declarations
+def set_spec(geometries: Sequence[str], frames: Sequence[str]) -> dict[str, list[str]]:
+    """The scenario grammar's geometry set; an empty list is left out."""
+    out: dict[str, list[str]] = {}
+    if geometries:
+        out["geometries"] = list(geometries)
+    if frames:
+        out["frames"] = list(frames)
+    return out
+
+
 def geometry_sets(
     *,
     geometries: Names,
@@ -198,16 +209,7 @@ def geometry_sets(
     g = _elements(geometries, rare, max_size)
     f = _elements(frames, rare, max(1, max_size - 1))
 
-    def build(parts: tuple[list[str], list[str]]) -> dict[str, list[str]]:
-        gs, fs = parts
-        out: dict[str, list[str]] = {}
-        if gs:
-            out["geometries"] = gs
-        if fs:
-            out["frames"] = fs
-        return out
-
-    return st.tuples(g, f).map(build)
+    return st.tuples(g, f).map(lambda parts: set_spec(*parts))
 
 
 def statements(
@@ -252,8 +254,7 @@ def declarations(
         return [name for bit, name in enumerate(pool) if mask >> bit & 1]
 
     def geometry_set() -> dict[str, list[str]]:
-        gs, fs = subset_of(pool_g), subset_of(pool_f)
-        return {**({"geometries": gs} if gs else {}), **({"frames": fs} if fs else {})}
+        return set_spec(subset_of(pool_g), subset_of(pool_f))
 
     items: list[dict[str, Any]] = []
     for _ in range(draw(st.integers(min_value=min_statements, max_value=max_statements))):

@@ -34,6 +34,7 @@ from conformance.pydrake_api import pydrake_api
 from conformance.reimpl_api import reimpl_api
 from conformance.runner import results_agree
 from conformance.scene_graph_backend import SceneGraphBackend
+from conformance.strategies import set_spec
 
 SEEDS = range(100)
 STEPS = 80
@@ -91,12 +92,7 @@ class CommandGenerator:
         chosen_f = rng.sample(frames, k=min(len(frames), rng.choice((0, 0, 1, 2))))
         if unknown:
             (chosen_g if rng.random() < 0.6 else chosen_f).append(UNKNOWN)
-        out: dict[str, list[str]] = {}
-        if chosen_g:
-            out["geometries"] = chosen_g
-        if chosen_f:
-            out["frames"] = chosen_f
-        return out
+        return set_spec(chosen_g, chosen_f)
 
     def _declaration(self, backend: SceneGraphBackend) -> dict[str, Any]:
         """1-4 statements; sometimes one set names an ``@unknown`` id.
