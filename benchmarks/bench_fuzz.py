@@ -19,8 +19,10 @@ import argparse
 import sys
 import time
 
+from hypothesis.stateful import Bundle, RuleBasedStateMachine, rule, run_state_machine_as_test
+
 from conformance.backends import load_backend
-from conformance.fuzz import Campaign
+from conformance.fuzz import DEFAULT_STEPS, Campaign, fuzz_settings
 from conformance.lockstep import LockstepMachine
 
 SIZES = ((5, 10), (10, 20), (20, 30))
@@ -35,11 +37,37 @@ def machine_for(low: int, high: int) -> type[LockstepMachine]:
     )
 
 
+class _NoOpMachine(RuleBasedStateMachine):
+    """Two trivial rules and a bundle: what a Hypothesis step costs with no backend."""
+
+    things = Bundle("things")
+    steps = 0
+
+    @rule(target=things)
+    def make(self) -> str:
+        type(self).steps += 1
+        return "x"
+
+    @rule(thing=things)
+    def use(self, thing: str) -> None:
+        type(self).steps += 1
+
+
+def hypothesis_floor(examples: int, steps: int) -> float:
+    """Steps/s of ``_NoOpMachine`` under the campaign's settings."""
+    _NoOpMachine.steps = 0
+    start = time.perf_counter()
+    run_state_machine_as_test(
+        _NoOpMachine, settings=fuzz_settings(max_examples=examples, steps=steps)
+    )
+    return _NoOpMachine.steps / (time.perf_counter() - start)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--examples", type=int, default=100)
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--steps", type=int, default=30)
+    parser.add_argument("--steps", type=int, default=DEFAULT_STEPS)
     args = parser.parse_args(argv)
     reimpl, pydrake = load_backend("reimpl"), load_backend("pydrake")
     print(
@@ -72,6 +100,11 @@ def main(argv: list[str] | None = None) -> int:
             f"{len(result.divergences):>11}"
         )
         sys.stdout.flush()
+    floor = hypothesis_floor(args.examples, args.steps)
+    print(
+        f"Hypothesis alone (a no-op machine): {floor:.0f} steps/s, "
+        f"{1000 / floor:.2f} ms per step before any backend call"
+    )
     return 0
 
 
