@@ -46,6 +46,7 @@ _properties = instance_of(ProximityProperties, PerceptionProperties, Illustratio
 #: Input ports a source adds: its pose port and its configuration port.
 _PORTS_PER_SOURCE = 2
 
+
 class SceneGraph:
     """The geometry system: owns the model, makes contexts, hands out views."""
 

@@ -45,9 +45,7 @@ class Context:
         """A deep copy: filters and transient history (same FilterIds) included."""
         if self._clone_check is not None:
             self._clone_check(self)
-        clone = Context._make(
-            self._geometry_state.clone(), self._system_id, self._num_input_ports
-        )
+        clone = Context._make(self._geometry_state.clone(), self._system_id, self._num_input_ports)
         clone._fixed_inputs = dict(self._fixed_inputs)
         return clone
 
