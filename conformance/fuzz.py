@@ -138,6 +138,9 @@ class Campaign:
     #: Stop at the first divergence even with a time budget.
     stop_at_first: bool = False
     machine_base: type[LockstepMachine] = LockstepMachine
+    #: Bounds on the initial scene (default: ``machine_base``'s).
+    scene_frames: tuple[int, int] | None = None
+    scene_geometries: tuple[int, int] | None = None
 
     def run(self) -> CampaignResult:
         """Runs the campaign. On Ctrl-C, keeps the smallest divergence seen so far."""
@@ -178,7 +181,12 @@ class Campaign:
         self, backend: Backend, reference: Backend, stats: FuzzStats, seed: int, size: int | None
     ) -> Divergence | None:
         machine = lockstep_machine(
-            lambda: backend, lambda: reference, stats=stats, base=self.machine_base
+            lambda: backend,
+            lambda: reference,
+            stats=stats,
+            base=self.machine_base,
+            scene_frames=self.scene_frames,
+            scene_geometries=self.scene_geometries,
         )
         hypothesis_seed(seed)(machine)
         stats.best = None

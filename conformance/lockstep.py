@@ -226,7 +226,8 @@ class LockstepMachine(RuleBasedStateMachine):
         stats.steps += 1
         self.trace.append(TraceStep(command, want, got))
         if not results_agree(got, want):
-            self._diverge(f"{op} result", f"backend {got.to_json()} reference {want.to_json()}")
+            detail = f"backend {got.to_json()} reference {want.to_json()}"
+            self._diverge(f"{op} result", detail, *self._observe())
         if stats.on_step is not None:
             stats.on_step(stats)
         return want
@@ -241,8 +242,7 @@ class LockstepMachine(RuleBasedStateMachine):
         stats.backend_seconds += time.perf_counter() - start
         return got, want
 
-    def _diverge(self, what: str, detail: str) -> None:
-        got, want = self._observe()
+    def _diverge(self, what: str, detail: str, got: Observation, want: Observation) -> None:
         divergence = Divergence(what, detail, self.trace, want, got)
         type(self).stats.record(divergence)
         raise divergence
@@ -252,9 +252,7 @@ class LockstepMachine(RuleBasedStateMachine):
         """The whole canonical state agrees, for the model and every context."""
         got, want = self._observe()
         if got != want:
-            divergence = Divergence("state", _diff(got, want), self.trace, want, got)
-            type(self).stats.record(divergence)
-            raise divergence
+            self._diverge("state", _diff(got, want), got, want)
 
     # ------------------------------------------------------- registration
     @initialize(target=sources)

@@ -44,6 +44,10 @@ UNKNOWN = "@unknown"
 FOREIGN = "@foreign"
 DEFAULT_SOURCE = "source"
 
+#: What an implementation raises for a call it rejects (IndexError: pybind11's
+#: std::out_of_range). Anything else is a broken backend, not a Result.
+_IMPLEMENTATION_ERRORS = (RuntimeError, TypeError, ValueError, IndexError)
+
 #: Feature tags every SceneGraph-based backend supports; others depend on the release.
 BASE_FEATURES = frozenset({"core", "transient", "contexts", "errors", "roles", "quirk"})
 
@@ -124,8 +128,7 @@ class SceneGraphBackend:
             raise
         except RefusedCallError as exc:
             return Result(error=ErrorInfo(ErrorKind.REFUSED, str(exc)))
-        except (RuntimeError, TypeError, ValueError, IndexError) as exc:
-            # N.B. IndexError is pybind11's std::out_of_range (see reimpl's ghost frames).
+        except _IMPLEMENTATION_ERRORS as exc:
             return Result(error=classify_error(exc))
 
     def observe(self) -> Observation:
@@ -372,7 +375,7 @@ class SceneGraphBackend:
         try:
             declaration = self.declaration(args["declaration"])
             filter_id = self._manager(self._context(args)).ApplyTransient(declaration=declaration)
-        except (RuntimeError, TypeError, ValueError, IndexError):
+        except _IMPLEMENTATION_ERRORS:
             self.labels[args["label"]] = _Label(self.api.geometry.FilterId.get_new_id(), location)
             raise
         self.labels[args["label"]] = _Label(filter_id, location)
