@@ -18,11 +18,20 @@ Special references are drawn rarely and shrink away. They are ``@unknown`` (an
 id never issued), ``@foreign`` (an id from another SceneGraph), and ``world``
 (the world frame: every anchored proximity geometry). A removed geometry's name
 is an ordinary name whose id has gone stale.
+
+Names are cheap to draw. A name is a *pick*, one byte read against a list
+of names by ``pick``, and the picks a value needs are drawn together as one
+fixed-size ``bytes`` choice (``picks(n)``): Hypothesis draws the bytes
+uniformly and shrinks each towards 0. ``set_templates`` and
+``declaration_templates`` draw whole sets and declarations as one such choice
+each, to be resolved later against lists that may have grown since (a state
+machine's bundles do; ``conformance.lockstep`` uses them so).
+``geometry_sets`` and ``declarations`` are those templates resolved at once.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
@@ -33,19 +42,28 @@ from conformance.backend import Command
 
 __all__ = [
     "FOREIGN",
+    "PICK_RANGE",
     "ROLES",
     "STATEMENT_OPS",
     "UNKNOWN",
     "WORLD",
+    "DeclarationTemplate",
     "GeometrySpec",
     "Names",
+    "Picker",
     "Scene",
+    "SetTemplate",
     "command_sequences",
+    "declaration_templates",
     "declarations",
     "geometry_sets",
+    "pick",
+    "picks",
+    "role_list",
     "roles",
     "scenes",
     "set_spec",
+    "set_templates",
     "statements",
 ]
 
@@ -60,44 +78,91 @@ STATEMENT_OPS = ("exclude_within", "allow_within", "exclude_between", "allow_bet
 Names = Sequence[str] | st.SearchStrategy[str]
 
 
-def _elements(names: Names, rare: Sequence[str], max_size: int) -> st.SearchStrategy[list[str]]:
-    """Lists of ``names``, now and then (1 in 8) one of ``rare`` instead."""
-    if isinstance(names, st.SearchStrategy):
-        common: st.SearchStrategy[str] = names
-    elif names:
-        common = st.sampled_from(list(names))
-    else:
-        return st.lists(st.sampled_from(list(rare)), max_size=1) if rare else st.just([])
-    return st.lists(_rarely(common, rare), max_size=max_size)
+#: Resolves a pick (0-255) to a name, or None for "left out".
+Picker = Callable[[int], str | None]
 
-
-@st.composite
-def _rarely(draw: st.DrawFn, common: st.SearchStrategy[str], rare: Sequence[str]) -> str:
-    """``common``, or with probability 1/8 one of ``rare`` (shrinks to ``common``)."""
-    if rare and draw(st.integers(min_value=0, max_value=7)) == 7:
-        return draw(st.sampled_from(list(rare)))
-    return draw(common)
-
-
-_OTHER_ROLES = st.lists(st.sampled_from(ROLES[1:]), unique=True, max_size=2)
-_PROXIMITY_ROLES = _OTHER_ROLES.map(lambda rs: ["proximity", *rs])
-# Proximity decides C, so three geometries in four get it.
-_ANY_ROLES = st.tuples(st.integers(min_value=0, max_value=3), _OTHER_ROLES).map(
-    lambda t: ["proximity", *t[1]] if t[0] else t[1]
-)
-
-
-def roles(*, proximity: bool | None = None) -> st.SearchStrategy[list[str]]:
-    """A list of distinct roles; ``proximity`` forces the role in (True) or out (False)."""
-    if proximity is None:
-        return _ANY_ROLES
-    return _PROXIMITY_ROLES if proximity else _OTHER_ROLES
+#: A pick is one byte.
+PICK_RANGE = 256
+#: Picks from here up stand for a rare name when there are any (1 in 8).
+_RARE_FROM = PICK_RANGE - PICK_RANGE // 8
 
 
 @cache
-def _index(size: int) -> st.SearchStrategy[int]:
-    """An index into a list of ``size`` items (strategies are cached: building one costs)."""
-    return st.integers(min_value=0, max_value=size - 1)
+def picks(count: int = 1) -> st.SearchStrategy[bytes]:
+    """``count`` picks as one choice: ``bytes`` of that length (each shrinks towards 0)."""
+    return st.binary(min_size=count, max_size=count)
+
+
+def pick(
+    names: Sequence[str], index: int, *, rare: Sequence[str] = (), none_below: int = 0
+) -> str | None:
+    """The name that a pick (``index``, 0-255) stands for in ``names``.
+
+    ==========================================  =============================
+    ``index < none_below``                      None (an optional name left
+                                                out; shrinks to this)
+    ``index ≥ 224`` and ``rare``, or no names   ``rare[index % len(rare)]``
+                                                (None if no ``rare`` either)
+    otherwise                                   ``names[index % len(names)]``
+    ==========================================  =============================
+    """
+    if index < none_below:
+        return None
+    if rare and (index >= _RARE_FROM or not names):
+        return rare[index % len(rare)]
+    return names[index % len(names)] if names else None
+
+
+def _picker(draw: st.DrawFn, names: Names, rare: Sequence[str]) -> Picker:
+    """A sequence is read by index; a strategy is drawn from (the index is ignored)."""
+    if isinstance(names, st.SearchStrategy):
+        strategy = _rarely(names, tuple(rare))
+        return lambda index: draw(strategy)
+    listed = list(names)
+    return lambda index: pick(listed, index, rare=rare)
+
+
+@cache
+def _rarely(common: st.SearchStrategy[str], rare: tuple[str, ...]) -> st.SearchStrategy[str]:
+    """``common``, or now and then one of ``rare`` (shrinks to ``common``)."""
+    if not rare:
+        return common
+    return st.tuples(st.integers(min_value=0, max_value=7), common, st.sampled_from(rare)).map(
+        lambda t: t[2] if t[0] == 7 else t[1]
+    )
+
+
+def _unique(names: Iterable[str | None]) -> list[str]:
+    return list(dict.fromkeys(name for name in names if name is not None))
+
+
+#: Role codes (0-15) by ``roles(proximity=...)``: proximity below 12, 3 codes in 4.
+_ROLE_CODES = {None: (0, 15), True: (0, 11), False: (12, 15)}
+
+
+def role_list(code: int) -> list[str]:
+    """The roles of a role code, taken mod 16: 0 is proximity alone, 12 no role at all.
+
+    Proximity is ``code % 16 < 12``; bit 0 adds illustration, bit 1 perception.
+    Codes shrink towards 0, so towards the role that decides C.
+    """
+    code %= 16
+    chosen = (code < 12, bool(code & 1), bool(code & 2))
+    return [role for role, on in zip(ROLES, chosen, strict=True) if on]
+
+
+@cache
+def _role_codes(proximity: bool | None) -> st.SearchStrategy[int]:
+    low, high = _ROLE_CODES[proximity]
+    return st.integers(min_value=low, max_value=high)
+
+
+def roles(*, proximity: bool | None = None) -> st.SearchStrategy[list[str]]:
+    """A list of distinct roles; ``proximity`` forces the role in (True) or out (False).
+
+    One choice (a role code, ``role_list``); proximity comes three times in four.
+    """
+    return _role_codes(proximity).map(role_list)
 
 
 # ------------------------------------------------------------------ scenes
@@ -168,16 +233,20 @@ def scenes(
     """
     n_frames = draw(st.integers(min_value=min_frames, max_value=max_frames))
     frames: list[tuple[str, str | None]] = []
-    for index in range(1, n_frames + 1):
-        # Index 0 is "no parent" (the world), so parents shrink away.
-        parent = draw(_index(index)) if nested else 0
+    for index, byte in enumerate(draw(picks(n_frames)), start=1):
+        # Pick 0 is "no parent" (the world), so parents shrink away.
+        parent = byte % index if nested else 0
         frames.append((f"f{index}", frames[parent - 1][0] if parent else None))
     places = ([WORLD] if anchored or not frames else []) + [name for name, _ in frames]
     n_geometries = draw(st.integers(min_value=min_geometries, max_value=max_geometries))
-    role_lists = roles() if non_proximity else roles(proximity=True)
+    layout = draw(picks(2 * n_geometries))  # (place, role code) per geometry
     geometries = [
-        GeometrySpec(f"g{index}", places[draw(_index(len(places)))], tuple(draw(role_lists)))
-        for index in range(1, n_geometries + 1)
+        GeometrySpec(
+            f"g{index}",
+            places[layout[2 * index - 2] % len(places)],
+            tuple(role_list(code if non_proximity else code % 12)),
+        )
+        for index, code in enumerate(layout[1::2], start=1)
     ]
     return Scene(tuple(frames), tuple(geometries))
 
@@ -193,6 +262,133 @@ def set_spec(geometries: Sequence[str], frames: Sequence[str]) -> dict[str, list
     return out
 
 
+@dataclass(frozen=True)
+class SetTemplate:
+    """A geometry set drawn as picks; ``resolve`` reads them against names."""
+
+    geometries: tuple[int, ...]
+    frames: tuple[int, ...]
+
+    @classmethod
+    def decode(cls, data: bytes, *, max_geometries: int = 3, max_frames: int = 2) -> SetTemplate:
+        """Byte 0 gives the counts (bits 0-1 geometries, bits 2-3 frames), then the picks."""
+        head = data[0] if data else 0
+        n_geometries = min(head & 3, max_geometries)
+        n_frames = min(head >> 2 & 3, max_frames)
+        body = data[1:]
+        return cls(tuple(body[:n_geometries]), tuple(body[n_geometries : n_geometries + n_frames]))
+
+    def resolve(self, geometry: Picker, frame: Picker) -> dict[str, list[str]]:
+        """``set_spec`` of the picked names (duplicates and Nones dropped)."""
+        return set_spec(_unique(map(geometry, self.geometries)), _unique(map(frame, self.frames)))
+
+
+@cache
+def set_templates(
+    *, max_geometries: int = 3, max_frames: int = 2
+) -> st.SearchStrategy[SetTemplate]:
+    """Up to ``max_geometries`` (≤ 3) geometry picks and ``max_frames`` (≤ 3) frame picks.
+
+    One choice: ``bytes`` decoded by ``SetTemplate.decode``.
+    """
+    if not (0 <= max_geometries <= 3 and 0 <= max_frames <= 3):
+        raise ValueError("set_templates: at most 3 geometry picks and 3 frame picks")
+    return st.binary(min_size=1, max_size=1 + max_geometries + max_frames).map(
+        lambda data: SetTemplate.decode(data, max_geometries=max_geometries, max_frames=max_frames)
+    )
+
+
+#: Bits of a mask: a declaration's pool has at most this many picks.
+_MASK_BITS = 6
+
+
+@dataclass(frozen=True)
+class DeclarationTemplate:
+    """A declaration drawn as picks: statements whose sets are bitmasks over one pool.
+
+    The pool is the ``geometries`` picks, then the ``frames`` picks; bit i of
+    a mask puts pool item i in the set. Drawing sets from one small pool
+    makes statements overlap, as in real declarations where a later
+    statement refines an earlier one.
+    """
+
+    geometries: tuple[int, ...]
+    frames: tuple[int, ...]
+    #: (op, masks): one mask for ``*_within``, two (a, b) for ``*_between``.
+    statements: tuple[tuple[str, tuple[int, ...]], ...]
+
+    @classmethod
+    def decode(
+        cls, data: bytes, *, pool_size: int = 4, frame_pool_size: int = 2, max_statements: int = 4
+    ) -> DeclarationTemplate:
+        """The pool's picks, then the statements: one byte each, plus one for ``b``.
+
+        A statement byte holds the op (bits 0-1, ``STATEMENT_OPS``) and the
+        first set's mask (bits 2-7); ``*_between`` takes the next byte's low
+        six bits as the second set's mask (0, the empty set, if none is left).
+        """
+        pool = pool_size + frame_pool_size
+        stream = iter(data[pool:])
+        statements: list[tuple[str, tuple[int, ...]]] = []
+        for byte in stream:
+            if len(statements) == max_statements:
+                break
+            op = STATEMENT_OPS[byte & 3]
+            masks = (byte >> 2,) if op.endswith("_within") else (byte >> 2, next(stream, 0) & 63)
+            statements.append((op, masks))
+        return cls(tuple(data[:pool_size]), tuple(data[pool_size:pool]), tuple(statements))
+
+    def resolve(self, geometry: Picker, frame: Picker) -> dict[str, Any]:
+        """``{"statements": [...]}`` in the scenario grammar."""
+        pool = [geometry(index) for index in self.geometries]
+        pool_frames = [frame(index) for index in self.frames]
+
+        def members(mask: int) -> dict[str, list[str]]:
+            chosen = [mask >> bit & 1 for bit in range(len(pool) + len(pool_frames))]
+            return set_spec(
+                _unique(n for n, on in zip(pool, chosen, strict=False) if on),
+                _unique(n for n, on in zip(pool_frames, chosen[len(pool) :], strict=False) if on),
+            )
+
+        items: list[dict[str, Any]] = []
+        for op, masks in self.statements:
+            if op.endswith("_within"):
+                items.append({"op": op, "set": members(masks[0])})
+            else:
+                items.append({"op": op, "a": members(masks[0]), "b": members(masks[1])})
+        return {"statements": items}
+
+
+@cache
+def declaration_templates(
+    *,
+    min_statements: int = 1,
+    max_statements: int = 4,
+    pool_size: int = 4,
+    frame_pool_size: int = 2,
+) -> st.SearchStrategy[DeclarationTemplate]:
+    """``DeclarationTemplate``: 1-4 statements by default, in any order.
+
+    A pool of ``pool_size`` geometry picks and ``frame_pool_size`` frame picks
+    (at most 6 in all; repeated picks name one item); each set is a bitmask
+    over the pool that shrinks towards the empty set. One choice: ``bytes``
+    decoded by ``DeclarationTemplate.decode``.
+    """
+    pool = pool_size + frame_pool_size
+    if pool > _MASK_BITS or not 1 <= min_statements <= max_statements:
+        raise ValueError(
+            "declaration_templates: at most 6 pool picks and 1 ≤ min_statements ≤ max_statements"
+        )
+    return st.binary(min_size=pool + min_statements, max_size=pool + 2 * max_statements).map(
+        lambda data: DeclarationTemplate.decode(
+            data,
+            pool_size=pool_size,
+            frame_pool_size=frame_pool_size,
+            max_statements=max_statements,
+        )
+    )
+
+
 def geometry_sets(
     *,
     geometries: Names,
@@ -206,10 +402,15 @@ def geometry_sets(
     Removed or non-proximity geometry comes from ``geometries`` itself.
     """
     rare = (UNKNOWN, FOREIGN) if special else ()
-    g = _elements(geometries, rare, max_size)
-    f = _elements(frames, rare, max(1, max_size - 1))
+    templates = set_templates(
+        max_geometries=min(max_size, 3), max_frames=min(max(1, max_size - 1), 3)
+    )
 
-    return st.tuples(g, f).map(lambda parts: set_spec(*parts))
+    @st.composite
+    def resolved(draw: st.DrawFn) -> dict[str, list[str]]:
+        return draw(templates).resolve(_picker(draw, geometries, rare), _picker(draw, frames, rare))
+
+    return resolved()
 
 
 def statements(
@@ -235,35 +436,18 @@ def declarations(
     special: bool = True,
     pool_size: int = 4,
 ) -> dict[str, Any]:
-    """``{"statements": [...]}``: 1-4 statements by default, in any order.
+    """``{"statements": [...]}``: a ``DeclarationTemplate`` resolved against the names.
 
-    The statements' sets are subsets of one small pool of names (up to
-    ``pool_size`` geometries and 2 frames) drawn per declaration, so that
-    statements overlap, as in real declarations where a later statement
-    refines an earlier one. A subset is one bitmask draw: it shrinks
-    towards the empty set.
+    1-4 statements by default, in any order, over one pool of up to
+    ``pool_size`` geometries and 2 frames (see ``DeclarationTemplate``).
     """
     rare = (UNKNOWN, FOREIGN) if special else ()
-    pool_g = list(dict.fromkeys(draw(_elements(geometries, rare, pool_size))))
-    pool_f = list(dict.fromkeys(draw(_elements(frames, rare, 2))))
-
-    def subset_of(pool: list[str]) -> list[str]:
-        if not pool:
-            return []
-        mask = draw(_index(1 << len(pool)))
-        return [name for bit, name in enumerate(pool) if mask >> bit & 1]
-
-    def geometry_set() -> dict[str, list[str]]:
-        return set_spec(subset_of(pool_g), subset_of(pool_f))
-
-    items: list[dict[str, Any]] = []
-    for _ in range(draw(st.integers(min_value=min_statements, max_value=max_statements))):
-        op = STATEMENT_OPS[draw(_index(len(STATEMENT_OPS)))]
-        if op.endswith("_within"):
-            items.append({"op": op, "set": geometry_set()})
-        else:
-            items.append({"op": op, "a": geometry_set(), "b": geometry_set()})
-    return {"statements": items}
+    template = draw(
+        declaration_templates(
+            min_statements=min_statements, max_statements=max_statements, pool_size=pool_size
+        )
+    )
+    return template.resolve(_picker(draw, geometries, rare), _picker(draw, frames, rare))
 
 
 # -------------------------------------------------------------- sequences

@@ -78,6 +78,65 @@ def test_declarations_have_one_to_four_statements(declaration: dict[str, object]
         assert set(statement) == keys
 
 
+def test_pick_leaves_out_reads_rare_names_from_224_and_cycles_through_names() -> None:
+    names, rare = ["a", "b", "c"], (cs.UNKNOWN, cs.FOREIGN)
+    assert cs.pick(names, 0) == "a"
+    assert cs.pick(names, 4) == "b"
+    assert cs.pick(names, 100, none_below=128) is None
+    assert cs.pick(names, 128, none_below=128) == "c"  # 128 % 3 == 2
+    assert cs.pick(names, 223, rare=rare) == "b"  # below 224: a name
+    assert cs.pick(names, 224, rare=rare) == cs.UNKNOWN  # 224 % 2 == 0
+    assert cs.pick(names, 225, rare=rare) == cs.FOREIGN
+    assert cs.pick([], 5, rare=rare) == cs.FOREIGN  # no names: always rare
+    assert cs.pick([], 5) is None
+
+
+def test_role_codes_give_proximity_below_12_and_the_other_roles_by_bit() -> None:
+    assert cs.role_list(0) == ["proximity"]
+    assert cs.role_list(3) == ["proximity", "illustration", "perception"]
+    assert cs.role_list(11) == ["proximity", "illustration", "perception"]
+    assert cs.role_list(12) == []
+    assert cs.role_list(14) == ["perception"]
+    assert cs.role_list(16 + 5) == ["proximity", "illustration"]  # taken mod 16
+
+
+def test_declaration_template_decodes_pool_then_one_byte_per_within_two_per_between() -> None:
+    pool = bytes([0, 1, 2, 0, 0, 5])  # geometries a, b, c, a; frames world, f
+    exclude_abc = (0b000111 << 2) | 0  # op 0 (exclude_within), mask bits 0-2
+    allow_between = (0b100001 << 2) | 3  # op 3 (allow_between), a = {pool 0, pool 5}
+    data = pool + bytes([exclude_abc, allow_between, 0b000010])
+    template = cs.DeclarationTemplate.decode(data)
+    assert template.statements == (
+        ("exclude_within", (0b000111,)),
+        ("allow_between", (0b100001, 0b000010)),
+    )
+    names = ["a", "b", "c"]
+    frames = ["world", "f"]
+    resolved = template.resolve(lambda i: cs.pick(names, i), lambda i: cs.pick(frames, i))
+    assert resolved == {
+        "statements": [
+            {"op": "exclude_within", "set": {"geometries": ["a", "b", "c"]}},
+            {
+                "op": "allow_between",
+                "a": {"geometries": ["a"], "frames": ["f"]},
+                "b": {"geometries": ["b"]},
+            },
+        ]
+    }
+
+
+def test_declaration_template_between_without_a_second_byte_has_an_empty_b() -> None:
+    template = cs.DeclarationTemplate.decode(bytes(6) + bytes([(1 << 2) | 2]))
+    assert template.statements == (("exclude_between", (1, 0)),)
+
+
+def test_set_template_reads_counts_from_byte_0_and_drops_repeated_names() -> None:
+    template = cs.SetTemplate.decode(bytes([0b0110, 1, 4, 0]))  # 2 geometries, 1 frame
+    assert template == cs.SetTemplate(geometries=(1, 4), frames=(0,))
+    resolved = template.resolve(lambda i: cs.pick(["a", "b", "c"], i), lambda i: "world")
+    assert resolved == {"geometries": ["b"], "frames": ["world"]}  # 1 and 4 both name b
+
+
 @SETTINGS
 @given(cs.command_sequences(max_commands=12))
 def test_command_sequences_are_valid_scenario_cases(
