@@ -9,6 +9,15 @@ for the model and for every context, IsActive of every declaration label,
 answers, so a shrunk failure can be written out as a scenario case
 (``conformance.regression``).
 
+Each Hypothesis step runs ``operations_per_step`` (2) rows of the
+``OPERATIONS`` table (``conformance.operations``), chosen among those enabled
+at the start of the step, through the one rule ``command``; the state is
+compared after each operation. Every scenario command is issued by some
+operation. An operation byte of 0 plans no operation, so the shrinker can drop
+one operation of a step. Each example starts with ``scene``, which registers a
+drawn scene and switches off a drawn share of the operations for the whole
+example (swarm testing, as Hypothesis does for rules; it shrinks to all on).
+
 Bundles hold *names*, exactly as the scenario grammar uses them:
 
 ========== ============================================================
@@ -19,19 +28,29 @@ filter_ids labels of transient declarations (the FilterIds behind them)
 contexts   contexts made by create_context / clone_context
 ========== ============================================================
 
-Subclass it to fuzz other pairs or to add rules; ``lockstep_machine()``
-makes a subclass for two backend specs. Every rule issues one scenario command
-(except ``register_geometries``, which issues a batch), so the machine
-covers the whole command set: registration, role changes, removal, apply,
-apply_transient, remove_declaration, IsActive, history, CollisionFiltered,
-contexts, and Activate/Deactivate when both backends support ``activation``.
+``self.names`` holds the same names, in the same order, and ``keep`` files a
+new name in both. The operations read names from ``self.names`` by picks;
+rules a subclass adds may take the Bundles as arguments as usual.
+
+Why one rule over a table, picks rather than Bundle draws, and two
+operations per step: Hypothesis, not the backends, was the fuzz loop's main
+cost. Choosing among 22 rules costs it 5-20 choices per step (swarm flags and
+rejection sampling), a Bundle argument four nested draws, an optional one
+(``st.none() | bundle``) more still, and each step has a fixed cost on top.
+Here a step is a few choices: its operations and their picks in one ``bytes``
+choice, plus a declaration or set template where an operation needs one.
+``benchmarks/bench_fuzz.py`` measures the result.
+
+Subclass it to fuzz other pairs, to add operations (extend ``OPERATIONS``)
+or to add rules; ``lockstep_machine()`` makes a subclass for two backend
+factories.
 """
 
 from __future__ import annotations
 
 import json
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from typing import Any, ClassVar
@@ -40,18 +59,11 @@ from hypothesis import note
 from hypothesis import strategies as st
 from hypothesis.control import current_build_context
 from hypothesis.errors import InvalidArgument
-from hypothesis.stateful import (
-    Bundle,
-    RuleBasedStateMachine,
-    initialize,
-    invariant,
-    multiple,
-    precondition,
-    rule,
-)
+from hypothesis.stateful import Bundle, RuleBasedStateMachine, initialize, invariant, rule
 
+from conformance import operations as ops
 from conformance import strategies as cs
-from conformance.backend import Backend, Command, ErrorKind, Observation, Result
+from conformance.backend import Backend, Command, Observation, Result
 from conformance.backends import load_backend
 from conformance.runner import results_agree
 
@@ -62,16 +74,11 @@ __all__ = [
     "LockstepMachine",
     "TraceStep",
     "lockstep_machine",
+    "planned_operation",
 ]
 
-MAX_SOURCES = 3
-DEFAULT_SOURCE = "source"
-MAX_CONTEXTS = 3
-
-
-def _kept(name: str, result: Result) -> Any:
-    """``name`` for the target bundle if the command succeeded, else nothing."""
-    return multiple(name) if result.error is None else multiple()
+#: Bytes of the swarm draw: a threshold, then one byte per operation (mod 31).
+_SWARM_BYTES = 32
 
 
 def _is_final_run() -> bool:
@@ -80,6 +87,23 @@ def _is_final_run() -> bool:
         return bool(current_build_context().is_final)
     except InvalidArgument:
         return False
+
+
+def _file(machine: RuleBasedStateMachine, bundle: str, values: Sequence[str]) -> None:
+    """Adds ``values`` to the Hypothesis Bundle ``bundle`` from inside any rule.
+
+    Hypothesis has no public call for this: only a rule's return value feeds
+    the Bundle it targets, and one rule runs every operation here. So this
+    uses the method that return path calls (``_add_results_to_targets``,
+    ``_add_result_to_targets`` before Hypothesis 6.12x);
+    ``tests/test_lockstep.py`` checks that the Bundles fill.
+    """
+    add_all = getattr(machine, "_add_results_to_targets", None)
+    if add_all is not None:
+        add_all((bundle,), list(values))
+        return
+    for value in values:
+        machine._add_result_to_targets((bundle,), value)  # type: ignore[attr-defined]
 
 
 @dataclass(frozen=True)
@@ -153,6 +177,43 @@ def _scenes(frames: tuple[int, int], geometries: tuple[int, int]) -> st.SearchSt
     )
 
 
+#: Bytes per operation in a step's draw: which operation, then its picks.
+_SLOT = 1 + ops.PICKS_PER_STEP
+_RUNNER = st.runner()  # built once: building a strategy on every draw costs
+
+#: A step's plan: (operation, picks, drawn) for each of its operations.
+Plan = list[tuple[str, bytes, tuple[Any, ...]]]
+
+
+def planned_operation(byte: int, enabled: Sequence[str]) -> str | None:
+    """The operation a plan byte names.
+
+    0 names none (bytes shrink to 0); any other byte ``enabled[(byte - 1) % len(enabled)]``.
+    """
+    return enabled[(byte - 1) % len(enabled)] if byte else None
+
+
+@st.composite
+def _steps(draw: st.DrawFn) -> Plan:
+    """The plan of one step: ``operations_per_step`` operations with their arguments.
+
+    One ``bytes`` choice holds, per operation, which one (a byte: 0 is none,
+    where it shrinks to; otherwise an index into the operations enabled at
+    the start of the step) and its picks. The operations' own ``arguments``
+    follow, drawn only for the operations chosen.
+    """
+    machine: LockstepMachine = draw(_RUNNER)
+    head = draw(cs.picks(machine.operations_per_step * _SLOT))
+    enabled = machine.enabled_operations()
+    plan: Plan = []
+    for at in range(0, len(head), _SLOT):
+        name = planned_operation(head[at], enabled)
+        if name is not None:
+            drawn = tuple(draw(argument) for argument in machine.OPERATIONS[name].arguments)
+            plan.append((name, head[at + 1 : at + _SLOT], drawn))
+    return plan
+
+
 class LockstepMachine(RuleBasedStateMachine):
     """Runs the same commands on ``backend`` and ``reference``; see the module doc."""
 
@@ -165,17 +226,23 @@ class LockstepMachine(RuleBasedStateMachine):
     #: Bounds (inclusive) on the initial scene's frames and geometries.
     scene_frames: ClassVar[tuple[int, int]] = (1, 4)
     scene_geometries: ClassVar[tuple[int, int]] = (2, 8)
+    #: What a step can do (``conformance.operations``); extend it in a subclass.
+    OPERATIONS: ClassVar[dict[str, ops.Operation]] = ops.OPERATIONS
+    #: Operations per Hypothesis step (each is compared on its own).
+    operations_per_step: ClassVar[int] = 2
     _pair: ClassVar[tuple[Backend, Backend] | None] = None
+
+    #: Both backends have Activate/Deactivate.
+    activation: bool
+    #: Sources (with the implicit one) and contexts made so far.
+    sources_made: int
+    contexts_made: int
 
     sources = Bundle("sources")
     frames = Bundle("frames")
     geometries = Bundle("geometries")
     filter_ids = Bundle("filter_ids")
     contexts = Bundle("contexts")
-
-    locations = st.none() | contexts
-    owners = st.none() | sources
-    sets = cs.geometry_sets(geometries=geometries, frames=frames)
 
     def __init__(self) -> None:
         super().__init__()
@@ -186,10 +253,16 @@ class LockstepMachine(RuleBasedStateMachine):
         type(self).stats.backend_seconds += time.perf_counter() - start
         self.trace: list[TraceStep] = []
         self.activation = "activation" in (self.backend.features() & self.reference.features())
+        #: The names of each Bundle, in the order added (what picks read).
+        self.names: dict[str, list[str]] = {
+            bundle: [] for bundle in ("sources", "frames", "geometries", "filter_ids", "contexts")
+        }
+        #: Operations switched off for this example (swarm testing).
+        self.switched_off: frozenset[str] = frozenset()
+        self.sources_made = 1
+        self.contexts_made = 0
         self._counter = 0
-        self._sources = 1
-        self._contexts = 0
-        self._scene_geometries: list[str] = []
+        self._noting = _is_final_run()  # Hypothesis shows only the final replay's notes.
         type(self).stats.examples += 1
 
     @classmethod
@@ -200,11 +273,49 @@ class LockstepMachine(RuleBasedStateMachine):
         assert cls._pair is not None
         return cls._pair
 
-    # ---------------------------------------------------------------- core
+    # ------------------------------------------------------------- names
     def fresh(self, prefix: str) -> str:
         self._counter += 1
         return f"{prefix}{self._counter}"
 
+    def keep(self, bundle: str, *names: str) -> None:
+        """Files ``names`` in ``self.names[bundle]`` and in the Bundle of that name."""
+        if names:
+            self.names[bundle].extend(names)
+            _file(self, bundle, names)
+
+    def keep_if_made(self, bundle: str, name: str, result: Result) -> None:
+        """``keep(bundle, name)`` if the command that made ``name`` succeeded."""
+        if result.error is None:
+            self.keep(bundle, name)
+
+    def name(self, kind: str, pick: int) -> str | None:
+        """The name a pick stands for, as ``operations.CHOICES[kind]`` reads it."""
+        choice = ops.CHOICES[kind]
+        return cs.pick(
+            self.names[choice.bundle], pick, rare=choice.rare, none_below=choice.none_below
+        )
+
+    def declaration(self, template: cs.DeclarationTemplate) -> dict[str, Any]:
+        """A drawn declaration, resolved against the names so far."""
+        return template.resolve(
+            lambda i: self.name("any_geometry", i), lambda i: self.name("any_frame", i)
+        )
+
+    def geometry_set(self, template: cs.SetTemplate) -> dict[str, list[str]]:
+        """A drawn geometry set, resolved against the names so far."""
+        return template.resolve(
+            lambda i: self.name("any_geometry", i), lambda i: self.name("any_frame", i)
+        )
+
+    def enabled_operations(self) -> list[str]:
+        """The operations that can run now and are not switched off (all that can, if none)."""
+        ready = [name for name, op in self.OPERATIONS.items() if op.enabled(self)]
+        if not ready:
+            raise HarnessError(f"{type(self).__name__}: no operation is enabled")
+        return [name for name in ready if name not in self.switched_off] or ready
+
+    # ------------------------------------------------------------- steps
     def _execute(self, backend: Backend, command: Command) -> Result:
         try:
             return backend.execute(command)
@@ -216,7 +327,7 @@ class LockstepMachine(RuleBasedStateMachine):
     def step(self, op: str, **args: Any) -> Result:
         """Runs one command on both backends; raises Divergence if the Results differ."""
         command = Command(op, {k: v for k, v in args.items() if v is not None})
-        if _is_final_run():  # Hypothesis shows only the final replay's notes.
+        if self._noting:
             note(json.dumps(command.to_json()))
         stats = type(self).stats
         start = time.perf_counter()
@@ -254,232 +365,53 @@ class LockstepMachine(RuleBasedStateMachine):
         if got != want:
             self._diverge("state", _diff(got, want), got, want)
 
-    # ------------------------------------------------------- registration
-    @initialize(target=sources)
-    def default_source(self) -> str:
-        return DEFAULT_SOURCE
-
+    # ------------------------------------------------------------- rules
     @initialize(
-        target=frames,
-        scene=st.runner().flatmap(
+        scene=_RUNNER.flatmap(
             lambda machine: _scenes(machine.scene_frames, machine.scene_geometries)
         ),
+        swarm=cs.picks(_SWARM_BYTES),
     )
-    def scene(self, scene: cs.Scene) -> Any:
+    def scene(self, scene: cs.Scene, swarm: bytes) -> None:
         """Registers a scene (``scene_frames``/``scene_geometries`` bound its size).
 
-        The frames go to the ``frames`` bundle here. The geometries join the
-        ``geometries`` bundle through ``adopt_scene_geometries``, because an
-        initialize rule feeds one bundle only.
+        ``swarm`` switches operations off for the example: byte 0 is a
+        threshold, and operation i is off when its byte (1 + i mod 31) is
+        below it. Both shrink towards 0, so towards every operation on.
         """
-        names: dict[str, str] = {}
+        threshold = swarm[0]
+        self.switched_off = frozenset(
+            name
+            for i, name in enumerate(self.OPERATIONS)
+            if swarm[1 + i % (_SWARM_BYTES - 1)] < threshold
+        )
+        self.keep("sources", ops.DEFAULT_SOURCE)
+        frames: dict[str, str] = {}
         for name, parent in scene.frames:
-            names[name] = self.fresh("f")
-            self.step("register_frame", name=names[name], parent=names.get(parent or ""))
+            frames[name] = self.fresh("f")
+            self.step("register_frame", name=frames[name], parent=frames.get(parent or ""))
+        self.keep("frames", cs.WORLD, *frames.values())
+        geometries = []
         for geometry in scene.geometries:
             name = self.fresh("g")
-            frame = names.get(geometry.frame, cs.WORLD)
+            frame = frames.get(geometry.frame, cs.WORLD)
             result = self.step("register_geometry", name=name, frame=frame, roles=[*geometry.roles])
             if result.error is None:
-                self._scene_geometries.append(name)
-        return multiple(cs.WORLD, *names.values())
+                geometries.append(name)
+        self.keep("geometries", *geometries)
 
-    @precondition(lambda self: self._scene_geometries)
-    @rule(target=geometries)
-    def adopt_scene_geometries(self) -> Any:
-        """Puts the scene's geometries in the bundle (no command is sent)."""
-        names, self._scene_geometries = self._scene_geometries, []
-        return multiple(*names)
+    @rule(plan=_steps())
+    def command(self, plan: Plan) -> None:
+        """Runs the step's operations (``OPERATIONS``), comparing the state after each.
 
-    @precondition(lambda self: self._sources < MAX_SOURCES)
-    @rule(target=sources)
-    def register_source(self) -> Any:
-        name = self.fresh("s")
-        self._sources += 1
-        return _kept(name, self.step("register_source", name=name))
-
-    @rule(target=frames, parent=st.none() | frames, source=owners, reuse=st.none() | frames)
-    def register_frame(self, parent: str | None, source: str | None, reuse: str | None) -> Any:
-        """A new frame; with ``reuse``, under another frame's Drake name (a duplicate)."""
-        name = self.fresh("f")
-        result = self.step(
-            "register_frame", name=name, drake_name=reuse, parent=parent, source=source
-        )
-        return _kept(name, result)
-
-    @rule(
-        target=geometries,
-        placements=st.lists(
-            st.tuples(frames, cs.roles(), owners, st.none() | geometries), min_size=1, max_size=4
-        ),
-        context=locations,
-    )
-    def register_geometries(
-        self,
-        placements: list[tuple[str, list[str], str | None, str | None]],
-        context: str | None,
-    ) -> Any:
-        """Registers a batch; into ``context`` only on a frame (never anchored there).
-
-        A placement may reuse another geometry's Drake name (``drake_name``).
+        An operation that an earlier one of the step disabled is left out.
         """
-        names = []
-        for frame, roles, source, reuse in placements:
-            name = self.fresh("g")
-            result = self.step(
-                "register_geometry",
-                name=name,
-                drake_name=reuse,
-                frame=frame,
-                roles=roles,
-                source=source,
-                context=context if frame != cs.WORLD else None,
-            )
-            # A failed role assignment leaves the geometry registered (Drake does so too).
-            if result.error is None or result.error.kind is ErrorKind.TRANSIENT_HISTORY:
-                names.append(name)
-        return multiple(*names)
-
-    @rule(
-        geometry=geometries,
-        role=st.sampled_from(cs.ROLES),
-        replace=st.booleans(),
-        source=owners,
-        context=locations,
-    )
-    def assign_role(
-        self, geometry: str, role: str, replace: bool, source: str | None, context: str | None
-    ) -> None:
-        self.step(
-            "assign_role",
-            geometry=geometry,
-            role=role,
-            assign="replace" if replace else None,
-            source=source,
-            context=context,
-        )
-
-    @rule(
-        target_=st.tuples(st.sampled_from(("geometry", "frame")), geometries, frames),
-        role=st.sampled_from((*cs.ROLES, "unassigned")),
-        source=owners,
-        context=locations,
-    )
-    def remove_role(
-        self, target_: tuple[str, str, str], role: str, source: str | None, context: str | None
-    ) -> None:
-        kind, geometry, frame = target_
-        named = {"geometry": geometry} if kind == "geometry" else {"frame": frame}
-        self.step("remove_role", role=role, source=source, context=context, **named)
-
-    @rule(geometry=geometries, context=locations)
-    def reassign_proximity(self, geometry: str, context: str | None) -> None:
-        """Removes the proximity role and assigns it again: the geometry starts unfiltered."""
-        self.step("remove_role", geometry=geometry, role="proximity", context=context)
-        self.step("assign_role", geometry=geometry, role="proximity", context=context)
-
-    @rule(geometry=geometries, source=owners, context=locations)
-    def remove_geometry(self, geometry: str, source: str | None, context: str | None) -> None:
-        self.step("remove_geometry", geometry=geometry, source=source, context=context)
-
-    # ------------------------------------------------------- declarations
-    @rule(declaration=cs.declarations(geometries=geometries, frames=frames), context=locations)
-    def apply(self, declaration: dict[str, Any], context: str | None) -> None:
-        self.step("apply", declaration=declaration, context=context)
-
-    @rule(
-        target=filter_ids,
-        declaration=cs.declarations(geometries=geometries, frames=frames),
-        context=locations,
-    )
-    def apply_transient(self, declaration: dict[str, Any], context: str | None) -> Any:
-        label = self.fresh("t")
-        result = self.step("apply_transient", declaration=declaration, label=label, context=context)
-        return _kept(label, result)
-
-    @rule(declaration=cs.declarations(geometries=geometries, frames=frames), context=locations)
-    def transient_round_trip(self, declaration: dict[str, Any], context: str | None) -> None:
-        """ApplyTransient, then RemoveDeclaration of it: C must be as if never applied.
-
-        Removing the newest declaration also re-derives the pairs it named
-        from the base and the older declarations (Table 1, lines 5-7).
-        """
-        label = self.fresh("t")
-        result = self.step("apply_transient", declaration=declaration, label=label, context=context)
-        if result.error is None:
-            self.step("remove_declaration", label=label, context=context)
-
-    @rule(
-        target=filter_ids,
-        first=cs.declarations(geometries=geometries, frames=frames),
-        second=cs.declarations(geometries=geometries, frames=frames),
-        context=locations,
-    )
-    def stacked_transients(
-        self, first: dict[str, Any], second: dict[str, Any], context: str | None
-    ) -> Any:
-        """Two transient declarations, then the first removed: the second must be replayed.
-
-        Table 1, lines 5-7: removing a declaration re-derives C from the base
-        and every declaration still active, in order.
-        """
-        labels = [self.fresh("t"), self.fresh("t")]
-        results = [
-            self.step("apply_transient", declaration=d, label=label, context=context)
-            for d, label in zip((first, second), labels, strict=True)
-        ]
-        self.step("remove_declaration", label=labels[0], context=context)
-        return _kept(labels[1], results[1])
-
-    @rule(label=filter_ids | st.just(cs.UNKNOWN), context=locations)
-    def remove_declaration(self, label: str, context: str | None) -> None:
-        self.step("remove_declaration", label=label, context=context)
-
-    @rule(label=filter_ids | st.just(cs.UNKNOWN), context=locations)
-    def is_active(self, label: str, context: str | None) -> None:
-        self.step("is_active", label=label, context=context)
-
-    @rule(context=locations)
-    def has_transient_history(self, context: str | None) -> None:
-        self.step("has_transient_history", context=context)
-
-    @rule(
-        a=geometries | st.sampled_from((cs.UNKNOWN, cs.FOREIGN)),
-        b=geometries,
-        context=locations,
-    )
-    def collision_filtered(self, a: str, b: str, context: str | None) -> None:
-        self.step("collision_filtered", pair=[a, b], context=context)
-
-    @precondition(lambda self: self.activation)
-    @rule(geometry_set=sets, context=locations)
-    def deactivate(self, geometry_set: dict[str, list[str]], context: str | None) -> None:
-        self.step("deactivate", set=geometry_set, context=context)
-
-    @precondition(lambda self: self.activation)
-    @rule(geometry_set=sets, context=locations)
-    def activate(self, geometry_set: dict[str, list[str]], context: str | None) -> None:
-        self.step("activate", set=geometry_set, context=context)
-
-    # ------------------------------------------------------------ contexts
-    @precondition(lambda self: self._contexts < MAX_CONTEXTS)
-    @rule(target=contexts)
-    def create_context(self) -> Any:
-        name = self.fresh("c")
-        self._contexts += 1
-        return _kept(name, self.step("create_context", name=name))
-
-    @precondition(lambda self: self._contexts < MAX_CONTEXTS)
-    @rule(target=contexts, origin=contexts)
-    def clone_context(self, origin: str) -> Any:
-        name = self.fresh("c")
-        self._contexts += 1
-        result = self.step("clone_context", name=name, **{"from": origin})
-        return _kept(name, result)
-
-    @rule(context=contexts)
-    def set_default_context(self, context: str) -> None:
-        self.step("set_default_context", context=context)
+        for i, (name, picks, drawn) in enumerate(plan):
+            if i:
+                self.same_state()
+            operation = self.OPERATIONS[name]
+            if operation.enabled(self):
+                operation.run(self, picks, *drawn)
 
 
 def lockstep_machine(

@@ -2,16 +2,26 @@
 
 from __future__ import annotations
 
+from typing import Any, ClassVar
+
 import pytest
 from hypothesis import HealthCheck, settings
 from hypothesis.stateful import rule, run_state_machine_as_test
 
-from conformance.backend import Command
+from conformance.backend import Backend, Command, Result
 from conformance.backends import load_backend
 from conformance.fuzz import fuzz_settings
-from conformance.lockstep import Divergence, FuzzStats, LockstepMachine, lockstep_machine
+from conformance.lockstep import (
+    Divergence,
+    FuzzStats,
+    LockstepMachine,
+    lockstep_machine,
+    planned_operation,
+)
 from conformance.mutants import mutant_backend
+from conformance.operations import Operation
 from conformance.scene_graph_backend import COMMANDS
+from conformance.strategies import DeclarationTemplate, GeometrySpec, Scene
 
 SETTINGS = settings(
     max_examples=40,
@@ -33,11 +43,118 @@ def test_reimpl_and_pydrake_agree_step_by_step_in_the_lockstep_machine() -> None
     assert stats.divergences_seen == 0
 
 
-def test_the_machine_has_a_rule_for_every_scenario_command() -> None:
-    rules = {name for name in dir(LockstepMachine) if not name.startswith("_")}
-    covered = {op for op in COMMANDS if op in rules}
-    # register_geometry is issued by the register_geometries and scene rules.
-    assert covered | {"register_geometry"} == set(COMMANDS)
+class RecordingMachine(LockstepMachine):
+    """Records the op of every command it issues."""
+
+    backend_factory = staticmethod(lambda: REIMPL)
+    reference_factory = staticmethod(lambda: PYDRAKE)
+    stats = FuzzStats()
+    _pair = None
+    issued: ClassVar[set[str]] = set()
+
+    def step(self, op: str, **args: Any) -> Result:
+        type(self).issued.add(op)
+        return super().step(op, **args)
+
+
+def test_the_operations_issue_every_scenario_command_but_activation_on_pydrake_1_51() -> None:
+    run_state_machine_as_test(RecordingMachine, settings=SETTINGS)
+    activation = "activation" in PYDRAKE.features()
+    unsupported = set() if activation else {"activate", "deactivate"}
+    assert RecordingMachine.issued == set(COMMANDS) - unsupported
+
+
+class BundleReadingMachine(LockstepMachine):
+    """A subclass rule draws names from the Bundles, as Hypothesis users do."""
+
+    backend_factory = staticmethod(lambda: REIMPL)
+    reference_factory = staticmethod(lambda: PYDRAKE)
+    stats = FuzzStats()
+    _pair = None
+    drawn: ClassVar[dict[str, set[str]]] = {"frames": set(), "geometries": set()}
+
+    @rule(frame=LockstepMachine.frames, geometry=LockstepMachine.geometries)
+    def query(self, frame: str, geometry: str) -> None:
+        assert frame in self.names["frames"]
+        assert geometry in self.names["geometries"]
+        type(self).drawn["frames"].add(frame)
+        type(self).drawn["geometries"].add(geometry)
+        self.step("collision_filtered", pair=[geometry, geometry])
+
+
+def test_the_bundles_hold_the_names_the_operations_make() -> None:
+    run_state_machine_as_test(BundleReadingMachine, settings=SETTINGS)
+    drawn = BundleReadingMachine.drawn
+    assert "world" in drawn["frames"]
+    # Scene frames are f1, f2, ...; frames registered by operations come later.
+    assert any(name.startswith("f") for name in drawn["frames"])
+    assert any(name.startswith("g") for name in drawn["geometries"])
+    assert BundleReadingMachine.stats.divergences_seen == 0
+
+
+def _ping(machine: LockstepMachine, picks: bytes) -> None:
+    PingMachine.pings += 1
+    machine.step("is_active", label=machine.name("label", picks[0]))
+
+
+class PingMachine(LockstepMachine):
+    """A subclass adds an operation to the table."""
+
+    backend_factory = staticmethod(lambda: REIMPL)
+    reference_factory = staticmethod(lambda: PYDRAKE)
+    stats = FuzzStats()
+    _pair = None
+    OPERATIONS: ClassVar[dict[str, Operation]] = {
+        **LockstepMachine.OPERATIONS,
+        "ping": Operation(_ping),
+    }
+    pings = 0
+
+
+def test_a_subclass_can_add_operations() -> None:
+    run_state_machine_as_test(PingMachine, settings=SETTINGS)
+    assert PingMachine.pings > 0
+    assert PingMachine.stats.divergences_seen == 0
+
+
+def _started(backend: Backend) -> LockstepMachine:
+    """A machine on ``backend`` and pydrake with one frame and two geometries on it."""
+    machine = lockstep_machine(lambda: backend, lambda: PYDRAKE)()
+    scene = Scene(
+        frames=(("f1", None),),
+        geometries=(
+            GeometrySpec("g1", "f1", ("proximity",)),
+            GeometrySpec("g2", "f1", ("proximity",)),
+        ),
+    )
+    machine.scene(scene, swarm=bytes(32))
+    return machine
+
+
+def test_a_step_compares_the_state_after_each_of_its_operations() -> None:
+    machine = _started(mutant_backend("allow_clears_invariants"))
+    # Both geometries sit on f1: the pair is filtered by Drake's invariant.
+    allow_all = DeclarationTemplate(
+        geometries=(0, 1), frames=(), statements=(("allow_within", (0b11,)),)
+    )
+    with pytest.raises(Divergence) as caught:
+        machine.command(
+            [("apply", bytes(4), (allow_all,)), ("has_transient_history", bytes(4), ())]
+        )
+    ops = [step.command.op for step in caught.value.trace]
+    assert ops[-1] == "apply", "caught before the step's second operation ran"
+
+
+def test_operation_byte_zero_is_no_operation_and_others_cycle_through_the_enabled() -> None:
+    enabled = ["is_active", "apply", "create_context"]
+    assert planned_operation(0, enabled) is None
+    assert [planned_operation(b, enabled) for b in (1, 2, 3, 4, 255)] == [
+        "is_active",
+        "apply",
+        "create_context",
+        "is_active",
+        "create_context",  # 254 % 3 == 2
+    ]
 
 
 def test_a_faulty_backend_raises_divergence_with_the_reference_answers() -> None:
