@@ -94,16 +94,11 @@ def _file(machine: RuleBasedStateMachine, bundle: str, values: Sequence[str]) ->
 
     Hypothesis has no public call for this: only a rule's return value feeds
     the Bundle it targets, and one rule runs every operation here. So this
-    uses the method that return path calls (``_add_results_to_targets``,
-    ``_add_result_to_targets`` before Hypothesis 6.12x);
+    uses the method that return path calls, ``_add_results_to_targets``
+    (Hypothesis ≥ 6.132, the floor in pyproject.toml);
     ``tests/test_lockstep.py`` checks that the Bundles fill.
     """
-    add_all = getattr(machine, "_add_results_to_targets", None)
-    if add_all is not None:
-        add_all((bundle,), list(values))
-        return
-    for value in values:
-        machine._add_result_to_targets((bundle,), value)  # type: ignore[attr-defined]
+    machine._add_results_to_targets((bundle,), list(values))  # type: ignore[no-untyped-call]
 
 
 @dataclass(frozen=True)
@@ -296,17 +291,19 @@ class LockstepMachine(RuleBasedStateMachine):
             self.names[choice.bundle], pick, rare=choice.rare, none_below=choice.none_below
         )
 
+    def _any_geometry(self, pick: int) -> str | None:
+        return self.name("any_geometry", pick)
+
+    def _any_frame(self, pick: int) -> str | None:
+        return self.name("any_frame", pick)
+
     def declaration(self, template: cs.DeclarationTemplate) -> dict[str, Any]:
         """A drawn declaration, resolved against the names so far."""
-        return template.resolve(
-            lambda i: self.name("any_geometry", i), lambda i: self.name("any_frame", i)
-        )
+        return template.resolve(self._any_geometry, self._any_frame)
 
     def geometry_set(self, template: cs.SetTemplate) -> dict[str, list[str]]:
         """A drawn geometry set, resolved against the names so far."""
-        return template.resolve(
-            lambda i: self.name("any_geometry", i), lambda i: self.name("any_frame", i)
-        )
+        return template.resolve(self._any_geometry, self._any_frame)
 
     def enabled_operations(self) -> list[str]:
         """The operations that can run now and are not switched off (all that can, if none)."""
