@@ -98,7 +98,8 @@ def _file(machine: RuleBasedStateMachine, bundle: str, values: Sequence[str]) ->
     (Hypothesis ≥ 6.132, the floor in pyproject.toml);
     ``tests/test_lockstep.py`` checks that the Bundles fill.
     """
-    machine._add_results_to_targets((bundle,), list(values))  # type: ignore[no-untyped-call]
+    add: Callable[..., None] = machine._add_results_to_targets
+    add((bundle,), list(values))
 
 
 @dataclass(frozen=True)
