@@ -1,6 +1,6 @@
 """Fuzzing throughput: reimpl against pydrake, on scenes of 5-30 geometries.
 
-Runs the lockstep machine (``conformance.fuzz.Campaign``) for a fixed seed and
+Runs the lockstep machine (``conformance.fuzz.campaign.Campaign``) for a fixed seed and
 number of examples per initial scene size, ``--repeat`` times, and prints the
 median run's:
 
@@ -29,10 +29,10 @@ from typing import ClassVar
 
 from hypothesis.stateful import Bundle, RuleBasedStateMachine, rule, run_state_machine_as_test
 
-from conformance.backend import Backend
-from conformance.backends import load_backend
-from conformance.fuzz import DEFAULT_STEPS, Campaign, fuzz_settings
-from conformance.lockstep import LockstepMachine
+from conformance.backends.loader import load_backend
+from conformance.fuzz.campaign import DEFAULT_STEPS, Campaign, fuzz_settings
+from conformance.fuzz.lockstep import LockstepMachine
+from conformance.protocol import Backend
 
 SIZES = ((5, 10), (10, 20), (20, 30))
 

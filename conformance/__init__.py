@@ -1,6 +1,6 @@
 """Conformance harness: drive implementations with identical scenarios, compare pair by pair."""
 
-from conformance.backend import (
+from conformance.protocol import (
     MODEL,
     Backend,
     Command,

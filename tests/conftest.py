@@ -8,9 +8,9 @@ from typing import Any
 
 import pytest
 
-from conformance.pydrake_api import pydrake_api
-from conformance.reimpl_api import reimpl_api
-from conformance.scene_graph_backend import Api
+from conformance.backends.pydrake_api import pydrake_api
+from conformance.backends.reimpl_api import reimpl_api
+from conformance.backends.scene_graph import Api
 
 IMPLEMENTATIONS = ("reimpl", "pydrake")
 

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from conformance.cli import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, main
-from conformance.corpus import default_corpus_root
+from conformance.cli.main import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, main
+from conformance.corpus.loader import default_corpus_root
 
 TABLE1 = default_corpus_root() / "transient" / "table1.json"
 
@@ -147,8 +147,8 @@ def test_json_report_records_backends_and_statuses(tmp_path: Path) -> None:
 
 def test_third_party_backend_loads_from_module_attribute(tmp_path: Path) -> None:
     (tmp_path / "my_backend.py").write_text(
-        "from conformance.reimpl_api import reimpl_api\n"
-        "from conformance.scene_graph_backend import SceneGraphBackend\n"
+        "from conformance.backends.reimpl_api import reimpl_api\n"
+        "from conformance.backends.scene_graph import SceneGraphBackend\n"
         "def Backend():\n"
         "    b = SceneGraphBackend(reimpl_api())\n"
         "    b.name = 'mine'\n"

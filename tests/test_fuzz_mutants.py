@@ -1,6 +1,6 @@
 """Proof of power: ``fuzz`` catches every mutant of reimpl within 300 examples.
 
-Each mutant (conformance.mutants) is reimpl with one deliberate bug. A
+Each mutant (conformance.testing.mutants) is reimpl with one deliberate bug. A
 campaign with seed 1 and at most 300 examples, against real pydrake, must find
 a divergence. The shrunk sequence is written as a scenario file, and
 ``python -m conformance run`` on that file must fail for the mutant and pass
@@ -14,11 +14,11 @@ from pathlib import Path
 
 import pytest
 
-from conformance.backends import load_backend
-from conformance.cli import EXIT_FAILURE, EXIT_OK, main
-from conformance.fuzz import Campaign
-from conformance.mutants import MUTANTS, mutant_backend
-from conformance.regression import write_regression
+from conformance.backends.loader import load_backend
+from conformance.cli.main import EXIT_FAILURE, EXIT_OK, main
+from conformance.fuzz.campaign import Campaign
+from conformance.fuzz.regression import write_regression
+from conformance.testing.mutants import MUTANTS, mutant_backend
 
 PYDRAKE = load_backend("pydrake")
 
@@ -44,7 +44,7 @@ def test_fuzz_catches_the_mutant_within_300_examples_and_the_shrunk_file_replays
     assert len(result.divergences) == 1, f"mutant {name} survived 300 examples"
     divergence = result.divergences[0]
     assert len(divergence.trace) <= 20, "the sequence was shrunk"
-    spec = f"conformance.mutants:{name}"
+    spec = f"conformance.testing.mutants:{name}"
     path = write_regression(
         divergence,
         tmp_path,

@@ -20,9 +20,9 @@ from pathlib import Path
 
 import pytest
 
-from conformance.backends import load_backend
-from conformance.fuzz import Campaign
-from conformance.regression import write_regression
+from conformance.backends.loader import load_backend
+from conformance.fuzz.campaign import Campaign
+from conformance.fuzz.regression import write_regression
 
 
 def _seeds() -> range:

@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 
-from conformance.backends import load_backend
-from conformance.corpus import Case, load_corpus
-from conformance.divergences import Divergence, known_divergences
-from conformance.runner import Status, run_case, version_in_range
+from conformance.backends.loader import load_backend
+from conformance.corpus.loader import Case, load_corpus
+from conformance.policy.divergences import Divergence, known_divergences
+from conformance.run.runner import Status, run_case, version_in_range
 
 CASES: dict[str, Case] = {c.qualified_name: c for f in load_corpus() for c in f.cases}
 ENTRIES = known_divergences()

@@ -8,20 +8,20 @@ import pytest
 from hypothesis import HealthCheck, settings
 from hypothesis.stateful import rule, run_state_machine_as_test
 
-from conformance.backend import Backend, Command, Result
-from conformance.backends import load_backend
-from conformance.fuzz import fuzz_settings
-from conformance.lockstep import (
+from conformance.backends.loader import load_backend
+from conformance.backends.scene_graph import COMMANDS
+from conformance.fuzz.campaign import fuzz_settings
+from conformance.fuzz.lockstep import (
     Divergence,
     FuzzStats,
     LockstepMachine,
     lockstep_machine,
     planned_operation,
 )
-from conformance.mutants import mutant_backend
-from conformance.operations import Operation
-from conformance.scene_graph_backend import COMMANDS
-from conformance.strategies import DeclarationTemplate, GeometrySpec, Scene
+from conformance.fuzz.operations import Operation
+from conformance.fuzz.strategies import DeclarationTemplate, GeometrySpec, Scene
+from conformance.protocol import Backend, Command, Result
+from conformance.testing.mutants import mutant_backend
 
 SETTINGS = settings(
     max_examples=40,

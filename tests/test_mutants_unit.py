@@ -1,4 +1,4 @@
-"""The mutants of conformance.mutants: each one is caught, and none leaks into reimpl.
+"""The mutants of conformance.testing.mutants: each one is caught, and none leaks into reimpl.
 
 Every mutant has a witness: a short command sequence on which real pydrake
 (the oracle) and plain reimpl agree, and the mutant reports something else.
@@ -14,13 +14,13 @@ from typing import Any
 
 import pytest
 
-import conformance.mutants
-from conformance.backend import MODEL, Command, ErrorKind, Observation, Result
-from conformance.backends import load_backend
-from conformance.mutants import MUTANTS, MutantBackend, mutant_backend
-from conformance.pydrake_api import pydrake_api
-from conformance.reimpl_api import reimpl_api
-from conformance.scene_graph_backend import SceneGraphBackend
+import conformance.testing.mutants
+from conformance.backends.loader import load_backend
+from conformance.backends.pydrake_api import pydrake_api
+from conformance.backends.reimpl_api import reimpl_api
+from conformance.backends.scene_graph import SceneGraphBackend
+from conformance.protocol import MODEL, Command, ErrorKind, Observation, Result
+from conformance.testing.mutants import MUTANTS, MutantBackend, mutant_backend
 from reimpl.geometry.collision_filter import CollisionFilter
 from reimpl.geometry.collision_filter_declaration import CollisionFilterDeclaration
 from reimpl.geometry.collision_filter_manager import CollisionFilterManager
@@ -324,15 +324,15 @@ def test_a_mutant_backend_is_named_after_its_mutant() -> None:
 
 
 def test_load_backend_resolves_a_mutant_spec() -> None:
-    backend = load_backend("conformance.mutants:reverse_statement_order")
+    backend = load_backend("conformance.testing.mutants:reverse_statement_order")
     assert backend.name == "mutant:reverse_statement_order"
 
 
 def test_the_module_offers_a_factory_per_mutant_and_nothing_else() -> None:
-    factory = conformance.mutants.allow_clears_invariants
+    factory = conformance.testing.mutants.allow_clears_invariants
     assert factory().name == "mutant:allow_clears_invariants"
     with pytest.raises(AttributeError, match="no_such_mutant"):
-        _ = conformance.mutants.no_such_mutant
+        _ = conformance.testing.mutants.no_such_mutant
 
 
 @pytest.mark.parametrize("name", sorted(MUTANTS))

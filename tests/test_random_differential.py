@@ -29,12 +29,12 @@ from typing import Any
 
 import pytest
 
-from conformance.backend import MODEL, Command, Observation, Result
-from conformance.pydrake_api import pydrake_api
-from conformance.reimpl_api import reimpl_api
-from conformance.runner import results_agree
-from conformance.scene_graph_backend import SceneGraphBackend
-from conformance.strategies import set_spec
+from conformance.backends.pydrake_api import pydrake_api
+from conformance.backends.reimpl_api import reimpl_api
+from conformance.backends.scene_graph import SceneGraphBackend
+from conformance.fuzz.strategies import set_spec
+from conformance.protocol import MODEL, Command, Observation, Result
+from conformance.run.runner import results_agree
 
 SEEDS = range(100)
 STEPS = 80

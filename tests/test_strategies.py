@@ -1,4 +1,4 @@
-"""conformance.strategies draws valid scenario material; real pydrake agrees with reimpl on it."""
+"""conformance.fuzz.strategies draws valid scenario material; pydrake agrees with reimpl on it."""
 
 from __future__ import annotations
 
@@ -8,11 +8,11 @@ from pathlib import Path
 from hypothesis import HealthCheck, find, given, settings
 from hypothesis import strategies as st
 
-from conformance import strategies as cs
-from conformance.backend import Command
-from conformance.backends import load_backend
-from conformance.corpus import load_file
-from conformance.runner import results_agree
+from conformance.backends.loader import load_backend
+from conformance.corpus.loader import load_file
+from conformance.fuzz import strategies as cs
+from conformance.protocol import Command
+from conformance.run.runner import results_agree
 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=list(HealthCheck))
 

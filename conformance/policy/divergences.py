@@ -28,7 +28,7 @@ class Divergence:
 @cache
 def known_divergences() -> tuple[Divergence, ...]:
     data: dict[str, Any] = json.loads(
-        resources.files("conformance").joinpath("known_divergences.json").read_text()
+        resources.files("conformance.policy").joinpath("known_divergences.json").read_text()
     )
     return tuple(
         Divergence(

@@ -7,10 +7,10 @@ for the model and for every context, IsActive of every declaration label,
 ``has_transient_history()``) after every step. Any disagreement raises
 ``Divergence``, which carries the command sequence so far and the reference's
 answers, so a shrunk failure can be written out as a scenario case
-(``conformance.regression``).
+(``conformance.fuzz.regression``).
 
 Each Hypothesis step runs ``operations_per_step`` (2) rows of the
-``OPERATIONS`` table (``conformance.operations``), chosen among those enabled
+``OPERATIONS`` table (``conformance.fuzz.operations``), chosen among those enabled
 at the start of the step, through the one rule ``command``; the state is
 compared after each operation. Every scenario command is issued by some
 operation. An operation byte of 0 plans no operation, so the shrinker can drop
@@ -61,11 +61,11 @@ from hypothesis.control import current_build_context
 from hypothesis.errors import InvalidArgument
 from hypothesis.stateful import Bundle, RuleBasedStateMachine, initialize, invariant, rule
 
-from conformance import operations as ops
-from conformance import strategies as cs
-from conformance.backend import Backend, Command, Observation, Result
-from conformance.backends import load_backend
-from conformance.runner import results_agree
+from conformance.backends.loader import load_backend
+from conformance.fuzz import operations as ops
+from conformance.fuzz import strategies as cs
+from conformance.protocol import Backend, Command, Observation, Result
+from conformance.run.runner import results_agree
 
 __all__ = [
     "Divergence",
@@ -222,7 +222,7 @@ class LockstepMachine(RuleBasedStateMachine):
     #: Bounds (inclusive) on the initial scene's frames and geometries.
     scene_frames: ClassVar[tuple[int, int]] = (1, 4)
     scene_geometries: ClassVar[tuple[int, int]] = (2, 8)
-    #: What a step can do (``conformance.operations``); extend it in a subclass.
+    #: What a step can do (``conformance.fuzz.operations``); extend it in a subclass.
     OPERATIONS: ClassVar[dict[str, ops.Operation]] = ops.OPERATIONS
     #: Operations per Hypothesis step (each is compared on its own).
     operations_per_step: ClassVar[int] = 2

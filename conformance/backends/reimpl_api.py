@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import reimpl.geometry
 import reimpl.math
-from conformance.scene_graph_backend import Api
+from conformance.backends.scene_graph import Api
 
 __all__ = ["REIMPL_DRAKE_VERSION", "reimpl_api"]
 

@@ -10,8 +10,8 @@ own calls run (``reset``, ``execute``, ``observe``), then restores them, so a
 plain reimpl backend in the same process is unaffected. Backends are called
 one after another in one thread, which is what makes the swap safe.
 
-Use a mutant as a backend spec, ``conformance.mutants:<name>``, e.g.
-``python -m conformance run --backend conformance.mutants:reverse_statement_order
+Use a mutant as a backend spec, ``conformance.testing.mutants:<name>``, e.g.
+``python -m conformance run --backend conformance.testing.mutants:reverse_statement_order
 --backend pydrake``, or build one with ``mutant_backend(name)``.
 """
 
@@ -24,9 +24,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from conformance.backend import Command, Observation, Result
-from conformance.reimpl_api import reimpl_api
-from conformance.scene_graph_backend import SceneGraphBackend
+from conformance.backends.reimpl_api import reimpl_api
+from conformance.backends.scene_graph import SceneGraphBackend
+from conformance.protocol import Command, Observation, Result
 from reimpl.geometry.collision_filter import (
     BoolMatrix,
     CollisionFilter,
@@ -426,7 +426,7 @@ def mutant_backend(name: str) -> MutantBackend:
 
 
 def __getattr__(name: str) -> Callable[[], MutantBackend]:
-    """``conformance.mutants:<name>`` as a backend spec: a zero-argument factory."""
+    """``conformance.testing.mutants:<name>`` as a backend spec: a zero-argument factory."""
     if name in MUTANTS:
         return lambda: mutant_backend(name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -16,10 +16,10 @@ from typing import Any
 
 import pytest
 
-from conformance.backend import Backend
-from conformance.backends import BackendLoadError, load_backend
-from conformance.corpus import SCENARIO_SCHEMA, Case, ScenarioError, load_file
-from conformance.runner import CaseReport, Status, run_case
+from conformance.backends.loader import BackendLoadError, load_backend
+from conformance.corpus.loader import SCENARIO_SCHEMA, Case, ScenarioError, load_file
+from conformance.protocol import Backend
+from conformance.run.runner import CaseReport, Status, run_case
 
 __all__ = ["ScenarioCaseItem", "ScenarioFileCollector"]
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from types import ModuleType
 from typing import Any
 
-from conformance.backend import (
+from conformance.protocol import (
     MODEL,
     Command,
     ErrorInfo,

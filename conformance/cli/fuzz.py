@@ -13,14 +13,14 @@ import time
 from pathlib import Path
 from typing import TextIO
 
-from conformance.backend import Backend
-from conformance.backends import BackendLoadError, load_backend
-from conformance.corpus import ScenarioError, load_file
-from conformance.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
-from conformance.fuzz import BatchResult, Campaign, CampaignResult
-from conformance.lockstep import FuzzStats, HarnessError
-from conformance.regression import write_regression
-from conformance.runner import run_case
+from conformance.backends.loader import BackendLoadError, load_backend
+from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.corpus.loader import ScenarioError, load_file
+from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
+from conformance.fuzz.lockstep import FuzzStats, HarnessError
+from conformance.fuzz.regression import write_regression
+from conformance.protocol import Backend
+from conformance.run.runner import run_case
 
 __all__ = ["Progress", "fuzz_command", "replays"]
 
@@ -105,7 +105,7 @@ def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
 
 
 def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
-    """Runs ``fuzz``; returns the exit code (see ``conformance.exit_codes``)."""
+    """Runs ``fuzz``; returns the exit code (see ``conformance.cli.exit_codes``)."""
     try:
         backend, reference = load_backend(args.backend), load_backend(args.against)
     except BackendLoadError as exc:

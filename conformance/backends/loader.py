@@ -5,7 +5,7 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable
 
-from conformance.backend import Backend
+from conformance.protocol import Backend
 
 __all__ = ["BUILTIN_BACKENDS", "BackendLoadError", "load_backend"]
 
@@ -15,15 +15,15 @@ class BackendLoadError(ValueError):
 
 
 def _reimpl() -> Backend:
-    from conformance.reimpl_api import reimpl_api  # noqa: PLC0415 (loaded on demand)
-    from conformance.scene_graph_backend import SceneGraphBackend  # noqa: PLC0415
+    from conformance.backends.reimpl_api import reimpl_api  # noqa: PLC0415 (loaded on demand)
+    from conformance.backends.scene_graph import SceneGraphBackend  # noqa: PLC0415
 
     return SceneGraphBackend(reimpl_api())
 
 
 def _pydrake() -> Backend:
-    from conformance.pydrake_api import pydrake_api  # noqa: PLC0415 (pydrake may be absent)
-    from conformance.scene_graph_backend import SceneGraphBackend  # noqa: PLC0415
+    from conformance.backends.pydrake_api import pydrake_api  # noqa: PLC0415 (pydrake may be absent)
+    from conformance.backends.scene_graph import SceneGraphBackend  # noqa: PLC0415
 
     return SceneGraphBackend(pydrake_api())
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import importlib.metadata
 
-from conformance.scene_graph_backend import Api
+from conformance.backends.scene_graph import Api
 
 __all__ = ["PydrakeUnavailableError", "pydrake_api"]
 

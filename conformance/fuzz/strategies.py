@@ -2,7 +2,7 @@
 
 Every value is in the scenario grammar (``scenarios/README.md``): names, not
 ids. Geometry sets are ``{"geometries": [...], "frames": [...]}``,
-declarations ``{"statements": [...]}``, commands ``conformance.backend.Command``.
+declarations ``{"statements": [...]}``, commands ``conformance.protocol.Command``.
 So anything drawn here can be sent to any backend, or written to a scenario
 file as it is.
 
@@ -25,7 +25,7 @@ fixed-size ``bytes`` choice (``picks(n)``): Hypothesis draws the bytes
 uniformly and shrinks each towards 0. ``set_templates`` and
 ``declaration_templates`` draw whole sets and declarations as one such choice
 each, to be resolved later against lists that may have grown since (a state
-machine's bundles do; ``conformance.lockstep`` uses them so).
+machine's bundles do; ``conformance.fuzz.lockstep`` uses them so).
 ``geometry_sets`` and ``declarations`` are those templates resolved at once.
 """
 
@@ -38,7 +38,7 @@ from typing import Any
 
 from hypothesis import strategies as st
 
-from conformance.backend import Command
+from conformance.protocol import Command
 
 __all__ = [
     "FOREIGN",

@@ -22,9 +22,9 @@ import re
 from pathlib import Path
 from typing import Any
 
-from conformance.backend import Observation, Result
-from conformance.corpus import ScenarioError, load_file
-from conformance.lockstep import Divergence
+from conformance.corpus.loader import ScenarioError, load_file
+from conformance.fuzz.lockstep import Divergence
+from conformance.protocol import Observation, Result
 
 __all__ = ["DEFAULT_REGRESSIONS", "regression_scenario", "write_regression"]
 

@@ -31,8 +31,8 @@ from hypothesis import seed as hypothesis_seed
 from hypothesis.database import DirectoryBasedExampleDatabase
 from hypothesis.stateful import run_state_machine_as_test
 
-from conformance.backend import Backend
-from conformance.lockstep import Divergence, FuzzStats, LockstepMachine, lockstep_machine
+from conformance.fuzz.lockstep import Divergence, FuzzStats, LockstepMachine, lockstep_machine
+from conformance.protocol import Backend
 
 __all__ = [
     "BATCH_EXAMPLES",

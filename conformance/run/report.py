@@ -10,8 +10,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
-from conformance.backend import Backend
-from conformance.runner import CaseReport, Status
+from conformance.protocol import Backend
+from conformance.run.runner import CaseReport, Status
 
 __all__ = ["RunReport", "write_json", "write_junit"]
 

@@ -14,7 +14,8 @@ from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from conformance.backend import (
+from conformance.corpus.loader import Case, Step
+from conformance.protocol import (
     MODEL,
     Backend,
     Command,
@@ -24,7 +25,6 @@ from conformance.backend import (
     Result,
     normalise_message,
 )
-from conformance.corpus import Case, Step
 
 __all__ = [
     "BackendError",

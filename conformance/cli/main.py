@@ -21,16 +21,16 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TextIO
 
-from conformance.backend import Backend
-from conformance.backends import BackendLoadError, load_backend
-from conformance.corpus import ScenarioError, ScenarioFile, load_corpus
-from conformance.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
-from conformance.fuzz import BATCH_EXAMPLES, DEFAULT_STEPS
-from conformance.fuzz_command import fuzz_command
-from conformance.regression import DEFAULT_REGRESSIONS
-from conformance.report import RunReport, write_json, write_junit
-from conformance.runner import BackendError, Status, run_case
-from conformance.scene_graph_backend import UnknownNameError
+from conformance.backends.loader import BackendLoadError, load_backend
+from conformance.backends.scene_graph import UnknownNameError
+from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.cli.fuzz import fuzz_command
+from conformance.corpus.loader import ScenarioError, ScenarioFile, load_corpus
+from conformance.fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
+from conformance.fuzz.regression import DEFAULT_REGRESSIONS
+from conformance.protocol import Backend
+from conformance.run.report import RunReport, write_json, write_junit
+from conformance.run.runner import BackendError, Status, run_case
 
 __all__ = ["EXIT_FAILURE", "EXIT_OK", "EXIT_USAGE", "main", "main_console"]
 

@@ -28,11 +28,11 @@ from typing import TYPE_CHECKING, Any
 
 from hypothesis import strategies as st
 
-from conformance import strategies as cs
-from conformance.backend import ErrorKind
+from conformance.fuzz import strategies as cs
+from conformance.protocol import ErrorKind
 
 if TYPE_CHECKING:
-    from conformance.lockstep import LockstepMachine
+    from conformance.fuzz.lockstep import LockstepMachine
 
 __all__ = [
     "CHOICES",

@@ -1,0 +1,1 @@
+"""Implementations under test: the loader, SceneGraphBackend, and the reimpl and pydrake APIs."""

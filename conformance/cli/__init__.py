@@ -1,0 +1,1 @@
+"""``python -m conformance``: the command line (``run``, ``fuzz``, ``schema``)."""

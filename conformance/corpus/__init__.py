@@ -1,0 +1,1 @@
+"""The scenario corpus: case files, loaded, validated against the schema, name-checked."""

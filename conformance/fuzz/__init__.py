@@ -1,0 +1,1 @@
+"""Differential fuzzing: strategies, the lockstep state machine, campaigns, findings as files."""

@@ -1,0 +1,1 @@
+"""What the harness knows about releases: version ranges, known divergences, release guards."""

@@ -1,0 +1,1 @@
+"""Running cases: the runner (expectations and agreement per step), reports, the pytest plugin."""

@@ -1,0 +1,1 @@
+"""Instruments for testing the harness itself (mutant backends). Not used by the harness."""
