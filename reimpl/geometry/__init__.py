@@ -22,9 +22,14 @@ from reimpl.geometry.geometry_roles import (
 )
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FilterId, FrameId, GeometryId, SourceId
-from reimpl.geometry.query_object import FramePoseVector, QueryObject
-from reimpl.geometry.scene_graph import SceneGraph
-from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
+from reimpl.geometry.query_object import (
+    FramePoseVector,
+    FramePoseVector_,
+    QueryObject,
+    QueryObject_,
+)
+from reimpl.geometry.scene_graph import SceneGraph, SceneGraph_
+from reimpl.geometry.scene_graph_inspector import SceneGraphInspector, SceneGraphInspector_
 from reimpl.geometry.shape import Box, Capsule, Cylinder, Ellipsoid, HalfSpace, Shape, Sphere
 
 __all__ = [
@@ -38,6 +43,7 @@ __all__ = [
     "FilterId",
     "FrameId",
     "FramePoseVector",
+    "FramePoseVector_",
     "GeometryFrame",
     "GeometryId",
     "GeometryInstance",
@@ -48,10 +54,13 @@ __all__ = [
     "PerceptionProperties",
     "ProximityProperties",
     "QueryObject",
+    "QueryObject_",
     "Role",
     "RoleAssign",
     "SceneGraph",
     "SceneGraphInspector",
+    "SceneGraphInspector_",
+    "SceneGraph_",
     "Shape",
     "SourceId",
     "Sphere",

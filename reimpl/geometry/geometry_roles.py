@@ -6,9 +6,11 @@ and so can be in C, exactly while it has ProximityProperties assigned.
 
 from __future__ import annotations
 
-import copy
 import enum
 from typing import Any
+
+from reimpl.common._std_unordered_map import StdUnorderedMap
+from reimpl.common.value import AbstractValue, cpp_type_name
 
 __all__ = [
     "GeometryProperties",
@@ -44,62 +46,110 @@ _DEFAULT_GROUP = "__default__"
 
 
 class GeometryProperties:
-    """Grouped, named property values."""
+    """Grouped, named property values, each held as an ``AbstractValue``.
+
+    Groups, and the properties within a group, are listed (``str``,
+    ``GetPropertiesInGroup``) in the order of Drake's ``std::unordered_map``.
+    """
 
     role: Role = Role.kUnassigned
 
     def __init__(self, other: GeometryProperties | None = None) -> None:
-        self._groups: dict[str, dict[str, Any]] = {_DEFAULT_GROUP: {}}
-        if other is not None:
-            self._groups = copy.deepcopy(other._groups)
+        self._groups: StdUnorderedMap[StdUnorderedMap[AbstractValue]] = StdUnorderedMap()
+        if other is None:
+            self._groups[_DEFAULT_GROUP] = StdUnorderedMap()
+            return
+        # N.B. A copy keeps the maps' layouts, hence the listing order.
+        self._groups = other._groups.copy()
+        for name in self._groups:
+            group = self._groups[name].copy()
+            for key in group:
+                group[key] = group[key].Clone()
+            self._groups[name] = group
+
+    def _group(self, group_name: str) -> StdUnorderedMap[AbstractValue]:
+        if group_name not in self._groups:
+            self._groups[group_name] = StdUnorderedMap()
+        return self._groups[group_name]
 
     def AddProperty(self, group_name: str, name: str, value: object) -> None:
-        group = self._groups.setdefault(group_name, {})
-        if name in group:
+        if self.HasProperty(group_name, name):
             raise RuntimeError(
                 f"AddProperty(): Trying to add property ('{group_name}', '{name}'); "
                 "a property with that name already exists"
             )
-        group[name] = value
+        self._group(group_name)[name] = AbstractValue.Make(value)
 
     def UpdateProperty(self, group_name: str, name: str, value: object) -> None:
-        self._groups.setdefault(group_name, {})[name] = value
+        new = AbstractValue.Make(value)
+        group = self._group(group_name)
+        if name in group and type(group[name]) is not type(new):
+            raise RuntimeError(
+                f"UpdateProperty(): Trying to update property ('{group_name}', '{name}'); "
+                "The property already exists and is of different type. New type "
+                f"{cpp_type_name(new)}, existing type {cpp_type_name(group[name])}"
+            )
+        group[name] = new
 
     def HasGroup(self, group_name: str) -> bool:
         return group_name in self._groups
 
+    def num_groups(self) -> int:
+        return len(self._groups)
+
     def HasProperty(self, group_name: str, name: str) -> bool:
-        return name in self._groups.get(group_name, {})
+        return group_name in self._groups and name in self._groups[group_name]
 
     def GetGroupNames(self) -> set[str]:
         return set(self._groups)
 
-    def GetPropertiesInGroup(self, group_name: str) -> dict[str, Any]:
-        return dict(self._groups.get(group_name, {}))
+    def GetPropertiesInGroup(self, group_name: str) -> dict[str, AbstractValue]:
+        if group_name not in self._groups:
+            raise RuntimeError(
+                "GetPropertiesInGroup(): Can't retrieve properties for a group that doesn't "
+                f"exist: '{group_name}'"
+            )
+        group = self._groups[group_name]
+        return {name: group[name] for name in group}
 
     def GetProperty(self, group_name: str, name: str) -> Any:
-        if not self.HasProperty(group_name, name):
+        if group_name not in self._groups:
+            raise RuntimeError(
+                f"GetProperty(): Trying to read property ('{group_name}', '{name}'), but the "
+                "group does not exist."
+            )
+        if name not in self._groups[group_name]:
             raise RuntimeError(f"GetProperty(): There is no property ('{group_name}', '{name}')")
-        return self._groups[group_name][name]
+        return self._groups[group_name][name].get_value()
 
     def GetPropertyOrDefault(self, group_name: str, name: str, default_value: object) -> Any:
-        return self._groups.get(group_name, {}).get(name, default_value)
+        if self.HasProperty(group_name, name):
+            return self._groups[group_name][name].get_value()
+        return default_value
 
     def RemoveProperty(self, group_name: str, name: str) -> bool:
-        return self._groups.get(group_name, {}).pop(name, _MISSING) is not _MISSING
+        if not self.HasProperty(group_name, name):
+            return False
+        del self._groups[group_name][name]
+        return True
 
     @staticmethod
     def default_group_name() -> str:
         return _DEFAULT_GROUP
+
+    def __str__(self) -> str:
+        lines = []
+        for group_name in self._groups:
+            lines.append(f"[{group_name}]")
+            group = self._groups[group_name]
+            lines.extend(f"  {name}: {cpp_type_name(group[name])}" for name in group)
+        return "\n".join(lines)
 
     def __copy__(self) -> GeometryProperties:
         return type(self)(self)
 
     def __deepcopy__(self, memo: dict[int, object]) -> GeometryProperties:
         return type(self)(self)
-
-
-_MISSING = object()
 
 
 class ProximityProperties(GeometryProperties):

@@ -350,6 +350,63 @@ class GeometryState:
             self._sources[source_id].anchored.remove(geometry_id)
         del self._geometries[geometry_id]
 
+    # ----------------------------------------------------------------- names
+    def rename_frame(self, frame_id: FrameId, name: str) -> None:
+        if frame_id not in self._frames:
+            raise UnknownFrameError(
+                f"Cannot rename frame with invalid frame id: {frame_id.get_value()}"
+            )
+        frame = self._frames[frame_id]
+        source = self._sources.get(frame.source_id) if frame.source_id is not None else None
+        siblings = [] if source is None else source.frames
+        if any(f != frame_id and self._frames[f].name == name for f in siblings):
+            raise GeometryStateError(
+                f"Renaming frame from '{frame.name}' to an already existing name '{name}'"
+            )
+        frame.name = name
+
+    def rename_geometry(self, geometry_id: GeometryId, name: str) -> None:
+        """Renames; the name must be unique among same-role geometries on the frame."""
+        if geometry_id not in self._geometries:
+            raise UnknownGeometryError(
+                f"Cannot rename geometry with invalid geometry id: {geometry_id.get_value()}"
+            )
+        geometry = self._geometries[geometry_id]
+        for role, role_name in _ROLE_NAMES.items():
+            if role in geometry.properties and any(
+                other != geometry_id
+                and self._geometries[other].name == name
+                and role in self._geometries[other].properties
+                for other in self._frames[geometry.frame_id].geometries
+            ):
+                raise GeometryStateError(
+                    f"The name '{name}' has already been used by a geometry with the "
+                    f"'{role_name}' role."
+                )
+        geometry.name = name
+
+    def geometries_registered_on(self, frame_id: FrameId) -> list[GeometryId]:
+        """The frame's geometries in registration order (SceneGraphInspector::GetGeometries)."""
+        if frame_id not in self._frames:
+            raise UnknownFrameError(
+                f"Cannot report geometries associated with invalid frame id: {frame_id.get_value()}"
+            )
+        return list(self._frames[frame_id].geometries)
+
+    def clone_instance(self, geometry_id: GeometryId) -> GeometryInstance:
+        """A new instance (new id) with the geometry's name, pose, shape and role properties."""
+        self.geometry_name(geometry_id)  # validates, with Drake's message
+        record = self._geometries[geometry_id]
+        instance = GeometryInstance(X_PG=record.pose, shape=record.shape.Clone(), name=record.name)
+        for properties in record.properties.values():
+            if properties.role is Role.kProximity:
+                instance.set_proximity_properties(properties)  # type: ignore[arg-type]
+            elif properties.role is Role.kIllustration:
+                instance.set_illustration_properties(properties)  # type: ignore[arg-type]
+            else:
+                instance.set_perception_properties(properties)  # type: ignore[arg-type]
+        return instance
+
     # ------------------------------------------------------------ resolution
     def _proximity_on(self, frame_id: FrameId) -> list[GeometryId]:
         return [

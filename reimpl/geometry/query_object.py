@@ -9,6 +9,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from reimpl._template import scalar_template
+from reimpl.common.value import register_value_type
 from reimpl.geometry.identifier import FrameId
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
 from reimpl.math import RigidTransform
@@ -16,7 +18,7 @@ from reimpl.math import RigidTransform
 if TYPE_CHECKING:
     from reimpl.geometry.geometry_state import GeometryState
 
-__all__ = ["FramePoseVector", "QueryObject"]
+__all__ = ["FramePoseVector", "FramePoseVector_", "QueryObject", "QueryObject_"]
 
 
 class QueryObject:
@@ -61,3 +63,12 @@ class FramePoseVector:
 
     def clear(self) -> None:
         self._poses.clear()
+
+
+FramePoseVector_ = scalar_template("reimpl.geometry", "FramePoseVector_", FramePoseVector)
+QueryObject_ = scalar_template("reimpl.geometry", "QueryObject_", QueryObject)
+register_value_type(
+    FramePoseVector,
+    "drake::geometry::KinematicsVector<drake::geometry::FrameId,drake::math::RigidTransform<double>>",
+)
+register_value_type(QueryObject, "drake::geometry::QueryObject<double>")

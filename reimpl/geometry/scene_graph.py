@@ -16,10 +16,10 @@ do not, so contexts made afterwards miss them until one of those calls.
 
 from __future__ import annotations
 
-import itertools
 from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._template import scalar_template
 from reimpl.geometry.collision_filter_manager import CollisionFilterManager
 from reimpl.geometry.geometry_instance import GeometryFrame, GeometryInstance
 from reimpl.geometry.geometry_roles import (
@@ -33,12 +33,11 @@ from reimpl.geometry.geometry_state import WORLD_FRAME_ID, GeometryState
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
 from reimpl.geometry.query_object import QueryObject
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
-from reimpl.systems.framework import Context, InputPort, OutputPort
+from reimpl.systems.framework import Context, InputPort, LeafContext, LeafSystem, OutputPort
 
-__all__ = ["SceneGraph"]
+__all__ = ["SceneGraph", "SceneGraph_"]
 
 _OWNER = "reimpl.geometry.SceneGraph"
-_system_ids = itertools.count(1)
 
 _properties = instance_of(ProximityProperties, PerceptionProperties, IllustrationProperties)
 
@@ -47,17 +46,19 @@ _properties = instance_of(ProximityProperties, PerceptionProperties, Illustratio
 _PORTS_PER_SOURCE = 2
 
 
-class SceneGraph:
+class SceneGraph(LeafSystem):
     """The geometry system: owns the model, makes contexts, hands out views."""
 
+    _cpp_type = "drake::geometry::SceneGraph<double>"
+
     def __init__(self) -> None:
+        super().__init__()
         self._model = GeometryState()
         self._cache = self._model
         self._dirty = True
-        self._system_id = next(_system_ids)
         self._pose_ports: dict[SourceId, InputPort] = {}
         self._num_input_ports = 0
-        self._query_port = OutputPort("query", self._eval_query)
+        self._query_port = OutputPort(self, "query", 0, self._eval_query)
         self._model_inspector = SceneGraphInspector._view(lambda: self._model)
 
     # ------------------------------------------------------------- helpers
@@ -76,11 +77,7 @@ class SceneGraph:
     def _state_of(self, context: Context | None) -> GeometryState:
         if context is None:
             return self._edit_model()
-        if context._system_id != self._system_id:
-            raise RuntimeError(
-                "A function call on a SceneGraph system was passed the Context of a "
-                "different system."
-            )
+        self.ValidateContext(context)
         return context._geometry_state
 
     def _with_context(
@@ -107,7 +104,7 @@ class SceneGraph:
         source_id = model.register_source(name)
         # Drake gives every source two input ports: poses, then configurations.
         index = self.num_input_ports()
-        self._pose_ports[source_id] = InputPort(f"{name}_pose", index)
+        self._pose_ports[source_id] = InputPort(self, f"{name}_pose", index)
         self._num_input_ports = index + _PORTS_PER_SOURCE
         return source_id
 
@@ -232,6 +229,15 @@ class SceneGraph:
             kwargs,
         )
 
+    # -------------------------------------------------------------- names
+    def RenameFrame(self, frame_id: FrameId, name: str) -> None:
+        """Renames a frame of the model; another frame of its source may not have ``name``."""
+        self._edit_model().rename_frame(frame_id, name)
+
+    def RenameGeometry(self, geometry_id: GeometryId, name: str) -> None:
+        """Renames a geometry of the model; the name must stay unique per role on its frame."""
+        self._edit_model().rename_geometry(geometry_id, name)
+
     # --------------------------------------------------------------- views
     @staticmethod
     def world_frame_id() -> FrameId:
@@ -262,11 +268,10 @@ class SceneGraph:
         self._state_of(context)
         return CollisionFilterManager._view(lambda: context._geometry_state)
 
-    def CreateDefaultContext(self) -> Context:
-        return Context._make(self._default_state(), self._system_id, self.num_input_ports())
-
-    def AllocateContext(self) -> Context:
-        return self.CreateDefaultContext()
+    def _new_context(self) -> Context:
+        context = LeafContext._for(self, self.num_input_ports())
+        context._geometry_state = self._default_state()
+        return context
 
     def SetDefaultContext(self, context: Context) -> None:
         """Resets the context's geometry state to a copy of the (cached) model."""
@@ -317,3 +322,6 @@ class SceneGraph:
         if state.ghost_frames:
             # A duplicate-name RegisterFrame left a frame index without a frame.
             raise IndexError("_Map_base::at")
+
+
+SceneGraph_ = scalar_template("reimpl.geometry", "SceneGraph_", SceneGraph)

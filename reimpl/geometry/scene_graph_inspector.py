@@ -10,6 +10,8 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._template import scalar_template
+from reimpl.geometry.geometry_instance import GeometryInstance
 from reimpl.geometry.geometry_roles import (
     GeometryProperties,
     IllustrationProperties,
@@ -26,7 +28,7 @@ from reimpl.math import RigidTransform
 if TYPE_CHECKING:
     from reimpl.geometry.geometry_state import GeometryState
 
-__all__ = ["SceneGraphInspector"]
+__all__ = ["SceneGraphInspector", "SceneGraphInspector_"]
 
 _OWNER = "reimpl.geometry.SceneGraphInspector"
 
@@ -121,6 +123,11 @@ class SceneGraphInspector:
             ids.add(geometry_id)
         return ids if role is None else {g for g in ids if self._has(g, role)}
 
+    def GetGeometries(self, frame_id: FrameId, role: Role | None = None) -> list[GeometryId]:
+        """Geometries registered directly on the frame, in registration order, by role."""
+        ids = self._state.geometries_registered_on(frame_id)
+        return ids if role is None else [g for g in ids if self._has(g, role)]
+
     def _has(self, geometry_id: GeometryId, role: Role) -> bool:
         if role is Role.kUnassigned:
             return not any(self._state.has_role(geometry_id, r) for r in _ROLES)
@@ -205,6 +212,10 @@ class SceneGraphInspector:
     def GetPoseInFrame(self, geometry_id: GeometryId) -> RigidTransform:
         return self._state.geometry_pose(geometry_id)
 
+    def CloneGeometryInstance(self, geometry_id: GeometryId) -> GeometryInstance:
+        """A copy of the registered geometry, roles included, with a new id."""
+        return self._state.clone_instance(geometry_id)
+
     # --------------------------------------------------------- properties
     def GetProperties(self, geometry_id: GeometryId, role: Role) -> GeometryProperties | None:
         return self._state.properties(geometry_id, role)
@@ -220,3 +231,8 @@ class SceneGraphInspector:
 
 
 _ROLES = (Role.kProximity, Role.kIllustration, Role.kPerception)
+
+
+SceneGraphInspector_ = scalar_template(
+    "reimpl.geometry", "SceneGraphInspector_", SceneGraphInspector
+)

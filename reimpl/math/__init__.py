@@ -13,8 +13,17 @@ import numpy as np
 import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, any_of, dispatch, instance_of
+from reimpl._template import scalar_template
+from reimpl.common.value import register_value_type
 
-__all__ = ["RigidTransform", "RollPitchYaw", "RotationMatrix"]
+__all__ = [
+    "RigidTransform",
+    "RigidTransform_",
+    "RollPitchYaw",
+    "RollPitchYaw_",
+    "RotationMatrix",
+    "RotationMatrix_",
+]
 
 Vector3 = npt.NDArray[np.float64]
 
@@ -235,3 +244,10 @@ class RigidTransform:
         R = _rows(self._R.matrix(), "  ")
         p = ", ".join(repr(float(x)) for x in self._p)
         return f"RigidTransform(\n  R=RotationMatrix([\n{R}\n  ]),\n  p=[{p}],\n)"
+
+
+RigidTransform_ = scalar_template("reimpl.math", "RigidTransform_", RigidTransform)
+RotationMatrix_ = scalar_template("reimpl.math", "RotationMatrix_", RotationMatrix)
+RollPitchYaw_ = scalar_template("reimpl.math", "RollPitchYaw_", RollPitchYaw)
+register_value_type(RigidTransform, "drake::math::RigidTransform<double>")
+register_value_type(RotationMatrix, "drake::math::RotationMatrix<double>")

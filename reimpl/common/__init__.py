@@ -1,0 +1,3 @@
+"""Drake's common utilities that the collision-filtering subset touches (pydrake.common)."""
+
+__all__: list[str] = []

@@ -1,0 +1,133 @@
+"""The iteration order of ``std::unordered_map<std::string, T>`` (libstdc++, 64-bit).
+
+Drake stores geometry properties in such maps, so pydrake prints groups and
+lists a group's properties in this order. It is deterministic: it depends on
+the keys' hashes (``std::hash<std::string>``, a MurmurHash2 variant seeded
+with 0xc70f6907), the bucket count (grown by the prime rehash policy, maximum
+load factor 1), and the insertion history. Measured against pydrake 1.51.1
+(tests/upstream/test_common_upstream.py).
+
+The order rules, as observed: a key whose bucket already holds keys goes in
+front of them; a key in an empty bucket goes to the front of the whole list.
+A rehash re-inserts every key, in the current order, by the same rule. An
+erase removes the key and leaves the others in place. A copy keeps the order.
+"""
+
+from __future__ import annotations
+
+import bisect
+from collections.abc import Iterator, MutableMapping
+from typing import Generic, TypeVar
+
+__all__ = ["StdUnorderedMap", "std_string_hash"]
+
+V = TypeVar("V")
+
+_MASK = (1 << 64) - 1
+_MUL = (0xC6A4A793 << 32) + 0x5BD1E995
+_SEED = 0xC70F6907
+
+
+def _shift_mix(v: int) -> int:
+    return v ^ (v >> 47)
+
+
+def std_string_hash(key: str) -> int:
+    """``std::hash<std::string>`` of the UTF-8 bytes of ``key``."""
+    data = key.encode()
+    length = len(data)
+    aligned = length & ~0x7
+    h = (_SEED ^ (length * _MUL)) & _MASK
+    for i in range(0, aligned, 8):
+        word = int.from_bytes(data[i : i + 8], "little")
+        h ^= (_shift_mix((word * _MUL) & _MASK) * _MUL) & _MASK
+        h = (h * _MUL) & _MASK
+    if length & 0x7:
+        h ^= int.from_bytes(data[aligned:], "little")
+        h = (h * _MUL) & _MASK
+    h = (_shift_mix(h) * _MUL) & _MASK
+    return _shift_mix(h)
+
+
+# The bucket counts the policy picks from: small requests through a fast table,
+# larger ones from libstdc++'s list of primes.
+_FAST_BUCKETS = (2, 2, 2, 3, 5, 5, 7, 7, 11, 11, 11, 11, 13, 13)
+_PRIMES = (
+    17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97, 103, 109,
+    113, 127, 137, 139, 149, 157, 167, 179, 193, 199, 211, 227, 241, 257, 277, 293, 313,
+    337, 359, 383, 409, 439, 467, 503, 541, 577, 619, 661, 709, 761, 823, 887, 953, 1031,
+    1109, 1187, 1277, 1361, 1459, 1567, 1693, 1823, 1949, 2087, 2237, 2399, 2579, 2767,
+    2963, 3187, 3407, 3659, 3923, 4201, 4513, 4831, 5189, 5573, 5981, 6421, 6883, 7393,
+    7919, 8513, 9127, 9791,
+)  # fmt: skip
+
+
+def _next_bucket_count(n: int) -> int:
+    if n < len(_FAST_BUCKETS):
+        return 1 if n == 0 else _FAST_BUCKETS[n]
+    return _PRIMES[min(bisect.bisect_left(_PRIMES, n), len(_PRIMES) - 1)]
+
+
+class StdUnorderedMap(MutableMapping[str, V], Generic[V]):
+    """A str-keyed mapping that iterates in libstdc++'s unordered_map order."""
+
+    def __init__(self) -> None:
+        self._values: dict[str, V] = {}
+        self._order: list[str] = []
+        self._buckets = 1
+        self._next_resize = 0
+
+    def copy(self) -> StdUnorderedMap[V]:
+        other: StdUnorderedMap[V] = StdUnorderedMap()
+        other._values = dict(self._values)
+        other._order = list(self._order)
+        other._buckets = self._buckets
+        other._next_resize = self._next_resize
+        return other
+
+    def _link(self, order: list[str], key: str, buckets: int) -> None:
+        bucket = std_string_hash(key) % buckets
+        for i, other in enumerate(order):
+            if std_string_hash(other) % buckets == bucket:
+                order.insert(i, key)
+                return
+        order.insert(0, key)
+
+    def _grow_for(self, count: int) -> None:
+        """The prime rehash policy, asked before ``count``-th element is inserted."""
+        if count <= self._next_resize:
+            return
+        # N.B. The first insertion asks for at least 11 buckets.
+        wanted = max(count, 11 if self._next_resize == 0 else 0)
+        if wanted >= self._buckets:
+            buckets = _next_bucket_count(max(wanted + 1, self._buckets * 2))
+            self._next_resize = buckets
+            order: list[str] = []
+            for key in self._order:
+                self._link(order, key, buckets)
+            self._order = order
+            self._buckets = buckets
+        else:
+            self._next_resize = self._buckets
+
+    def __setitem__(self, key: str, value: V) -> None:
+        if key not in self._values:
+            self._grow_for(len(self._values) + 1)
+            self._link(self._order, key, self._buckets)
+        self._values[key] = value
+
+    def __getitem__(self, key: str) -> V:
+        return self._values[key]
+
+    def __delitem__(self, key: str) -> None:
+        del self._values[key]
+        self._order.remove(key)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(list(self._order))
+
+    def __len__(self) -> int:
+        return len(self._values)
+
+    def __repr__(self) -> str:
+        return f"StdUnorderedMap({dict((k, self._values[k]) for k in self._order)!r})"
