@@ -25,7 +25,13 @@ class QueryObject:
     """What SceneGraph's query output port evaluates to for one context."""
 
     def __init__(self) -> None:
-        raise TypeError("reimpl.geometry.QueryObject: No constructor defined!")
+        """A default QueryObject is not connected to any state; its inspector cannot answer."""
+
+        def unconnected() -> GeometryState:
+            # N.B. pydrake 1.51.1 aborts the process here; reimpl raises instead.
+            raise RuntimeError("condition 'state_ != nullptr' failed.")
+
+        self._state_of = unconnected
 
     _state_of: Callable[[], GeometryState]
 

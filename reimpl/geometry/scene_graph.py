@@ -57,6 +57,7 @@ class SceneGraph(LeafSystem):
         self._cache = self._model
         self._dirty = True
         self._pose_ports: dict[SourceId, InputPort] = {}
+        self._configuration_ports: dict[SourceId, InputPort] = {}
         self._num_input_ports = 0
         self._query_port = OutputPort(self, "query", 0, self._eval_query)
         self._model_inspector = SceneGraphInspector._view(lambda: self._model)
@@ -105,6 +106,7 @@ class SceneGraph(LeafSystem):
         # Drake gives every source two input ports: poses, then configurations.
         index = self.num_input_ports()
         self._pose_ports[source_id] = InputPort(self, f"{name}_pose", index)
+        self._configuration_ports[source_id] = InputPort(self, f"{name}_configuration", index + 1)
         self._num_input_ports = index + _PORTS_PER_SOURCE
         return source_id
 
@@ -287,6 +289,14 @@ class SceneGraph(LeafSystem):
                 f"Can't acquire pose port for unknown source id: {source_id.get_value()}."
             )
         return self._pose_ports[source_id]
+
+    def get_source_configuration_port(self, source_id: SourceId, /) -> InputPort:
+        """The port for deformable configurations; reimpl only names it."""
+        if source_id not in self._configuration_ports:
+            raise RuntimeError(
+                f"Can't acquire configuration port for unknown source id: {source_id.get_value()}."
+            )
+        return self._configuration_ports[source_id]
 
     def _eval_query(self, context: Context) -> QueryObject:
         self._state_of(context)
