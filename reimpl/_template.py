@@ -54,7 +54,7 @@ class TemplateClass:
             names = ", ".join(_param_name(p) for p in key)
             raise RuntimeError(f"Invalid instantiation: {self._name}[{names}]") from None
 
-    def __repr__(self) -> str:
+    def __str__(self) -> str:
         return f"<TemplateClass {self._module}.{self._name}>"
 
 
