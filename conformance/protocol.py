@@ -1,4 +1,4 @@
-"""The backend protocol: what an implementation under test must provide.
+"""The protocol: what an implementation under test provides, and the values that cross it.
 
 A backend executes scenario commands, which refer to everything by *name*
 (sources, frames, geometries, contexts, declaration labels), and reports the
@@ -30,6 +30,7 @@ from typing import Any, Protocol, runtime_checkable
 __all__ = [
     "MODEL",
     "Backend",
+    "BackendId",
     "Command",
     "ErrorInfo",
     "ErrorKind",
@@ -37,6 +38,7 @@ __all__ = [
     "Observation",
     "Pair",
     "Result",
+    "backend_id",
     "classify_error",
     "normalise_message",
 ]
@@ -104,6 +106,10 @@ class ErrorInfo:
     def to_json(self) -> dict[str, str]:
         return {"kind": self.kind.value, "message": self.message}
 
+    @classmethod
+    def from_json(cls, data: Mapping[str, str]) -> ErrorInfo:
+        return cls(ErrorKind(data["kind"]), data.get("message", ""))
+
 
 @dataclass(frozen=True)
 class Result:
@@ -116,6 +122,12 @@ class Result:
         if self.error is not None:
             return {"error": self.error.to_json()}
         return {"value": self.value}
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, Any]) -> Result:
+        if "error" in data:
+            return cls(error=ErrorInfo.from_json(data["error"]))
+        return cls(value=data.get("value"))
 
 
 @dataclass(frozen=True)
@@ -133,6 +145,14 @@ class LocationState:
             "active": dict(sorted(self.active.items())),
         }
 
+    @classmethod
+    def from_json(cls, data: Mapping[str, Any]) -> LocationState:
+        return cls(
+            candidates=frozenset((a, b) if a < b else (b, a) for a, b in data["candidates"]),
+            has_transient_history=bool(data["has_transient_history"]),
+            active={str(k): bool(v) for k, v in data.get("active", {}).items()},
+        )
+
 
 @dataclass(frozen=True)
 class Observation:
@@ -142,6 +162,10 @@ class Observation:
 
     def to_json(self) -> dict[str, Any]:
         return {name: state.to_json() for name, state in sorted(self.locations.items())}
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, Any]) -> Observation:
+        return cls({name: LocationState.from_json(state) for name, state in data.items()})
 
 
 @dataclass(frozen=True)
@@ -153,6 +177,33 @@ class Command:
 
     def to_json(self) -> dict[str, Any]:
         return {"op": self.op, **self.args}
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, Any]) -> Command:
+        return cls(str(data["op"]), {k: v for k, v in data.items() if k != "op"})
+
+
+@dataclass(frozen=True)
+class BackendId:
+    """Who answered: the backend's name and the Drake release whose behaviour it has.
+
+    ``version`` selects since/until expectations, known divergences and
+    release guards. It is ``"unknown"`` for an implementation that claims no
+    Drake release.
+    """
+
+    name: str
+    version: str
+
+    def __str__(self) -> str:
+        return f"{self.name} ({self.version})"
+
+    def to_json(self) -> dict[str, str]:
+        return {"name": self.name, "version": self.version}
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, str]) -> BackendId:
+        return cls(data["name"], data["version"])
 
 
 @runtime_checkable
@@ -177,3 +228,8 @@ class Backend(Protocol):
     def execute(self, command: Command) -> Result: ...
 
     def observe(self) -> Observation: ...
+
+
+def backend_id(backend: Backend) -> BackendId:
+    """The BackendId of ``backend`` (its ``name`` and ``version()``)."""
+    return BackendId(backend.name, backend.version())

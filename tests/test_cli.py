@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import io
 import json
+import shlex
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -57,7 +58,7 @@ def write(tmp_path: Path, data: object, name: str = "case.json") -> Path:
 def test_passing_file_exits_zero_and_prints_a_summary(tmp_path: Path) -> None:
     code, out, err = run(str(write(tmp_path, GOOD_CASE)))
     assert code == EXIT_OK
-    assert "1 pass, 0 fail, 0 skip" in out
+    assert "1 pass, 0 fail, 0 xfail, 0 skip" in out
     assert "reimpl:pass pydrake:pass" in err
 
 
@@ -68,8 +69,8 @@ def test_broken_expectation_exits_one_with_step_values_and_rerun_command(tmp_pat
     code, out, _ = run(str(path))
     assert code == EXIT_FAILURE
     assert "FAIL case > exclude_within of two geometries empties C" in out
-    assert "step 1: candidates at model [reimpl]" in out
-    assert 'expected: ["a-b"]' in out
+    assert "step 1: candidates at model [reimpl failed]" in out
+    assert 'expected: ["a-b"]  (case)' in out
     assert "actual:   []" in out
     assert f"rerun: python -m conformance run {path} --case" in out
 
@@ -122,7 +123,7 @@ def test_missing_path_exits_two(tmp_path: Path) -> None:
 def test_unknown_case_description_exits_two() -> None:
     code, _, err = run(str(TABLE1), "--case", "no such case")
     assert code == EXIT_USAGE
-    assert "no case is described 'no such case'" in err
+    assert "no case is described or named 'no such case'" in err
 
 
 def test_junit_has_one_testcase_per_case_and_backend(tmp_path: Path) -> None:
@@ -170,3 +171,74 @@ def test_bad_arguments_exit_two(argv: list[str]) -> None:
     )
     assert result.returncode == EXIT_USAGE
     assert "error:" in result.stderr
+
+
+ALLOW_WITHIN = default_corpus_root() / "statements" / "allow_within.json"
+MUTANT = "conformance.testing.mutants:allow_clears_invariants"
+
+
+def test_a_disagreement_fails_only_the_backend_that_is_not_the_reference() -> None:
+    code, out, _ = run(str(ALLOW_WITHIN), "--backend", MUTANT, "--backend", "pydrake")
+    assert code == EXIT_FAILURE
+    mutant_cell, pydrake_cell = _cells(out.strip().splitlines()[-1])
+    assert not mutant_cell.startswith("5 pass")
+    assert pydrake_cell == "5 pass, 0 fail, 0 xfail, 0 skip"
+    assert "pydrake (1.51.1) [reference]" in out or "[reference]" in out
+    assert "allow_clears_invariants failed]" in out
+    assert "[pydrake failed]" not in out
+    assert "(reference pydrake)" in out
+
+
+def _cells(total: str) -> tuple[str, str]:
+    """The two backend cells of the summary's total row."""
+    parts = [p.strip() for p in total.split("  ") if p.strip()]
+    return parts[-2], parts[-1]
+
+
+def test_the_rerun_hint_repeats_the_backend_specs_as_given_and_runs() -> None:
+    code, out, _ = run(str(ALLOW_WITHIN), "--backend", MUTANT, "--backend", "pydrake")
+    assert code == EXIT_FAILURE
+    hint = next(line for line in out.splitlines() if line.strip().startswith("rerun: "))
+    assert f"--backend {MUTANT} --backend pydrake" in hint
+    words = shlex.split(hint.strip().removeprefix("rerun: "))
+    assert words[:4] == ["python", "-m", "conformance", "run"]
+    rerun = subprocess.run(
+        [sys.executable, *words[1:]], capture_output=True, text=True, check=False
+    )
+    assert rerun.returncode == EXIT_FAILURE, rerun.stderr
+    assert "No module named" not in rerun.stderr
+    assert "[1/1]" in rerun.stderr
+
+
+@pytest.mark.parametrize(
+    "selector",
+    [
+        "statements/allow_within > *",
+        "*allow_within*",
+    ],
+)
+def test_case_takes_a_qualified_name_or_a_glob(selector: str) -> None:
+    code, _, err = run(str(default_corpus_root()), "--case", selector, "--backend", "reimpl")
+    assert code == EXIT_OK
+    assert err.count("statements/allow_within > ") == 5
+
+
+def test_case_takes_the_qualified_name_that_progress_lines_print() -> None:
+    code, _, err = run(str(TABLE1), "--backend", "reimpl")
+    name = err.splitlines()[0].split("] ", 1)[1].rsplit("  ", 1)[0]
+    code, _, err = run(str(TABLE1), "--case", name, "--backend", "reimpl")
+    assert code == EXIT_OK
+    assert err.startswith("[1/1] transient/table1 > ")
+
+
+def test_reference_must_name_a_given_backend() -> None:
+    code, _, err = run(str(TABLE1), "--reference", "nosuch")
+    assert code == EXIT_USAGE
+    assert "no backend is named 'nosuch'" in err
+
+
+def test_schema_prints_the_published_schema() -> None:
+    out, err = io.StringIO(), io.StringIO()
+    assert main(["schema"], out=out, err=err) == EXIT_OK
+    published = json.loads((default_corpus_root() / "scenario.schema.json").read_text())
+    assert json.loads(out.getvalue()) == published

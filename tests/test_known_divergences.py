@@ -1,15 +1,18 @@
-"""Each known divergence is shown on real pydrake by the scenarios it names."""
+"""Known divergences: each is shown on real pydrake, and each one that acts matches real cases."""
 
 from __future__ import annotations
 
+import fnmatch
 from pathlib import Path
 
 import pytest
 
 from conformance.backends.loader import load_backend
 from conformance.corpus.loader import Case, load_corpus
-from conformance.policy.divergences import Divergence, known_divergences
-from conformance.run.runner import Status, run_case, version_in_range
+from conformance.policy.divergences import KnownDivergence, known_divergences
+from conformance.policy.guards import GUARDS
+from conformance.policy.versions import version_in_range
+from conformance.run.runner import Status, run_case
 
 CASES: dict[str, Case] = {c.qualified_name: c for f in load_corpus() for c in f.cases}
 ENTRIES = known_divergences()
@@ -22,7 +25,7 @@ def test_divergence_ids_are_unique() -> None:
 
 
 @pytest.mark.parametrize("entry", ENTRIES, ids=lambda e: e.id)
-def test_divergence_names_existing_evidence(entry: Divergence) -> None:
+def test_divergence_names_existing_evidence(entry: KnownDivergence) -> None:
     assert entry.scenarios or entry.tests
     for name in entry.scenarios:
         assert name in CASES, f"{entry.id}: no scenario {name!r}"
@@ -30,18 +33,42 @@ def test_divergence_names_existing_evidence(entry: Divergence) -> None:
         assert (ROOT / path).is_file(), f"{entry.id}: no test file {path}"
 
 
+@pytest.mark.parametrize("entry", [e for e in ENTRIES if e.xfail is not None], ids=lambda e: e.id)
+def test_an_xfail_matcher_names_existing_cases_and_a_diverging_step(entry: KnownDivergence) -> None:
+    assert entry.xfail is not None
+    assert entry.xfail.cases
+    assert entry.xfail.steps
+    for pattern in entry.xfail.cases:
+        assert fnmatch.filter(CASES, pattern), f"{entry.id}: no case matches {pattern!r}"
+
+
+def test_the_partial_apply_entry_acts_only_from_drake_1_52_and_only_on_reimpl() -> None:
+    entry = next(e for e in ENTRIES if e.id == "reimpl-follows-1.51-apply")
+    assert entry.xfail is not None
+    case = entry.xfail.cases[0]
+    assert entry.xfail.matches_case(case, "reimpl", "1.58.0")
+    assert entry.xfail.matches_case(case, "reimpl", "1.52.0")
+    assert not entry.xfail.matches_case(case, "reimpl", "1.51.1")
+    assert not entry.xfail.matches_case(case, "pydrake", "1.58.0")
+
+
+def test_every_release_guard_names_a_known_divergence_of_kind_drake_crash() -> None:
+    kinds = {e.id: e.kind for e in ENTRIES}
+    assert {kinds[key] for key in GUARDS} == {"drake_crash"}
+
+
 @pytest.mark.parametrize(
     ("entry", "scenario"),
     [(e, s) for e in ENTRIES for s in e.scenarios],
-    ids=lambda v: v.id if isinstance(v, Divergence) else v.split(" > ")[0],
+    ids=lambda v: v.id if isinstance(v, KnownDivergence) else v.split(" > ")[0],
 )
-def test_divergence_scenario_holds_on_real_pydrake(entry: Divergence, scenario: str) -> None:
+def test_divergence_scenario_holds_on_real_pydrake(entry: KnownDivergence, scenario: str) -> None:
     pydrake = load_backend("pydrake")
     if (
         not version_in_range(pydrake.version(), entry.since, entry.until)
         and entry.kind != "reimpl_vs_drake"
     ):
-        pytest.skip(f"{entry.id} concerns Drake {entry.since}..{entry.until}")
+        pytest.skip(f"{entry.id} concerns Drake {entry.releases}")
     report = run_case(CASES[scenario], [pydrake])
     if report.status["pydrake"] is Status.SKIP:
         pytest.skip(report.skip_reasons["pydrake"])

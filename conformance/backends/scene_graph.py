@@ -18,6 +18,8 @@ from dataclasses import dataclass
 from types import ModuleType
 from typing import Any
 
+from conformance.grammar import GRAMMAR
+from conformance.policy.guards import GUARDS, armed_guards
 from conformance.protocol import (
     MODEL,
     Command,
@@ -32,7 +34,6 @@ from conformance.protocol import (
 
 __all__ = [
     "BASE_FEATURES",
-    "COMMANDS",
     "Api",
     "RefusedCallError",
     "SceneGraphBackend",
@@ -91,7 +92,13 @@ class SceneGraphBackend:
     def __init__(self, api: Api) -> None:
         self.api = api
         self.name = api.name
+        #: The release guards armed for the current run (``policy.guards``).
+        self.armed: frozenset[str] = armed_guards([api.version])
         self.reset()
+
+    def arm_guards(self, ids: frozenset[str]) -> None:
+        """Arms the release guards ``ids`` (the run's backends need them)."""
+        self.armed = ids
 
     # ------------------------------------------------------------ protocol
     def version(self) -> str:
@@ -119,11 +126,12 @@ class SceneGraphBackend:
         self._foreign: dict[str, Any] = {}
 
     def execute(self, command: Command) -> Result:
-        handler = _HANDLERS.get(command.op)
-        if handler is None:
+        op = GRAMMAR.get(command.op)
+        if op is None or op.handler is None:
             raise UnknownNameError("command", command.op)
+        handler: Callable[[Mapping[str, Any]], Any] = getattr(self, op.handler)
         try:
-            return Result(value=handler(self, command.args))
+            return Result(value=handler(command.args))
         except UnknownNameError:
             raise
         except RefusedCallError as exc:
@@ -391,13 +399,20 @@ class SceneGraphBackend:
     def has_transient_history(self, args: Mapping[str, Any]) -> bool:
         return bool(self._manager(self._context(args)).has_transient_history())
 
+    def _refuse(self, guard: str) -> None:
+        """Raises RefusedCallError if the run armed ``guard`` (``policy.guards``)."""
+        if guard in self.armed:
+            raise RefusedCallError(GUARDS[guard].message())
+
     def _refuse_anchored(self, geometry_set: Any, context: Any) -> None:
-        """Refuses (de)activation of anchored proximity geometry, on every backend alike.
+        """Refuses (de)activation of anchored proximity geometry while its guard is armed.
 
         N.B. pydrake 1.55-1.58 abort the process in
         ProximityEngine::ApplyActiveStatusChange for anchored geometry (see
-        conformance/known_divergences.json, "deactivate-anchored-aborts").
+        the known divergence "deactivate-anchored-aborts").
         """
+        if "deactivate-anchored-aborts" not in self.armed:
+            return
         inspector = self._inspector(context)
         try:
             ids = inspector.GetGeometryIds(
@@ -407,9 +422,7 @@ class SceneGraphBackend:
             return  # Unknown ids: let the implementation report them.
         world = self.scene_graph.world_frame_id()
         if any(inspector.GetFrameId(geometry_id=g) == world for g in ids):
-            raise RefusedCallError(
-                "refused: (de)activating anchored geometry aborts pydrake 1.55-1.58"
-            )
+            self._refuse("deactivate-anchored-aborts")
 
     def activate(self, args: Mapping[str, Any]) -> None:
         context = self._context(args)
@@ -443,7 +456,7 @@ class SceneGraphBackend:
         has its pose port fixed with one pose per frame. A context made before
         a source was registered lacks that source's port; once SetDefaultContext
         gives it the source's frames, fixing the port or cloning aborts
-        pydrake, so the harness refuses that clone on every backend alike.
+        pydrake, so the guard "older-context-pose-port-aborts" refuses it.
         """
         source = self._context({"context": args["from"]})
         g, m = self.api.geometry, self.api.math
@@ -455,10 +468,7 @@ class SceneGraphBackend:
             if frames:
                 port = self.scene_graph.get_source_pose_port(source_id)
                 if int(port.get_index()) >= source.num_input_ports():
-                    raise RefusedCallError(
-                        "refused: the context predates this source's pose port; fixing "
-                        "or cloning it aborts pydrake (SetFixedInputPortValue)"
-                    )
+                    self._refuse("older-context-pose-port-aborts")
                 poses = g.FramePoseVector()
                 for frame_id in frames:
                     poses.set_value(id=frame_id, value=m.RigidTransform())
@@ -469,27 +479,3 @@ class SceneGraphBackend:
 
     def set_default_context(self, args: Mapping[str, Any]) -> None:
         self.scene_graph.SetDefaultContext(context=self._context(args))
-
-
-_HANDLERS: dict[str, Callable[[SceneGraphBackend, Mapping[str, Any]], Any]] = {
-    "register_source": SceneGraphBackend.register_source,
-    "register_frame": SceneGraphBackend.register_frame,
-    "register_geometry": SceneGraphBackend.register_geometry,
-    "assign_role": SceneGraphBackend.assign_role,
-    "remove_role": SceneGraphBackend.remove_role,
-    "remove_geometry": SceneGraphBackend.remove_geometry,
-    "apply": SceneGraphBackend.apply,
-    "apply_transient": SceneGraphBackend.apply_transient,
-    "remove_declaration": SceneGraphBackend.remove_declaration,
-    "is_active": SceneGraphBackend.is_active,
-    "has_transient_history": SceneGraphBackend.has_transient_history,
-    "activate": SceneGraphBackend.activate,
-    "deactivate": SceneGraphBackend.deactivate,
-    "collision_filtered": SceneGraphBackend.collision_filtered,
-    "create_context": SceneGraphBackend.create_context,
-    "clone_context": SceneGraphBackend.clone_context,
-    "set_default_context": SceneGraphBackend.set_default_context,
-}
-
-#: The commands every SceneGraphBackend understands (the scenario grammar's ops).
-COMMANDS = frozenset(_HANDLERS)

@@ -56,9 +56,10 @@ class Progress:
 
 
 def replays(path: Path, backends: list[Backend]) -> bool:
-    """True iff running the scenario file on ``backends`` fails (reproduces the finding)."""
+    """True iff the scenario file fails on ``backends`` (the last is the reference)."""
     scenario = load_file(path, root=path.parent)
-    return any(not run_case(case, backends).passed for case in scenario.cases)
+    reference = backends[-1].name
+    return any(not run_case(case, backends, reference=reference).passed for case in scenario.cases)
 
 
 def _report(
@@ -102,6 +103,8 @@ def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
         f"{progress.found} divergence(s)"
         f"{'; interrupted' if result.interrupted else ''}\n"
     )
+    for divergence, examples in sorted(stats.known.items()):
+        out.write(f"fuzz: known divergence {divergence} met in {examples} example(s), set aside\n")
 
 
 def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
@@ -136,6 +139,7 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         on_step=progress,
         on_batch=on_batch,
         stop_at_first=not args.keep_going,
+        strict_divergences=args.strict_divergences,
     )
     err.write(
         f"fuzz: {backend.name} {backend.version()} against {reference.name} "

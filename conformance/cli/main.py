@@ -4,7 +4,7 @@
 backend (by default reimpl and pydrake) and compares them pair by pair.
 ``fuzz`` drives two backends (by default reimpl against pydrake) with
 Hypothesis-generated command sequences and writes each shrunk divergence as a
-scenario file that ``run`` replays.
+scenario file that ``run`` replays. ``schema`` prints the scenario schema.
 
 Exit codes: 0 every case passed (no divergence); 1 a conformance failure (a
 divergence); 2 a usage or input error (bad arguments, a malformed scenario,
@@ -16,25 +16,20 @@ written to the --json/--junit files; findings are written as they are made.
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TextIO
 
-from conformance.backends.loader import BackendLoadError, load_backend
-from conformance.backends.scene_graph import UnknownNameError
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
-from conformance.corpus.loader import ScenarioError, ScenarioFile, load_corpus
+from conformance.cli.run import PROG, add_run_parser, run_command
 from conformance.fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
 from conformance.fuzz.regression import DEFAULT_REGRESSIONS
-from conformance.protocol import Backend
-from conformance.run.report import RunReport, write_json, write_junit
-from conformance.run.runner import BackendError, Status, run_case
+from conformance.grammar.schema import scenario_schema, write_schema
 
 __all__ = ["EXIT_FAILURE", "EXIT_OK", "EXIT_USAGE", "main", "main_console"]
-
-PROG = "python -m conformance"
 
 
 class _Parser(argparse.ArgumentParser):
@@ -47,20 +42,14 @@ class _Parser(argparse.ArgumentParser):
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description=__doc__.split("\n\n")[0] if __doc__ else None)
     commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    run = commands.add_parser("run", help="run scenario cases on backends and compare them")
-    run.add_argument("paths", nargs="*", type=Path, help="scenario files or directories")
-    run.add_argument(
-        "--backend",
-        action="append",
-        dest="backends",
-        metavar="NAME",
-        help="reimpl, pydrake, or package.module:attribute (repeatable; default: both built-ins)",
-    )
-    run.add_argument("--case", help="run only the case with this exact description")
-    run.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
-    run.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
-    run.add_argument("-q", "--quiet", action="store_true", help="no per-case progress lines")
+    add_run_parser(commands)
     _add_fuzz(commands)
+    schema = commands.add_parser(
+        "schema", help="print the scenario schema (its step rules come from the grammar)"
+    )
+    schema.add_argument(
+        "--write", action="store_true", help="write it to scenarios/scenario.schema.json"
+    )
     return parser
 
 
@@ -110,69 +99,12 @@ def _add_fuzz(commands: Any) -> None:
     fuzz.add_argument(
         "--keep-going", action="store_true", help="with --time-budget, go on after a finding"
     )
+    fuzz.add_argument(
+        "--strict-divergences",
+        action="store_true",
+        help="report known divergences as findings (default: set aside and counted)",
+    )
     fuzz.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
-
-
-def _backends(specs: Sequence[str] | None) -> list[Backend]:
-    specs = list(specs or ("reimpl", "pydrake"))
-    backends = [load_backend(spec) for spec in specs]
-    names = [b.name for b in backends]
-    if len(set(names)) != len(names):
-        raise BackendLoadError(f"backend names must differ, got {names}")
-    return backends
-
-
-def _progress(out: TextIO, index: int, total: int, name: str, statuses: dict[str, Status]) -> None:
-    marks = " ".join(f"{b}:{s.value}" for b, s in statuses.items())
-    out.write(f"[{index:>{len(str(total))}}/{total}] {name}  {marks}\n")
-    out.flush()
-
-
-def _run(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
-    try:
-        backends = _backends(args.backends)
-        files: list[ScenarioFile] = load_corpus(args.paths)
-    except (BackendLoadError, ScenarioError) as exc:
-        err.write(f"error: {exc}\n")
-        return EXIT_USAGE
-    cases = [c for f in files for c in f.cases]
-    if args.case is not None:
-        cases = [c for c in cases if c.description == args.case]
-        if not cases:
-            err.write(f"error: no case is described {args.case!r}\n")
-            return EXIT_USAGE
-    report = RunReport(backends)
-    code = EXIT_OK
-    try:
-        for index, case in enumerate(cases, 1):
-            try:
-                case_report = run_case(case, backends)
-            except (BackendError, UnknownNameError) as exc:
-                report.aborted = f"{case.qualified_name}: {exc}"
-                err.write(f"error: {case.file.path}: case {case.description!r}: {exc}\n")
-                code = EXIT_USAGE
-                break
-            report.cases.append(case_report)
-            if not args.quiet:
-                _progress(err, index, len(cases), case.qualified_name, case_report.status)
-    except KeyboardInterrupt:
-        report.aborted = "interrupted"
-        err.write("interrupted: reporting the cases finished so far\n")
-        code = EXIT_USAGE
-    report.print_failures(out, prog=PROG)
-    out.write("\n")
-    report.print_summary(out)
-    if args.junit:
-        write_junit(report, args.junit)
-    if args.json:
-        write_json(report, args.json)
-    if code == EXIT_OK and report.failed:
-        code = EXIT_FAILURE
-    ran = sum(1 for c in report.cases for s in c.status.values() if s is not Status.SKIP)
-    if code == EXIT_OK and ran == 0:
-        err.write("error: no case ran on any backend\n")
-        code = EXIT_USAGE
-    return code
 
 
 def main(
@@ -182,10 +114,20 @@ def main(
     args = _parser().parse_args(argv)
     out, err = out or sys.stdout, err or sys.stderr
     if args.command == "run":
-        return _run(args, out, err)
+        return run_command(args, out, err)
     if args.command == "fuzz":
         return fuzz_command(args, out, err)
+    if args.command == "schema":
+        return _schema(args, out)
     raise AssertionError(args.command)  # pragma: no cover
+
+
+def _schema(args: argparse.Namespace, out: TextIO) -> int:
+    if args.write:
+        out.write(f"wrote {write_schema()}\n")
+    else:
+        out.write(json.dumps(scenario_schema(), indent=2) + "\n")
+    return EXIT_OK
 
 
 def main_console() -> None:

@@ -1,7 +1,8 @@
 """The scenario corpus: Corpus → ScenarioFile → Case → Step, loaded and checked.
 
-Loading validates each file against ``scenarios/scenario.schema.json`` (with
-the ``jsonschema`` library) and then checks names statically: every source,
+Loading validates each file against the scenario schema (with the
+``jsonschema`` library; its step rules come from ``conformance.grammar``)
+and then checks names statically: every source,
 frame, geometry, context and declaration label a step refers to must have been
 declared earlier in the same case. Any problem raises ``ScenarioError`` naming
 the file, the case and the field, so the CLI can report it and exit 2.
@@ -19,6 +20,10 @@ from typing import Any
 
 import jsonschema
 
+from conformance.grammar import declared_names, referenced_names
+from conformance.grammar.schema import SCHEMA_FILE as SCENARIO_SCHEMA
+from conformance.grammar.schema import scenario_schema
+
 __all__ = [
     "SCENARIO_SCHEMA",
     "Case",
@@ -30,7 +35,6 @@ __all__ = [
     "load_file",
 ]
 
-SCENARIO_SCHEMA = "scenario.schema.json"
 _SPECIAL_REFS = frozenset({"@unknown", "@foreign"})
 _NON_ARGS = frozenset({"op", "comment", "expect"})
 
@@ -98,7 +102,7 @@ class ScenarioFile:
 
 @cache
 def _validator() -> jsonschema.protocols.Validator:
-    schema = json.loads(default_corpus_root().joinpath(SCENARIO_SCHEMA).read_text())
+    schema = scenario_schema()
     cls = jsonschema.validators.validator_for(schema)
     cls.check_schema(schema)
     return cls(schema)
@@ -194,40 +198,10 @@ def _scene_steps(scene: Mapping[str, Any]) -> Iterator[Step]:
         yield Step(0, "register_geometry", dict(geometry), ())
 
 
-def _set_refs(spec: Mapping[str, Sequence[str]]) -> Iterator[tuple[str, str]]:
-    for name in spec.get("geometries", ()):
-        yield "geometry", name
-    for name in spec.get("frames", ()):
-        yield "frame", name
-
-
-#: Arguments that name something, per op ("*" applies to every op): arg → kind.
-_ARG_REFS: Mapping[str, Mapping[str, str]] = {
-    "*": {"source": "source", "context": "context", "geometry": "geometry"},
-    "register_frame": {"parent": "frame"},
-    "register_geometry": {"frame": "frame"},
-    "remove_role": {"frame": "frame"},
-    "clone_context": {"from": "context"},
-    "remove_declaration": {"label": "label"},
-    "is_active": {"label": "label"},
-}
-
-
 def _refs(step: Step) -> Iterator[tuple[str, str, str]]:
-    """(kind, name, field) for every name the step refers to (not declares)."""
-    a = step.args
-    for table in (_ARG_REFS["*"], _ARG_REFS.get(step.op, {})):
-        for arg, kind in table.items():
-            if arg in a:
-                yield kind, a[arg], arg
-    for name in a.get("pair", ()):
-        yield "geometry", name, "pair"
-    for kind, name in _set_refs(a.get("set", {})):
-        yield kind, name, "set"
-    for i, statement in enumerate(a.get("declaration", {}).get("statements", ()), 1):
-        for key in ("set", "a", "b"):
-            for kind, name in _set_refs(statement.get(key, {})):
-                yield kind, name, f"declaration.statements[{i}].{key}"
+    """(kind, name, field) for every name the step refers to (not declares), expectations too."""
+    for kind, name, where in referenced_names(step.op, step.args):
+        yield kind.value, name, where
     for expectation in step.expect:
         yield from _expectation_refs(expectation)
 
@@ -244,18 +218,8 @@ def _expectation_refs(expectation: Mapping[str, Any]) -> Iterator[tuple[str, str
 
 
 def _declares(step: Step) -> Iterator[tuple[str, str]]:
-    op, a = step.op, step.args
-    kinds = {
-        "register_source": "source",
-        "register_frame": "frame",
-        "register_geometry": "geometry",
-        "create_context": "context",
-        "clone_context": "context",
-    }
-    if op in kinds:
-        yield kinds[op], a["name"]
-    if op == "apply_transient":
-        yield "label", a["label"]
+    for kind, name, _ in declared_names(step.op, step.args):
+        yield kind.value, name
 
 
 def _check_names(path: str, case: Case) -> None:

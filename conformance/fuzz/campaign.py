@@ -145,6 +145,8 @@ class Campaign:
     #: Bounds on the initial scene (default: ``machine_base``'s).
     scene_frames: tuple[int, int] | None = None
     scene_geometries: tuple[int, int] | None = None
+    #: Report known divergences as divergences (default: set them aside, counted).
+    strict_divergences: bool = False
 
     def run(self) -> CampaignResult:
         """Runs the campaign. On Ctrl-C, keeps the smallest divergence seen so far."""
@@ -191,6 +193,7 @@ class Campaign:
             base=self.machine_base,
             scene_frames=self.scene_frames,
             scene_geometries=self.scene_geometries,
+            strict_divergences=self.strict_divergences,
         )
         hypothesis_seed(seed)(machine)
         stats.best = None

@@ -55,17 +55,19 @@ from dataclasses import dataclass, field
 from functools import cache
 from typing import Any, ClassVar
 
-from hypothesis import note
+from hypothesis import note, reject
 from hypothesis import strategies as st
 from hypothesis.control import current_build_context
 from hypothesis.errors import InvalidArgument
 from hypothesis.stateful import Bundle, RuleBasedStateMachine, initialize, invariant, rule
 
 from conformance.backends.loader import load_backend
+from conformance.compare import Difference, diff_observations, diff_results
 from conformance.fuzz import operations as ops
 from conformance.fuzz import strategies as cs
+from conformance.policy.divergences import match_step
+from conformance.policy.guards import arm_guards
 from conformance.protocol import Backend, Command, Observation, Result
-from conformance.run.runner import results_agree
 
 __all__ = [
     "Divergence",
@@ -142,6 +144,8 @@ class FuzzStats:
     steps: int = 0
     backend_seconds: float = 0.0
     divergences_seen: int = 0
+    #: Known divergences met (and set aside): id → how many examples.
+    known: dict[str, int] = field(default_factory=dict)
     #: The smallest divergence seen so far (kept if the run is interrupted).
     best: Divergence | None = None
     on_step: Callable[[FuzzStats], None] | None = field(default=None, repr=False)
@@ -150,17 +154,6 @@ class FuzzStats:
         self.divergences_seen += 1
         if self.best is None or len(divergence.trace) <= len(self.best.trace):
             self.best = divergence
-
-
-def _diff(a: Observation, b: Observation) -> str:
-    parts = []
-    for location in sorted(set(a.locations) | set(b.locations)):
-        sa, sb = a.locations.get(location), b.locations.get(location)
-        if sa != sb:
-            left = json.dumps(sa.to_json() if sa else None, sort_keys=True)
-            right = json.dumps(sb.to_json() if sb else None, sort_keys=True)
-            parts.append(f"{location}: backend {left} reference {right}")
-    return "; ".join(parts)
 
 
 @cache
@@ -227,6 +220,8 @@ class LockstepMachine(RuleBasedStateMachine):
     #: Operations per Hypothesis step (each is compared on its own).
     operations_per_step: ClassVar[int] = 2
     _pair: ClassVar[tuple[Backend, Backend] | None] = None
+    #: Report known divergences (``policy.divergences``) as divergences too.
+    strict_divergences: ClassVar[bool] = False
 
     #: Both backends have Activate/Deactivate.
     activation: bool
@@ -266,6 +261,7 @@ class LockstepMachine(RuleBasedStateMachine):
         """One backend pair per class, reset for every example."""
         if cls.__dict__.get("_pair") is None:
             cls._pair = (cls.backend_factory(), cls.reference_factory())
+            arm_guards(cls._pair)
         assert cls._pair is not None
         return cls._pair
 
@@ -334,9 +330,9 @@ class LockstepMachine(RuleBasedStateMachine):
         stats.backend_seconds += time.perf_counter() - start
         stats.steps += 1
         self.trace.append(TraceStep(command, want, got))
-        if not results_agree(got, want):
-            detail = f"backend {got.to_json()} reference {want.to_json()}"
-            self._diverge(f"{op} result", detail, *self._observe())
+        differences = diff_results(want, got, op=op)
+        if differences:
+            self._diverge(differences, *self._observe())
         if stats.on_step is not None:
             stats.on_step(stats)
         return want
@@ -351,17 +347,35 @@ class LockstepMachine(RuleBasedStateMachine):
         stats.backend_seconds += time.perf_counter() - start
         return got, want
 
-    def _diverge(self, what: str, detail: str, got: Observation, want: Observation) -> None:
-        divergence = Divergence(what, detail, self.trace, want, got)
-        type(self).stats.record(divergence)
+    def _diverge(self, differences: list[Difference], got: Observation, want: Observation) -> None:
+        """Raises Divergence; or, for a known divergence, rejects the example.
+
+        A disagreement that a known divergence describes for the reference's
+        release (``policy.divergences.match_step``) is counted in
+        ``stats.known`` and the example is rejected, so the search goes on
+        for unknown ones; ``strict_divergences`` makes it a Divergence.
+        """
+        stats = type(self).stats
+        last = self.trace[-1]
+        if not self.strict_divergences:
+            known = match_step(
+                last.command, last.reference, self.backend.name, self.reference.version()
+            )
+            if known is not None:
+                stats.known[known.id] = stats.known.get(known.id, 0) + 1
+                reject()
+        detail = "; ".join(str(d) for d in differences)
+        divergence = Divergence(differences[0].what, detail, self.trace, want, got)
+        stats.record(divergence)
         raise divergence
 
     @invariant()
     def same_state(self) -> None:
         """The whole canonical state agrees, for the model and every context."""
         got, want = self._observe()
-        if got != want:
-            self._diverge("state", _diff(got, want), got, want)
+        differences = diff_observations(want, got)
+        if differences:
+            self._diverge(differences, got, want)
 
     # ------------------------------------------------------------- rules
     @initialize(
@@ -420,18 +434,20 @@ def lockstep_machine(
     base: type[LockstepMachine] = LockstepMachine,
     scene_frames: tuple[int, int] | None = None,
     scene_geometries: tuple[int, int] | None = None,
+    strict_divergences: bool = False,
     name: str = "Lockstep",
 ) -> type[LockstepMachine]:
     """A subclass of ``base`` for two backend factories, with its own stats.
 
     ``scene_frames`` and ``scene_geometries`` bound the initial scene (default:
-    ``base``'s bounds).
+    ``base``'s bounds); ``strict_divergences`` reports known divergences too.
     """
     namespace: dict[str, Any] = {
         "backend_factory": staticmethod(backend),
         "reference_factory": staticmethod(reference),
         "stats": stats if stats is not None else FuzzStats(),
         "_pair": None,
+        "strict_divergences": strict_divergences,
     }
     if scene_frames is not None:
         namespace["scene_frames"] = scene_frames

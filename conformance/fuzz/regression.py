@@ -24,27 +24,13 @@ from typing import Any
 
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.lockstep import Divergence
+from conformance.grammar import GRAMMAR
 from conformance.protocol import Observation, Result
 
 __all__ = ["DEFAULT_REGRESSIONS", "regression_scenario", "write_regression"]
 
 #: Where ``fuzz`` writes findings by default (relative to the working directory).
 DEFAULT_REGRESSIONS = Path("scenarios/regressions")
-
-#: Ops → the feature tag a backend needs to run them (``core`` otherwise).
-_FEATURE_OF_OP = {
-    "apply_transient": "transient",
-    "remove_declaration": "transient",
-    "is_active": "transient",
-    "has_transient_history": "transient",
-    "create_context": "contexts",
-    "clone_context": "contexts",
-    "set_default_context": "contexts",
-    "assign_role": "roles",
-    "remove_role": "roles",
-    "activate": "activation",
-    "deactivate": "activation",
-}
 
 
 def _result_expectation(result: Result) -> dict[str, Any]:
@@ -94,7 +80,7 @@ def regression_scenario(
             step["expect"] = expectations[0] if len(expectations) == 1 else expectations
         steps.append(step)
     ops = {item.command.op for item in divergence.trace}
-    features = sorted({"core"} | {_FEATURE_OF_OP[op] for op in ops if op in _FEATURE_OF_OP})
+    features = sorted({"core"} | {GRAMMAR[op].feature for op in ops})
     if any(item.reference.error is not None for item in divergence.trace):
         features.append("errors")
     seeded = f" --seed {seed}" if seed is not None else ""

@@ -1,45 +1,180 @@
-"""Known divergences, as data (``known_divergences.json``) with a small reader."""
+"""Known divergences, as data (``known_divergences.json``), and the matcher that acts on them.
+
+Each entry records one finding: what Drake documents, what it does, the
+releases it holds for, and the scenarios or tests that show it. An entry may
+also say when a failure is *expected* (its ``xfail`` object):
+
+- ``backends``: the backends that may fail this way (the one blamed; empty: any);
+- ``cases``: ``fnmatch`` patterns of case qualified names (``file > description``);
+- ``steps``: patterns of the diverging step, for the fuzzer, which has no case
+  name: ``op`` (one of), ``reference_error`` (whether the reference raised),
+  ``reference_message`` (a prefix of the reference's error message);
+- ``drake``: the releases it applies to, if narrower than the entry's.
+
+The release checked is that of the run's reference backend: the Drake
+release whose behaviour the others are held to. A case whose first failure on
+a backend matches an entry is reported as ``xfail`` with the entry's id, not
+as a failure; ``--strict-divergences`` turns it back into one.
+"""
 
 from __future__ import annotations
 
+import fnmatch
 import json
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 from typing import Any
 
-__all__ = ["Divergence", "known_divergences"]
+from conformance.policy.versions import VersionRange
+from conformance.protocol import Command, Result
+
+__all__ = [
+    "KnownDivergence",
+    "StepPattern",
+    "XfailMatcher",
+    "known_divergences",
+    "match_case",
+    "match_step",
+]
 
 
 @dataclass(frozen=True)
-class Divergence:
+class StepPattern:
+    """A diverging step: its op is one of ``ops``; the reference's answer as given."""
+
+    ops: frozenset[str]
+    reference_error: bool | None = None
+    reference_message: str | None = None
+
+    def matches(self, command: Command, reference: Result) -> bool:
+        if command.op not in self.ops:
+            return False
+        raised = reference.error is not None
+        if self.reference_error is not None and raised != self.reference_error:
+            return False
+        if self.reference_message is None:
+            return True
+        return reference.error is not None and reference.error.message.startswith(
+            self.reference_message
+        )
+
+
+@dataclass(frozen=True)
+class XfailMatcher:
+    """When a failure is this divergence (see the module doc)."""
+
+    releases: VersionRange
+    backends: frozenset[str] = frozenset()
+    cases: tuple[str, ...] = ()
+    steps: tuple[StepPattern, ...] = ()
+
+    def _applies(self, blamed: str, release: str) -> bool:
+        return release in self.releases and (not self.backends or blamed in self.backends)
+
+    def matches_case(self, qualified_name: str, blamed: str, release: str) -> bool:
+        return self._applies(blamed, release) and any(
+            fnmatch.fnmatchcase(qualified_name, pattern) for pattern in self.cases
+        )
+
+    def matches_step(self, command: Command, reference: Result, blamed: str, release: str) -> bool:
+        return self._applies(blamed, release) and any(
+            step.matches(command, reference) for step in self.steps
+        )
+
+
+@dataclass(frozen=True)
+class KnownDivergence:
     """One finding: what Drake documents, what it does, and where that is shown."""
 
     id: str
     kind: str  # doc_vs_drake | reimpl_vs_drake | drake_crash
-    since: str | None
-    until: str | None
+    releases: VersionRange
     observed: str
     reason: str
     scenarios: tuple[str, ...]
     tests: tuple[str, ...]
+    xfail: XfailMatcher | None = None
+
+    @property
+    def since(self) -> str | None:
+        return self.releases.since
+
+    @property
+    def until(self) -> str | None:
+        return self.releases.until
+
+
+def _range(data: Mapping[str, Any]) -> VersionRange:
+    return VersionRange(data.get("since"), data.get("until"))
+
+
+def _matcher(data: Mapping[str, Any] | None, releases: VersionRange) -> XfailMatcher | None:
+    if data is None:
+        return None
+    return XfailMatcher(
+        releases=_range(data["drake"]) if "drake" in data else releases,
+        backends=frozenset(data.get("backends", ())),
+        cases=tuple(data.get("cases", ())),
+        steps=tuple(
+            StepPattern(
+                ops=frozenset(step["op"]),
+                reference_error=step.get("reference_error"),
+                reference_message=step.get("reference_message"),
+            )
+            for step in data.get("steps", ())
+        ),
+    )
 
 
 @cache
-def known_divergences() -> tuple[Divergence, ...]:
+def known_divergences() -> tuple[KnownDivergence, ...]:
     data: dict[str, Any] = json.loads(
         resources.files("conformance.policy").joinpath("known_divergences.json").read_text()
     )
-    return tuple(
-        Divergence(
-            id=e["id"],
-            kind=e["kind"],
-            since=e["drake"].get("since"),
-            until=e["drake"].get("until"),
-            observed=e["observed"],
-            reason=e["reason"],
-            scenarios=tuple(e["evidence"].get("scenarios", ())),
-            tests=tuple(e["evidence"].get("tests", ())),
+    entries = []
+    for e in data["entries"]:
+        releases = _range(e["drake"])
+        entries.append(
+            KnownDivergence(
+                id=e["id"],
+                kind=e["kind"],
+                releases=releases,
+                observed=e["observed"],
+                reason=e["reason"],
+                scenarios=tuple(e["evidence"].get("scenarios", ())),
+                tests=tuple(e["evidence"].get("tests", ())),
+                xfail=_matcher(e.get("xfail"), releases),
+            )
         )
-        for e in data["entries"]
-    )
+    return tuple(entries)
+
+
+def match_case(
+    qualified_name: str,
+    blamed: str,
+    release: str,
+    entries: Sequence[KnownDivergence] | None = None,
+) -> KnownDivergence | None:
+    """The known divergence that a failure of ``blamed`` on this case is, if any."""
+    for entry in known_divergences() if entries is None else entries:
+        if entry.xfail is not None and entry.xfail.matches_case(qualified_name, blamed, release):
+            return entry
+    return None
+
+
+def match_step(
+    command: Command,
+    reference: Result,
+    blamed: str,
+    release: str,
+    entries: Sequence[KnownDivergence] | None = None,
+) -> KnownDivergence | None:
+    """The known divergence that a disagreement on ``command`` is, if any (for the fuzzer)."""
+    for entry in known_divergences() if entries is None else entries:
+        if entry.xfail is not None and entry.xfail.matches_step(
+            command, reference, blamed, release
+        ):
+            return entry
+    return None

@@ -97,17 +97,22 @@ class ScenarioCaseItem(pytest.Item):
             self.user_properties.append(
                 (f"{backend.name}_status", report.status[backend.name].value)
             )
-        if report.failures:
+        if not report.passed:
             raise _ConformanceError(report)
+        if report.xfails:
+            pytest.xfail("; ".join(f"{b}: known divergence {d}" for b, d in report.xfails.items()))
         if all(s is Status.SKIP for s in report.status.values()):
             pytest.skip("; ".join(f"{b}: {r}" for b, r in report.skip_reasons.items()))
 
     def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> str:
         if isinstance(excinfo.value, _ConformanceError):
             lines = [f"{self.case.qualified_name} ({self.case.file.path})"]
-            for failure in excinfo.value.report.failures:
-                lines.append(f"  {failure.step}: {failure.what} [{failure.backend}]")
-                lines.append(f"    expected: {failure.expected!r}")
+            report = excinfo.value.report
+            for failure in report.failures:
+                if report.status.get(failure.backend) is not Status.FAIL:
+                    continue
+                lines.append(f"  {failure.step}: {failure.what} [{failure.backend} failed]")
+                lines.append(f"    expected: {failure.expected!r} ({failure.source})")
                 lines.append(f"    actual:   {failure.actual!r}")
             return "\n".join(lines)
         return str(super().repr_failure(excinfo))

@@ -1,4 +1,11 @@
-"""Run results as people and CI want them: a summary table, failure details, JUnit, JSON."""
+"""Run results as people and CI want them: a summary table, failure details, JUnit, JSON.
+
+The table has a column per backend; the reference backend (the oracle that
+disagreements are judged against) is marked ``[reference]``. Each failure
+names the backend at fault and whether the expected value came from the case
+or from the reference. Known divergences show as ``xfail`` with their id.
+Rerun hints repeat the ``--backend`` specs exactly as given.
+"""
 
 from __future__ import annotations
 
@@ -23,6 +30,12 @@ class RunReport:
     backends: Sequence[Backend]
     cases: list[CaseReport] = field(default_factory=list)
     aborted: str | None = None  # why the run stopped early, if it did
+    #: The ``--backend`` specs as given, one per backend (default: the names).
+    specs: Sequence[str] = ()
+    #: The reference backend's name (``runner.choose_reference``).
+    reference: str | None = None
+    #: Extra options that a rerun must repeat (e.g. ``--strict-divergences``).
+    rerun_options: Sequence[str] = ()
 
     def count(self, backend: str, status: Status) -> int:
         return sum(1 for c in self.cases if c.status.get(backend) is status)
@@ -39,7 +52,11 @@ class RunReport:
         header = [
             "scenario file",
             "cases",
-            *[f"{b.name} ({b.version()})" for b in self.backends],
+            *[
+                f"{b.name} ({b.version()})"
+                + (" [reference]" if b.name == self.reference and len(self.backends) > 1 else "")
+                for b in self.backends
+            ],
         ]
         rows = [header]
         for file, cases in files.items():
@@ -60,22 +77,42 @@ class RunReport:
         for case in self.failed:
             out.write(f"\nFAIL {case.case.qualified_name}\n")
             for failure in case.failures:
-                out.write(f"  {failure.step}: {failure.what} [{failure.backend}]\n")
-                out.write(f"    expected: {_show(failure.expected)}\n")
+                if case.status.get(failure.backend) is not Status.FAIL:
+                    continue
+                out.write(f"  {failure.step}: {failure.what} [{failure.backend} failed]\n")
+                out.write(f"    expected: {_show(failure.expected)}  ({failure.source})\n")
                 out.write(f"    actual:   {_show(failure.actual)}\n")
             rerun = [
                 *prog.split(),
                 "run",
                 str(case.case.file.path),
                 "--case",
-                case.case.description,
+                case.case.qualified_name,
             ]
-            rerun += [arg for b in self.backends for arg in ("--backend", b.name)]
+            specs = self.specs or [b.name for b in self.backends]
+            rerun += [arg for spec in specs for arg in ("--backend", spec)]
+            rerun += list(self.rerun_options)
             out.write(f"  rerun: {shlex.join(rerun)}\n")
+
+    def print_xfails(self, out: TextIO) -> None:
+        """One line per case and backend that failed as a known divergence."""
+        for case in self.cases:
+            for backend, divergence in case.xfails.items():
+                out.write(f"xfail {case.case.qualified_name} [{backend}]: {divergence}\n")
+
+    def print_skips(self, out: TextIO) -> None:
+        """Why cases were skipped, one line per reason and backend, with a count."""
+        reasons: dict[tuple[str, str], int] = {}
+        for case in self.cases:
+            for backend, reason in case.skip_reasons.items():
+                reasons[backend, reason] = reasons.get((backend, reason), 0) + 1
+        for (backend, reason), count in sorted(reasons.items()):
+            out.write(f"skip {backend}: {count} case(s): {reason}\n")
 
     def to_json(self) -> dict[str, Any]:
         return {
             "backends": {b.name: {"version": b.version()} for b in self.backends},
+            "reference": self.reference,
             "summary": {
                 b.name: {s.value: self.count(b.name, s) for s in Status} for b in self.backends
             },
@@ -85,6 +122,7 @@ class RunReport:
                     "qualified_name": c.case.qualified_name,
                     "status": {k: v.value for k, v in c.status.items()},
                     "skip_reasons": c.skip_reasons,
+                    "xfails": c.xfails,
                     "failures": [f.to_json() for f in c.failures],
                 }
                 for c in self.cases
@@ -93,8 +131,8 @@ class RunReport:
 
 
 def _cell(counts: Any) -> str:
-    passed, failed, skipped = counts
-    return f"{passed} pass, {failed} fail, {skipped} skip"
+    passed, failed, xfailed, skipped = counts
+    return f"{passed} pass, {failed} fail, {xfailed} xfail, {skipped} skip"
 
 
 def _show(value: Any) -> str:
@@ -125,6 +163,10 @@ def write_junit(report: RunReport, path: Path) -> None:
             if status is Status.SKIP:
                 counts["skipped"] += 1
                 ET.SubElement(element, "skipped", message=case.skip_reasons.get(backend.name, ""))
+            elif status is Status.XFAIL:
+                counts["skipped"] += 1
+                divergence = case.xfails.get(backend.name, "")
+                ET.SubElement(element, "skipped", type="xfail", message=f"xfail: {divergence}")
             elif status is Status.FAIL:
                 counts["failures"] += 1
                 failures = case.failures_of(backend.name)

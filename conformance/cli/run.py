@@ -1,0 +1,146 @@
+"""``python -m conformance run``: the corpus on backends, a report, and an exit code.
+
+Progress goes to stderr, one line per case. Failures (with rerun commands),
+known divergences met (xfail), skip reasons and the summary table go to
+stdout; ``--json`` and ``--junit`` write the same results to files, also when
+the run stops early.
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TextIO
+
+from conformance.backends.loader import BackendLoadError, load_backend
+from conformance.backends.scene_graph import UnknownNameError
+from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.corpus.loader import Case, ScenarioError, load_corpus
+from conformance.protocol import Backend
+from conformance.run.report import RunReport, write_json, write_junit
+from conformance.run.runner import BackendError, Status, choose_reference, run_case
+
+__all__ = ["PROG", "add_run_parser", "load_backends", "run_command", "select_cases"]
+
+PROG = "python -m conformance"
+
+
+def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    run = commands.add_parser("run", help="run scenario cases on backends and compare them")
+    run.add_argument("paths", nargs="*", type=Path, help="scenario files or directories")
+    run.add_argument(
+        "--backend",
+        action="append",
+        dest="backends",
+        metavar="SPEC",
+        help="reimpl, pydrake, or package.module:attribute (repeatable; default: both built-ins)",
+    )
+    run.add_argument(
+        "--reference",
+        metavar="NAME",
+        help="the backend others are judged against (default: pydrake if given, else the first)",
+    )
+    run.add_argument(
+        "--case",
+        metavar="NAME",
+        help="run only cases whose description or qualified name ('file > description') "
+        "is NAME or matches it as a glob",
+    )
+    run.add_argument(
+        "--strict-divergences",
+        action="store_true",
+        help="report known divergences as failures, not xfail",
+    )
+    run.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
+    run.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
+    run.add_argument("-q", "--quiet", action="store_true", help="no per-case progress lines")
+
+
+def load_backends(specs: Sequence[str] | None) -> list[Backend]:
+    """The backends of ``specs`` (default reimpl and pydrake); names must differ."""
+    specs = list(specs or ("reimpl", "pydrake"))
+    backends = [load_backend(spec) for spec in specs]
+    names = [b.name for b in backends]
+    if len(set(names)) != len(names):
+        raise BackendLoadError(f"backend names must differ, got {names}")
+    return backends
+
+
+def select_cases(cases: Sequence[Case], pattern: str | None) -> list[Case]:
+    """The cases whose description or qualified name equals or glob-matches ``pattern``."""
+    if pattern is None:
+        return list(cases)
+    return [
+        case
+        for case in cases
+        if pattern in (case.description, case.qualified_name)
+        or fnmatch.fnmatchcase(case.description, pattern)
+        or fnmatch.fnmatchcase(case.qualified_name, pattern)
+    ]
+
+
+def _progress(out: TextIO, index: int, total: int, name: str, statuses: dict[str, Status]) -> None:
+    marks = " ".join(f"{b}:{s.value}" for b, s in statuses.items())
+    out.write(f"[{index:>{len(str(total))}}/{total}] {name}  {marks}\n")
+    out.flush()
+
+
+def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
+    """Runs ``run``; returns the exit code (see ``conformance.cli.exit_codes``)."""
+    try:
+        backends = load_backends(args.backends)
+        reference = choose_reference(backends, args.reference).name
+        files = load_corpus(args.paths)
+    except (BackendLoadError, ScenarioError, ValueError) as exc:
+        err.write(f"error: {exc}\n")
+        return EXIT_USAGE
+    cases = select_cases([c for f in files for c in f.cases], args.case)
+    if not cases:
+        err.write(f"error: no case is described or named {args.case!r}\n")
+        return EXIT_USAGE
+    report = RunReport(
+        backends,
+        specs=list(args.backends or ("reimpl", "pydrake")),
+        reference=reference,
+        rerun_options=["--strict-divergences"] if args.strict_divergences else [],
+    )
+    code = EXIT_OK
+    try:
+        for index, case in enumerate(cases, 1):
+            try:
+                case_report = run_case(
+                    case,
+                    backends,
+                    reference=reference,
+                    strict_divergences=args.strict_divergences,
+                )
+            except (BackendError, UnknownNameError) as exc:
+                report.aborted = f"{case.qualified_name}: {exc}"
+                err.write(f"error: {case.file.path}: case {case.description!r}: {exc}\n")
+                code = EXIT_USAGE
+                break
+            report.cases.append(case_report)
+            if not args.quiet:
+                _progress(err, index, len(cases), case.qualified_name, case_report.status)
+    except KeyboardInterrupt:
+        report.aborted = "interrupted"
+        err.write("interrupted: reporting the cases finished so far\n")
+        code = EXIT_USAGE
+    report.print_failures(out, prog=PROG)
+    out.write("\n")
+    report.print_xfails(out)
+    report.print_skips(out)
+    report.print_summary(out)
+    if args.junit:
+        write_junit(report, args.junit)
+    if args.json:
+        write_json(report, args.json)
+    if code == EXIT_OK and report.failed:
+        code = EXIT_FAILURE
+    ran = sum(1 for c in report.cases for s in c.status.values() if s is not Status.SKIP)
+    if code == EXIT_OK and ran == 0:
+        err.write("error: no case ran on any backend\n")
+        code = EXIT_USAGE
+    return code

@@ -1,0 +1,81 @@
+"""The scenario grammar: one table of commands, from which everything else is derived.
+
+``GRAMMAR`` maps each op to its ``CommandSpec``. From it come the scenario
+schema's step rules (``grammar.schema``), the corpus's name check, the
+backend's dispatch (one method per op), the fuzzer's coverage check and the
+feature tags of regression files. A new kind of work adds one table module
+here and one handler module on the backend side.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping, Sequence
+from typing import Any
+
+from conformance.grammar.scene_graph import SCENE_GRAPH_COMMANDS
+from conformance.grammar.spec import Arg, ArgKind, CommandSpec, NameKind
+
+__all__ = [
+    "GRAMMAR",
+    "Arg",
+    "ArgKind",
+    "CommandSpec",
+    "NameKind",
+    "UnknownOpError",
+    "declared_names",
+    "referenced_names",
+    "spec",
+]
+
+#: Every op of the scenario grammar, in the order the schema lists them.
+GRAMMAR: Mapping[str, CommandSpec] = {command.op: command for command in SCENE_GRAPH_COMMANDS}
+
+
+class UnknownOpError(KeyError):
+    """Raised for an op the grammar does not have."""
+
+    def __str__(self) -> str:
+        return f"unknown op {self.args[0]!r} (the grammar has: {', '.join(GRAMMAR)})"
+
+
+def spec(op: str) -> CommandSpec:
+    """The CommandSpec of ``op``."""
+    try:
+        return GRAMMAR[op]
+    except KeyError:
+        raise UnknownOpError(op) from None
+
+
+def _set_names(value: Mapping[str, Sequence[str]]) -> Iterator[tuple[NameKind, str, str]]:
+    for name in value.get("geometries", ()):
+        yield NameKind.GEOMETRY, name, "geometries"
+    for name in value.get("frames", ()):
+        yield NameKind.FRAME, name, "frames"
+
+
+def referenced_names(op: str, args: Mapping[str, Any]) -> Iterator[tuple[NameKind, str, str]]:
+    """(kind, name, field) for every name the command's arguments refer to (not declare)."""
+    for key, kind in spec(op).arg_kinds.items():
+        if key not in args:
+            continue
+        value = args[key]
+        if kind.refers is not None:
+            yield kind.refers, value, key
+        elif kind is ArgKind.PAIR:
+            for name in value:
+                yield NameKind.GEOMETRY, name, key
+        elif kind is ArgKind.SET:
+            for name_kind, name, _ in _set_names(value):
+                yield name_kind, name, key
+        elif kind is ArgKind.DECLARATION:
+            for i, statement in enumerate(value.get("statements", ()), 1):
+                for part in ("set", "a", "b"):
+                    for name_kind, name, _ in _set_names(statement.get(part, {})):
+                        yield name_kind, name, f"{key}.statements[{i}].{part}"
+
+
+def declared_names(op: str, args: Mapping[str, Any]) -> Iterator[tuple[NameKind, str, str]]:
+    """(kind, name, field) for every name the command declares."""
+    for key, kind in spec(op).arg_kinds.items():
+        if kind.declares is not None and key in args:
+            yield kind.declares, args[key], key

@@ -1,0 +1,74 @@
+"""Release guards: calls the harness refuses because they crash some Drake releases.
+
+Some calls end the process in some releases (a failed ``DRAKE_DEMAND``, an
+abort in the proximity engine), which would lose a whole run. A guard names
+such a call by the id of the known divergence that records the crash; the
+divergence's release range says where it crashes. A run *arms* a guard when
+any of its backends has a release in that range, and then every backend of
+the run refuses the call alike (``ErrorKind.REFUSED``), so the backends stay
+comparable and the run survives.
+
+A backend takes part by having ``arm_guards(ids)``; ``SceneGraphBackend``
+does, and checks ``guard_armed(id)`` before the calls each guard covers.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from conformance.policy.divergences import known_divergences
+from conformance.policy.versions import VersionRange
+from conformance.protocol import Backend
+
+__all__ = ["GUARDS", "Guard", "arm_guards", "armed_guards"]
+
+
+@dataclass(frozen=True)
+class Guard:
+    """A refused call: the known divergence that records the crash, and what is refused."""
+
+    divergence: str
+    refuses: str
+
+    @property
+    def releases(self) -> VersionRange:
+        for entry in known_divergences():
+            if entry.id == self.divergence:
+                return entry.releases
+        raise KeyError(f"guard names an unknown divergence {self.divergence!r}")
+
+    def message(self) -> str:
+        return f"refused ({self.divergence}): {self.refuses} aborts pydrake {self.releases}"
+
+
+#: Every guard, by the id of its known divergence.
+GUARDS: dict[str, Guard] = {
+    guard.divergence: guard
+    for guard in (
+        Guard("deactivate-anchored-aborts", "(de)activating anchored geometry"),
+        Guard(
+            "older-context-pose-port-aborts",
+            "fixing the pose port of, or cloning, a context that predates its source's port",
+        ),
+    )
+}
+
+
+def armed_guards(releases: Iterable[str]) -> frozenset[str]:
+    """The ids of the guards whose release range holds any of ``releases``."""
+    releases = tuple(releases)
+    return frozenset(
+        key for key, guard in GUARDS.items() if any(r in guard.releases for r in releases)
+    )
+
+
+def arm_guards(backends: Iterable[Backend]) -> frozenset[str]:
+    """Arms, on every backend that takes part, the guards any backend's release needs."""
+    backends = tuple(backends)
+    ids = armed_guards(b.version() for b in backends)
+    for backend in backends:
+        arm = getattr(backend, "arm_guards", None)
+        if arm is not None:
+            arm(ids)
+    return ids

@@ -1,0 +1,69 @@
+"""A step's expectations, checked against one backend's Result and Observation.
+
+An expectation holds for a backend only if the backend's Drake release lies
+in its ``since``/``until`` range. ``check`` yields ``(what, expected,
+actual)`` for every part that does not hold: the error kind and message
+prefix, the return value, and at the location ``at`` (default: the step's
+context, else the model) the exact candidate set, pairs that must be
+filtered or unfiltered, IsActive per label and ``has_transient_history``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from typing import Any
+
+from conformance.compare import format_pairs
+from conformance.corpus.loader import Step
+from conformance.protocol import MODEL, LocationState, Observation, Pair, Result, normalise_message
+
+__all__ = ["check"]
+
+
+def _pairs(raw: Iterable[Sequence[str]]) -> frozenset[Pair]:
+    return frozenset((a, b) if a < b else (b, a) for a, b in raw)
+
+
+def _check_result(expectation: Mapping[str, Any], result: Result) -> Iterator[tuple[str, Any, Any]]:
+    error = expectation.get("error")
+    if error is not None:
+        actual = result.error.to_json() if result.error else "no error"
+        if result.error is None or result.error.kind.value != error["kind"]:
+            yield "error", error, actual
+        elif not result.error.message.startswith(normalise_message(error.get("message", ""))):
+            yield "error message prefix", error, actual
+    elif result.error is not None:
+        yield "no error", None, result.error.to_json()
+    if "returns" in expectation and result.error is None and result.value != expectation["returns"]:
+        yield "return value", expectation["returns"], result.value
+
+
+def _check_state(
+    expectation: Mapping[str, Any], at: str, state: LocationState
+) -> Iterator[tuple[str, Any, Any]]:
+    if "candidates" in expectation:
+        expected = _pairs(expectation["candidates"])
+        if state.candidates != expected:
+            yield f"candidates at {at}", format_pairs(expected), format_pairs(state.candidates)
+    for key, want_in in (("filtered", False), ("unfiltered", True)):
+        for pair in _pairs(expectation.get(key, ())):
+            if (pair in state.candidates) != want_in:
+                yield f"{'-'.join(pair)} {key} at {at}", want_in, not want_in
+    for label, active in expectation.get("active", {}).items():
+        if state.active.get(label) != active:
+            yield f"IsActive({label}) at {at}", active, state.active.get(label)
+    if "history" in expectation and state.has_transient_history != expectation["history"]:
+        yield f"has_transient_history at {at}", expectation["history"], state.has_transient_history
+
+
+def check(
+    step: Step, expectation: Mapping[str, Any], result: Result, observation: Observation
+) -> Iterator[tuple[str, Any, Any]]:
+    """(what, expected, actual) for every part of ``expectation`` that does not hold."""
+    yield from _check_result(expectation, result)
+    at = expectation.get("at", step.args.get("context", MODEL))
+    state = observation.locations.get(at)
+    if state is None:
+        yield f"location {at!r} exists", at, sorted(observation.locations)
+    else:
+        yield from _check_state(expectation, at, state)

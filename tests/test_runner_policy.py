@@ -1,0 +1,74 @@
+"""The runner judges against a reference, and acts on known divergences and release guards."""
+
+from __future__ import annotations
+
+from conformance.backends.loader import load_backend
+from conformance.corpus.loader import load_corpus
+from conformance.policy.divergences import KnownDivergence, XfailMatcher
+from conformance.policy.guards import armed_guards
+from conformance.policy.versions import VersionRange
+from conformance.run.runner import Status, choose_reference, run_case
+
+MUTANT = "conformance.testing.mutants:allow_clears_invariants"
+FILE = "statements/allow_within"
+CASES = {c.qualified_name: c for f in load_corpus() for c in f.cases if f.name == FILE}
+CASE = next(c for name, c in CASES.items() if "world frame" in name)
+
+
+def divergence(cases: tuple[str, ...], releases: VersionRange) -> KnownDivergence:
+    return KnownDivergence(
+        id="test-entry",
+        kind="reimpl_vs_drake",
+        releases=releases,
+        observed="",
+        reason="",
+        scenarios=(),
+        tests=(),
+        xfail=XfailMatcher(releases=releases, cases=cases),
+    )
+
+
+def test_pydrake_is_the_reference_wherever_it_is_listed() -> None:
+    mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
+    assert choose_reference([mutant, pydrake]) is pydrake
+    assert choose_reference([mutant, pydrake], "pydrake") is pydrake
+    assert choose_reference([mutant, load_backend("reimpl")]) is mutant
+
+
+def test_a_disagreement_fails_the_backend_and_not_the_reference() -> None:
+    mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
+    report = run_case(CASE, [mutant, pydrake])
+    assert report.reference == "pydrake"
+    assert report.status == {mutant.name: Status.FAIL, "pydrake": Status.PASS}
+    assert {f.backend for f in report.failures} == {mutant.name}
+
+
+def test_a_failure_a_known_divergence_describes_is_xfail_with_its_id() -> None:
+    mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
+    entries = [divergence((f"{FILE} > *world frame*",), VersionRange(since="1.12"))]
+    report = run_case(CASE, [mutant, pydrake], divergences=entries)
+    assert report.status[mutant.name] is Status.XFAIL
+    assert report.xfails == {mutant.name: "test-entry"}
+    assert report.passed
+
+
+def test_strict_divergences_turn_xfail_back_into_failure() -> None:
+    mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
+    entries = [divergence((f"{FILE} > *",), VersionRange(since="1.12"))]
+    report = run_case(CASE, [mutant, pydrake], divergences=entries, strict_divergences=True)
+    assert report.status[mutant.name] is Status.FAIL
+
+
+def test_a_known_divergence_outside_the_reference_release_does_not_act() -> None:
+    mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
+    entries = [divergence((f"{FILE} > *",), VersionRange(since="99.0"))]
+    report = run_case(CASE, [mutant, pydrake], divergences=entries)
+    assert report.status[mutant.name] is Status.FAIL
+
+
+def test_the_anchored_deactivation_guard_is_armed_only_by_releases_1_55_to_1_58() -> None:
+    assert "deactivate-anchored-aborts" not in armed_guards(["1.51.1"])
+    assert "deactivate-anchored-aborts" in armed_guards(["1.51.1", "1.58.0"])
+    assert "deactivate-anchored-aborts" in armed_guards(["1.55.0"])
+    assert "deactivate-anchored-aborts" not in armed_guards(["1.59.0"])
+    assert "older-context-pose-port-aborts" in armed_guards(["1.51.1"])
