@@ -24,15 +24,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from hypothesis import strategies as st
 
 from conformance.fuzz import strategies as cs
-from conformance.protocol import ErrorKind
-
-if TYPE_CHECKING:
-    from conformance.fuzz.lockstep import LockstepMachine
+from conformance.protocol import ErrorKind, Result
 
 __all__ = [
     "CHOICES",
@@ -42,6 +39,7 @@ __all__ = [
     "OPERATIONS",
     "PICKS_PER_STEP",
     "Choice",
+    "Machine",
     "Operation",
 ]
 
@@ -50,6 +48,33 @@ MAX_SOURCES = 3
 MAX_CONTEXTS = 3
 #: Picks every step draws (the operations read the first ones they need).
 PICKS_PER_STEP = 4
+
+
+class Machine(Protocol):
+    """What an operation may use of the machine that runs it (``LockstepMachine`` is one).
+
+    Operations depend on this protocol, not on the state machine, so the
+    table sits below the machine in the import graph.
+    """
+
+    activation: bool
+    sources_made: int
+    contexts_made: int
+    names: dict[str, list[str]]
+
+    def step(self, op: str, **args: Any) -> Result: ...
+
+    def fresh(self, prefix: str) -> str: ...
+
+    def keep(self, bundle: str, *names: str) -> None: ...
+
+    def keep_if_made(self, bundle: str, name: str, result: Result) -> None: ...
+
+    def name(self, kind: str, pick: int) -> str | None: ...
+
+    def declaration(self, template: cs.DeclarationTemplate) -> dict[str, Any]: ...
+
+    def geometry_set(self, template: cs.SetTemplate) -> dict[str, list[str]]: ...
 
 
 @dataclass(frozen=True)
@@ -81,7 +106,7 @@ CHOICES: dict[str, Choice] = {
 }
 
 
-def _always(machine: LockstepMachine) -> bool:
+def _always(machine: Machine) -> bool:
     return True
 
 
@@ -95,17 +120,17 @@ class Operation:
 
     run: Callable[..., None]
     arguments: tuple[st.SearchStrategy[Any], ...] = ()
-    enabled: Callable[[LockstepMachine], bool] = _always
+    enabled: Callable[[Machine], bool] = _always
 
 
 # ------------------------------------------------------------ registration
-def register_source(m: LockstepMachine, picks: bytes) -> None:
+def register_source(m: Machine, picks: bytes) -> None:
     name = m.fresh("s")
     m.sources_made += 1
     m.keep_if_made("sources", name, m.step("register_source", name=name))
 
 
-def register_frame(m: LockstepMachine, picks: bytes) -> None:
+def register_frame(m: Machine, picks: bytes) -> None:
     """A new frame; one time in four under another frame's Drake name (a duplicate)."""
     parent, source, reuse = picks[:3]
     name = m.fresh("f")
@@ -119,7 +144,7 @@ def register_frame(m: LockstepMachine, picks: bytes) -> None:
     m.keep_if_made("frames", name, result)
 
 
-def register_geometries(m: LockstepMachine, picks: bytes, placements: bytes) -> None:
+def register_geometries(m: Machine, picks: bytes, placements: bytes) -> None:
     """A batch of 1-4; into a context only on a frame (never anchored there).
 
     A placement is four picks: frame, role code (``strategies.role_list``),
@@ -144,7 +169,7 @@ def register_geometries(m: LockstepMachine, picks: bytes, placements: bytes) -> 
     m.keep("geometries", *names)
 
 
-def assign_role(m: LockstepMachine, picks: bytes) -> None:
+def assign_role(m: Machine, picks: bytes) -> None:
     """AssignRole of a role (``ROLES``), with kReplace one time in two."""
     geometry, how, source, context = picks
     m.step(
@@ -160,7 +185,7 @@ def assign_role(m: LockstepMachine, picks: bytes) -> None:
 _REMOVABLE_ROLES = (*cs.ROLES, "unassigned")
 
 
-def remove_role(m: LockstepMachine, picks: bytes) -> None:
+def remove_role(m: Machine, picks: bytes) -> None:
     """RemoveRole of one geometry, or (one time in four) of every geometry on a frame."""
     which, how, source, context = picks
     kind = "frame" if how & 192 == 192 else "geometry"
@@ -173,14 +198,14 @@ def remove_role(m: LockstepMachine, picks: bytes) -> None:
     )
 
 
-def reassign_proximity(m: LockstepMachine, picks: bytes) -> None:
+def reassign_proximity(m: Machine, picks: bytes) -> None:
     """Removes the proximity role and assigns it again: the geometry starts unfiltered."""
     name, where = m.name("geometry", picks[0]), m.name("context", picks[1])
     m.step("remove_role", geometry=name, role="proximity", context=where)
     m.step("assign_role", geometry=name, role="proximity", context=where)
 
 
-def remove_geometry(m: LockstepMachine, picks: bytes) -> None:
+def remove_geometry(m: Machine, picks: bytes) -> None:
     geometry, source, context = picks[:3]
     m.step(
         "remove_geometry",
@@ -191,11 +216,11 @@ def remove_geometry(m: LockstepMachine, picks: bytes) -> None:
 
 
 # ------------------------------------------------------------ declarations
-def apply(m: LockstepMachine, picks: bytes, declaration: cs.DeclarationTemplate) -> None:
+def apply(m: Machine, picks: bytes, declaration: cs.DeclarationTemplate) -> None:
     m.step("apply", declaration=m.declaration(declaration), context=m.name("context", picks[0]))
 
 
-def apply_transient(m: LockstepMachine, picks: bytes, declaration: cs.DeclarationTemplate) -> None:
+def apply_transient(m: Machine, picks: bytes, declaration: cs.DeclarationTemplate) -> None:
     label = m.fresh("t")
     result = m.step(
         "apply_transient",
@@ -206,9 +231,7 @@ def apply_transient(m: LockstepMachine, picks: bytes, declaration: cs.Declaratio
     m.keep_if_made("filter_ids", label, result)
 
 
-def transient_round_trip(
-    m: LockstepMachine, picks: bytes, declaration: cs.DeclarationTemplate
-) -> None:
+def transient_round_trip(m: Machine, picks: bytes, declaration: cs.DeclarationTemplate) -> None:
     """ApplyTransient, then RemoveDeclaration of it: C must be as if never applied.
 
     Removing the newest declaration also re-derives the pairs it named from
@@ -223,7 +246,7 @@ def transient_round_trip(
 
 
 def stacked_transients(
-    m: LockstepMachine,
+    m: Machine,
     picks: bytes,
     first: cs.DeclarationTemplate,
     second: cs.DeclarationTemplate,
@@ -242,7 +265,7 @@ def stacked_transients(
     m.keep_if_made("filter_ids", labels[1], results[1])
 
 
-def remove_declaration(m: LockstepMachine, picks: bytes) -> None:
+def remove_declaration(m: Machine, picks: bytes) -> None:
     m.step(
         "remove_declaration",
         label=m.name("label", picks[0]),
@@ -250,15 +273,15 @@ def remove_declaration(m: LockstepMachine, picks: bytes) -> None:
     )
 
 
-def is_active(m: LockstepMachine, picks: bytes) -> None:
+def is_active(m: Machine, picks: bytes) -> None:
     m.step("is_active", label=m.name("label", picks[0]), context=m.name("context", picks[1]))
 
 
-def has_transient_history(m: LockstepMachine, picks: bytes) -> None:
+def has_transient_history(m: Machine, picks: bytes) -> None:
     m.step("has_transient_history", context=m.name("context", picks[0]))
 
 
-def collision_filtered(m: LockstepMachine, picks: bytes) -> None:
+def collision_filtered(m: Machine, picks: bytes) -> None:
     a, b, context = picks[:3]
     m.step(
         "collision_filtered",
@@ -267,34 +290,34 @@ def collision_filtered(m: LockstepMachine, picks: bytes) -> None:
     )
 
 
-def deactivate(m: LockstepMachine, picks: bytes, geometry_set: cs.SetTemplate) -> None:
+def deactivate(m: Machine, picks: bytes, geometry_set: cs.SetTemplate) -> None:
     m.step("deactivate", set=m.geometry_set(geometry_set), context=m.name("context", picks[0]))
 
 
-def activate(m: LockstepMachine, picks: bytes, geometry_set: cs.SetTemplate) -> None:
+def activate(m: Machine, picks: bytes, geometry_set: cs.SetTemplate) -> None:
     m.step("activate", set=m.geometry_set(geometry_set), context=m.name("context", picks[0]))
 
 
 # ---------------------------------------------------------------- contexts
-def create_context(m: LockstepMachine, picks: bytes) -> None:
+def create_context(m: Machine, picks: bytes) -> None:
     name = m.fresh("c")
     m.contexts_made += 1
     m.keep_if_made("contexts", name, m.step("create_context", name=name))
 
 
-def clone_context(m: LockstepMachine, picks: bytes) -> None:
+def clone_context(m: Machine, picks: bytes) -> None:
     name = m.fresh("c")
     m.contexts_made += 1
     result = m.step("clone_context", name=name, **{"from": m.name("origin", picks[0])})
     m.keep_if_made("contexts", name, result)
 
 
-def set_default_context(m: LockstepMachine, picks: bytes) -> None:
+def set_default_context(m: Machine, picks: bytes) -> None:
     m.step("set_default_context", context=m.name("origin", picks[0]))
 
 
 # ------------------------------------------------------------------- table
-def _has(bundle: str) -> Callable[[LockstepMachine], bool]:
+def _has(bundle: str) -> Callable[[Machine], bool]:
     return lambda m: bool(m.names[bundle])
 
 
