@@ -243,6 +243,8 @@ class LockstepMachine(RuleBasedStateMachine):
         self.reference.reset()
         type(self).stats.backend_seconds += time.perf_counter() - start
         self.trace: list[TraceStep] = []
+        #: How many commands of ``trace`` the last state comparison covered.
+        self._agreed_upto = 0
         self.activation = "activation" in (self.backend.features() & self.reference.features())
         #: The names of each Bundle, in the order added (what picks read).
         self.names: dict[str, list[str]] = {
@@ -356,14 +358,15 @@ class LockstepMachine(RuleBasedStateMachine):
         for unknown ones; ``strict_divergences`` makes it a Divergence.
         """
         stats = type(self).stats
-        last = self.trace[-1]
         if not self.strict_divergences:
-            known = match_step(
-                last.command, last.reference, self.backend.name, self.reference.version()
-            )
-            if known is not None:
-                stats.known[known.id] = stats.known.get(known.id, 0) + 1
-                reject()
+            # Any command since the state last agreed may be the one that diverged.
+            for item in self.trace[self._agreed_upto :]:
+                known = match_step(
+                    item.command, item.reference, self.backend.name, self.reference.version()
+                )
+                if known is not None:
+                    stats.known[known.id] = stats.known.get(known.id, 0) + 1
+                    reject()
         detail = "; ".join(str(d) for d in differences)
         divergence = Divergence(differences[0].what, detail, self.trace, want, got)
         stats.record(divergence)
@@ -376,6 +379,7 @@ class LockstepMachine(RuleBasedStateMachine):
         differences = diff_observations(want, got)
         if differences:
             self._diverge(differences, got, want)
+        self._agreed_upto = len(self.trace)
 
     # ------------------------------------------------------------- rules
     @initialize(
