@@ -10,6 +10,7 @@ for reimpl: the file records pydrake's behaviour, which reimpl matches.
 from __future__ import annotations
 
 import io
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -33,7 +34,7 @@ def test_there_are_at_least_ten_mutants() -> None:
 
 @pytest.mark.parametrize("name", sorted(MUTANTS))
 def test_fuzz_catches_the_mutant_within_300_examples_and_the_shrunk_file_replays(
-    name: str, tmp_path: Path
+    name: str, tmp_path: Path, record_property: Callable[[str, object], None]
 ) -> None:
     result = Campaign(
         backend=lambda: mutant_backend(name),
@@ -43,6 +44,7 @@ def test_fuzz_catches_the_mutant_within_300_examples_and_the_shrunk_file_replays
     ).run()
     assert len(result.divergences) == 1, f"mutant {name} survived 300 examples"
     divergence = result.divergences[0]
+    record_property("shrunk_steps", len(divergence.trace))
     assert len(divergence.trace) <= 20, "the sequence was shrunk"
     spec = f"conformance.testing.mutants:{name}"
     path = write_regression(

@@ -8,24 +8,24 @@ mutant gives, so a mutant that stops injecting its bug fails here.
 
 from __future__ import annotations
 
+import ast
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import pytest
 
 import conformance.testing.mutants
+import reimpl.geometry
+import reimpl.math
+import reimpl.systems.framework
 from conformance.backends.loader import load_backend
 from conformance.backends.pydrake_api import pydrake_api
 from conformance.backends.reimpl_api import reimpl_api
 from conformance.backends.scene_graph import SceneGraphBackend
 from conformance.protocol import MODEL, Command, ErrorKind, Observation, Result
 from conformance.testing.mutants import MUTANTS, MutantBackend, mutant_backend
-from reimpl.geometry.collision_filter import CollisionFilter
-from reimpl.geometry.collision_filter_declaration import CollisionFilterDeclaration
-from reimpl.geometry.collision_filter_manager import CollisionFilterManager
-from reimpl.geometry.geometry_state import GeometryState
-from reimpl.geometry.scene_graph import SceneGraph
 
 Run = tuple[list[Result], Observation]
 
@@ -290,22 +290,85 @@ def test_interleaved_mutant_calls_leave_plain_reimpl_unaffected(witness: Witness
     assert (mutant_results, mutant.observe()) == alone
 
 
+#: reimpl's public namespaces: the only reimpl modules a mutant may import.
+PUBLIC_REIMPL = (reimpl.geometry, reimpl.math, reimpl.systems.framework)
+
+
 @pytest.mark.parametrize("name", sorted(MUTANTS))
-def test_reimpl_classes_are_restored_after_every_mutant_call(name: str) -> None:
-    targets = (
-        CollisionFilter,
-        CollisionFilterDeclaration,
-        CollisionFilterManager,
-        GeometryState,
-        SceneGraph,
-    )
+def test_a_mutant_leaves_reimpls_public_classes_untouched(name: str) -> None:
+    targets = [
+        value
+        for module in PUBLIC_REIMPL
+        for value in vars(module).values()
+        if isinstance(value, type)
+    ]
     before = [dict(vars(t)) for t in targets]
     backend = mutant_backend(name)
-    backend.execute(frame("f"))
-    backend.execute(geometry("a", "f"))
-    backend.observe()
+    run(
+        backend,
+        [
+            frame("f"),
+            geometry("a", "f"),
+            geometry("b", "f"),
+            Command("create_context", {"name": "c"}),
+        ],
+    )
     backend.reset()
     assert [dict(vars(t)) for t in targets] == before
+
+
+@pytest.mark.parametrize("name", sorted(MUTANTS))
+def test_a_mutant_replaces_public_classes_by_subclasses_only(name: str) -> None:
+    geometry = MUTANTS[name].api().geometry
+    for public in reimpl.geometry.__all__:
+        mutated, original = getattr(geometry, public), getattr(reimpl.geometry, public)
+        assert mutated is original or issubclass(mutated, original), public
+    assert issubclass(geometry.SceneGraph, reimpl.geometry.SceneGraph)
+    assert geometry.SceneGraph is not reimpl.geometry.SceneGraph
+
+
+def test_the_mutants_module_uses_only_reimpls_public_names() -> None:
+    source = Path(conformance.testing.mutants.__file__).read_text(encoding="utf-8")
+    exported = {m.__name__: set(m.__all__) for m in PUBLIC_REIMPL}
+    tree = ast.parse(source)
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name.split(".")[0] == "reimpl":
+                    assert alias.name in exported, alias.name
+        elif isinstance(node, ast.ImportFrom):
+            module = node.module or ""
+            if module.split(".")[0] == "reimpl":
+                assert module in exported, module
+                for alias in node.names:
+                    assert not alias.name.startswith("_"), f"{module}.{alias.name}"
+                    assert alias.name in exported[module], f"{module}.{alias.name} is not exported"
+        elif isinstance(node, ast.Attribute):
+            # No private attribute of anything (reimpl's internals included) is read.
+            private = node.attr.startswith("_") and not node.attr.startswith("__")
+            assert not private, f"line {node.lineno}: .{node.attr}"
+
+
+@pytest.mark.parametrize("name", ["apply_during_history_allowed", "remove_declaration_no_replay"])
+def test_filter_ids_survive_a_mutant_re_applying_the_history(name: str) -> None:
+    """These mutants re-apply transient declarations; the caller's FilterIds still work."""
+    commands = [
+        *on_own_frames("a", "b", "c"),
+        apply_transient("t1", exclude_within(gset("a", "b"))),
+        apply_transient("t2", exclude_within(gset("b", "c"))),
+        apply(exclude_within(gset("a", "c"))),
+        remove_declaration("t2"),
+        Command("is_active", {"label": "t1"}),
+        Command("is_active", {"label": "t2"}),
+        remove_declaration("t1"),
+        remove_declaration("t1"),
+    ]
+    oracle = run(pydrake_backend(), commands)
+    mutated = run(mutant_backend(name), commands)
+    assert [r.value for r in mutated[0][-4:]] == [r.value for r in oracle[0][-4:]]
+    assert [r.value for r in oracle[0][-4:]] == [True, False, True, False]
+    assert not history(mutated)
+    assert mutated[1].locations[MODEL].active == oracle[1].locations[MODEL].active
 
 
 def test_reset_gives_the_mutant_an_empty_scene_graph() -> None:

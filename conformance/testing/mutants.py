@@ -2,13 +2,22 @@
 
 Mutation testing of the harness: a differential fuzzer that cannot tell these
 backends from real pydrake cannot be trusted to catch a real regression either.
-Each mutant is the ``reimpl`` backend with exactly one bug injected; the
-``bug`` field of its table entry says, in one sentence, what is wrong.
+Each mutant is the ``reimpl`` backend with exactly one bug; the ``bug`` field of
+its table entry says, in one sentence, what is wrong.
 
-Injection swaps attributes on reimpl's classes only while the mutant backend's
-own calls run (``reset``, ``execute``, ``observe``), then restores them, so a
-plain reimpl backend in the same process is unaffected. Backends are called
-one after another in one thread, which is what makes the swap safe.
+A mutant touches nothing inside reimpl. It is an ``Api`` whose ``geometry``
+module is a copy of ``reimpl.geometry`` in which ``SceneGraph`` (and
+``CollisionFilterDeclaration``) are replaced by subclasses of reimpl's public
+classes, and whose managers and inspectors are thin wrappers of reimpl's. The
+bug is written with pydrake's public calls only (Apply, ApplyTransient,
+RemoveDeclaration, IsActive, AssignRole, GetGeometryIds, CollisionFiltered...),
+so a change to how reimpl stores C cannot break a mutant. Nothing is
+monkeypatched: a plain reimpl backend in the same process is unaffected.
+
+What a mutant remembers about one location (the model, or one context) is kept
+by its SceneGraph per location. N.B. ``Context.Clone()`` is not a SceneGraph
+call, so a clone starts with no such memory; contexts made by
+CreateDefaultContext/SetDefaultContext start from what the model's state holds.
 
 Use a mutant as a backend spec, ``conformance.testing.mutants:<name>``, e.g.
 ``python -m conformance run --backend conformance.testing.mutants:reverse_statement_order
@@ -17,334 +26,848 @@ Use a mutant as a backend spec, ``conformance.testing.mutants:<name>``, e.g.
 
 from __future__ import annotations
 
-import weakref
+import copy
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from contextlib import ExitStack, contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from types import ModuleType
+from typing import Any, ClassVar, Self, cast
 
-import numpy as np
-
-from conformance.backends.reimpl_api import reimpl_api
-from conformance.backends.scene_graph import SceneGraphBackend
-from conformance.protocol import Command, Observation, Result
-from reimpl.geometry.collision_filter import (
-    BoolMatrix,
-    CollisionFilter,
-    ResolvedStatement,
-    Resolver,
-    Slots,
-)
-from reimpl.geometry.collision_filter_declaration import (
+import reimpl.geometry
+import reimpl.math
+from conformance.backends.reimpl_api import REIMPL_DRAKE_VERSION
+from conformance.backends.scene_graph import Api, SceneGraphBackend
+from reimpl.geometry import (
     CollisionFilterDeclaration,
-    Statement,
-    StatementOp,
+    CollisionFilterManager,
+    FilterId,
+    GeometryId,
+    GeometrySet,
+    ProximityProperties,
+    QueryObject,
+    Role,
+    RoleAssign,
+    SceneGraph,
+    SceneGraphInspector,
 )
-from reimpl.geometry.collision_filter_manager import CollisionFilterManager
-from reimpl.geometry.errors import GeometryStateError
-from reimpl.geometry.geometry_roles import Role
-from reimpl.geometry.geometry_set import GeometrySet
-from reimpl.geometry.geometry_state import WORLD_FRAME_ID, GeometryState, _Geometry
-from reimpl.geometry.identifier import FilterId, GeometryId
-from reimpl.geometry.scene_graph import SceneGraph
-from reimpl.systems.framework import Context
+from reimpl.systems.framework import Context, OutputPort
 
-__all__ = ["MUTANTS", "Mutant", "MutantBackend", "Patch", "mutant_backend"]
+__all__ = ["MUTANTS", "Mutant", "MutantBackend", "mutant_backend"]
 
-#: One attribute swap: (target class or module, attribute name, replacement).
-Patch = tuple[object, str, object]
-
-_MISSING = object()
+#: A pair of proximity geometries, the smaller id value first (as GetCollisionCandidates).
+Pair = tuple[GeometryId, GeometryId]
 
 
-@contextmanager
-def _swapped(patches: Sequence[Patch]) -> Iterator[None]:
-    """Sets each attribute for the duration of the block, then restores the original."""
-
-    def restore(target: object, name: str, original: object) -> None:
-        if original is _MISSING:
-            delattr(target, name)
-        else:
-            setattr(target, name, original)
-
-    with ExitStack() as stack:
-        for target, name, replacement in patches:
-            stack.callback(restore, target, name, vars(target).get(name, _MISSING))
-            setattr(target, name, replacement)
-        yield
+def _pair(a: GeometryId, b: GeometryId) -> Pair:
+    return (a, b) if a.get_value() < b.get_value() else (b, a)
 
 
+def _context_of(args: Sequence[Any], kwargs: dict[str, Any]) -> Context | None:
+    """The ``context`` argument of a SceneGraph call, or None for the model."""
+    if "context" in kwargs:
+        return cast(Context, kwargs["context"])
+    return next((a for a in args if isinstance(a, Context)), None)
+
+
+# ------------------------------------------------------------ declarations
 @dataclass(frozen=True)
-class Mutant:
-    """One injected bug: its name, what is wrong, and the swaps that inject it.
+class Statement:
+    """One statement as the caller made it: the method's name and its sets."""
 
-    ``patches`` is called once per backend, so state a bug needs (what it
-    remembers between calls) lives in that backend's closures.
-    """
+    method: str  # "ExcludeWithin", "AllowBetween", ...
+    set_A: GeometrySet
+    set_B: GeometrySet
 
-    name: str
-    bug: str
-    patches: Callable[[], list[Patch]]
+    @property
+    def filters(self) -> bool:
+        return self.method.startswith("Exclude")
 
+    @property
+    def within(self) -> bool:
+        return self.method.endswith("Within")
 
-class MutantBackend(SceneGraphBackend):
-    """The reimpl backend, with ``mutant``'s patches in force during its own calls."""
+    def sets(self) -> tuple[GeometrySet, ...]:
+        return (self.set_A,) if self.within else (self.set_A, self.set_B)
 
-    def __init__(self, mutant: Mutant) -> None:
-        self.mutant = mutant
-        self._patches = mutant.patches()
-        super().__init__(reimpl_api())  # Calls reset(), which needs the patches.
-        self.name = f"mutant:{mutant.name}"
+    def add_to(self, declaration: CollisionFilterDeclaration) -> None:
+        if self.within:
+            getattr(declaration, self.method)(geometry_set=self.set_A)
+        else:
+            getattr(declaration, self.method)(set_A=self.set_A, set_B=self.set_B)
 
-    def reset(self) -> None:
-        with _swapped(self._patches):
-            super().reset()
-
-    def execute(self, command: Command) -> Result:
-        with _swapped(self._patches):
-            return super().execute(command)
-
-    def observe(self) -> Observation:
-        with _swapped(self._patches):
-            return super().observe()
+    def mapped(self, edit: Callable[[GeometrySet], GeometrySet]) -> Statement:
+        a = edit(self.set_A)
+        return Statement(self.method, a, a if self.within else edit(self.set_B))
 
 
-# ------------------------------------------------------------------ helpers
-def _names_frames(statement: Statement) -> bool:
-    return bool(statement.set_A.frame_ids() or statement.set_B.frame_ids())
+class RecordingDeclaration(CollisionFilterDeclaration):
+    """reimpl's declaration, which also keeps its statements where a mutant can read them."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.arguments = (args, kwargs)
+        self.recorded: list[Statement] = []
+
+    def record(self, method: str, set_A: GeometrySet, set_B: GeometrySet) -> None:
+        self.recorded.append(Statement(method, copy.copy(set_A), copy.copy(set_B)))
+
+    def AllowBetween(self, set_A: GeometrySet, set_B: GeometrySet) -> Self:
+        result = super().AllowBetween(set_A=set_A, set_B=set_B)
+        self.record("AllowBetween", set_A, set_B)
+        return result
+
+    def AllowWithin(self, geometry_set: GeometrySet) -> Self:
+        result = super().AllowWithin(geometry_set=geometry_set)
+        self.record("AllowWithin", geometry_set, geometry_set)
+        return result
+
+    def ExcludeBetween(self, set_A: GeometrySet, set_B: GeometrySet) -> Self:
+        result = super().ExcludeBetween(set_A=set_A, set_B=set_B)
+        self.record("ExcludeBetween", set_A, set_B)
+        return result
+
+    def ExcludeWithin(self, geometry_set: GeometrySet) -> Self:
+        result = super().ExcludeWithin(geometry_set=geometry_set)
+        self.record("ExcludeWithin", geometry_set, geometry_set)
+        return result
 
 
-def _filtered_set(
-    geometry_set: GeometrySet, keep_geometry: Callable[[GeometryId], bool], keep_world: bool
-) -> GeometrySet:
-    out = GeometrySet()
-    out.Add(
-        geometry_ids=[g for g in geometry_set.geometry_ids() if keep_geometry(g)],
-        frame_ids=[f for f in geometry_set.frame_ids() if keep_world or f != WORLD_FRAME_ID],
-    )
+def _statements(declaration: CollisionFilterDeclaration) -> list[Statement]:
+    if not isinstance(declaration, RecordingDeclaration):
+        raise TypeError("a mutant needs declarations made by its own CollisionFilterDeclaration")
+    return declaration.recorded
+
+
+def _declaration(like: CollisionFilterDeclaration, statements: Iterable[Statement]) -> Any:
+    """A new declaration with ``like``'s scope and the given statements."""
+    args, kwargs = like.arguments if isinstance(like, RecordingDeclaration) else ((), {})
+    out = RecordingDeclaration(*args, **kwargs)
+    for statement in statements:
+        statement.add_to(out)
     return out
 
 
-def _partners(matrix: BoolMatrix, cf: CollisionFilter, slot: int) -> list[GeometryId]:
-    """The registered geometries paired with ``slot`` in ``matrix``."""
-    return [cf._id_at[s] for s in np.flatnonzero(matrix[slot]) if s != slot and cf._registered[s]]
+@dataclass(frozen=True)
+class Resolved:
+    """A statement resolved to proximity geometry ids (as Drake resolves it, once)."""
+
+    filters: bool
+    ids_A: frozenset[GeometryId]
+    ids_B: frozenset[GeometryId]
+    within: bool
+
+    def mentioned(self) -> frozenset[GeometryId]:
+        return self.ids_A | self.ids_B
+
+    def pairs(self) -> Iterator[Pair]:
+        for a in self.ids_A:
+            for b in self.ids_B:
+                if a != b:
+                    yield _pair(a, b)
+
+    def kept(self, keep: Callable[[GeometryId], bool]) -> Resolved:
+        return Resolved(
+            self.filters,
+            frozenset(filter(keep, self.ids_A)),
+            frozenset(filter(keep, self.ids_B)),
+            self.within,
+        )
+
+    def statement(self) -> Statement:
+        a = GeometrySet(geometry_ids=sorted(self.ids_A, key=GeometryId.get_value))
+        b = GeometrySet(geometry_ids=sorted(self.ids_B, key=GeometryId.get_value))
+        if self.within:
+            return Statement("ExcludeWithin" if self.filters else "AllowWithin", a, a)
+        return Statement("ExcludeBetween" if self.filters else "AllowBetween", a, b)
+
+
+# ---------------------------------------------------------------- wrappers
+class Manager:
+    """Wraps reimpl's CollisionFilterManager for one location; mutants override its methods.
+
+    Also the bookkeeping some mutants need, all with public calls: the resolved
+    statements of every transient declaration, and the FilterIds that stand
+    for one another when a mutant re-applies transient declarations.
+    """
+
+    def __init__(self, graph: MutantSceneGraph, inner: CollisionFilterManager, context: Any):
+        self.graph = graph
+        self.inner = inner
+        self.context = context
+
+    @property
+    def memory(self) -> Any:
+        return self.graph.memory_of(self.context)
+
+    def inspector(self) -> SceneGraphInspector:
+        return self.graph.real_inspector(self.context)
+
+    def resolve(self, statements: Iterable[Statement]) -> tuple[Resolved, ...]:
+        inspector = self.inspector()
+
+        def ids(geometry_set: GeometrySet) -> frozenset[GeometryId]:
+            return frozenset(
+                inspector.GetGeometryIds(geometry_set=geometry_set, role=Role.kProximity)
+            )
+
+        out = []
+        for s in statements:
+            ids_A = ids(s.set_A)
+            out.append(Resolved(s.filters, ids_A, ids_A if s.within else ids(s.set_B), s.within))
+        return tuple(out)
+
+    # ------------------------------------------------ the pydrake methods
+    def Apply(self, declaration: CollisionFilterDeclaration) -> None:
+        self.inner.Apply(declaration=declaration)
+
+    def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
+        filter_id = self.inner.ApplyTransient(declaration=declaration)
+        self.graph.transients[filter_id] = self.resolve(_statements(declaration))
+        return filter_id
+
+    def RemoveDeclaration(self, filter_id: FilterId) -> bool:
+        return self.inner.RemoveDeclaration(filter_id=self.current(filter_id))
+
+    def IsActive(self, filter_id: FilterId) -> bool:
+        return self.inner.IsActive(filter_id=self.current(filter_id))
+
+    def has_transient_history(self) -> bool:
+        return self.inner.has_transient_history()
+
+    def Activate(self, geometry_set: GeometrySet) -> None:
+        self.inner.Activate(geometry_set=geometry_set)
+
+    def Deactivate(self, geometry_set: GeometrySet) -> None:
+        self.inner.Deactivate(geometry_set=geometry_set)
+
+    # ------------------------------------------------------- FilterIds
+    def current(self, filter_id: FilterId) -> FilterId:
+        """The FilterId that stands for ``filter_id`` here (itself unless re-applied)."""
+        queue = [filter_id]
+        while queue:
+            candidate = queue.pop(0)
+            if self.inner.IsActive(filter_id=candidate):
+                return candidate
+            queue.extend(self.graph.successors.get(candidate, ()))
+        return filter_id
+
+    def active_history(self) -> list[FilterId]:
+        """The active transient declarations here, oldest first."""
+        known = sorted(self.graph.transients, key=FilterId.get_value)
+        return [f for f in known if self.inner.IsActive(filter_id=f)]
+
+    def lifting_history(
+        self,
+        action: Callable[[], object],
+        *,
+        skip: FilterId | None = None,
+        restrict: frozenset[GeometryId] = frozenset(),
+    ) -> None:
+        """Removes every transient declaration, runs ``action``, then re-applies them.
+
+        The declaration ``skip`` is not re-applied, and re-applied ones no longer
+        mention the geometries in ``restrict``. Each re-applied declaration gets
+        a new FilterId, which stands in for the old one from then on.
+        """
+        history = self.active_history()
+        for filter_id in reversed(history):
+            self.inner.RemoveDeclaration(filter_id=filter_id)
+        try:
+            action()
+        finally:
+            live = set(self.inspector().GetAllGeometryIds(role=Role.kProximity)) - restrict
+            for old in history:
+                if old == skip:
+                    continue
+                resolved = tuple(r.kept(live.__contains__) for r in self.graph.transients[old])
+                declaration = _declaration(
+                    CollisionFilterDeclaration(), (r.statement() for r in resolved)
+                )
+                new = self.inner.ApplyTransient(declaration=declaration)
+                self.graph.transients[new] = resolved
+                self.graph.successors.setdefault(old, []).append(new)
+
+
+class Inspector:
+    """Wraps reimpl's SceneGraphInspector; mutants override its filtering queries."""
+
+    def __init__(self, graph: MutantSceneGraph, inner: SceneGraphInspector, context: Any):
+        self.graph = graph
+        self.inner = inner
+        self.context = context
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.inner, name)
+
+    def GetCollisionCandidates(self) -> set[Pair]:
+        return self.inner.GetCollisionCandidates()
+
+    def CollisionFiltered(self, geometry_id1: GeometryId, geometry_id2: GeometryId) -> bool:
+        return self.inner.CollisionFiltered(geometry_id1=geometry_id1, geometry_id2=geometry_id2)
+
+
+class _Query:
+    """A QueryObject whose inspector() is the mutant's."""
+
+    def __init__(self, graph: MutantSceneGraph, inner: QueryObject, context: Context) -> None:
+        self.graph, self.inner, self.context = graph, inner, context
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.inner, name)
+
+    def inspector(self) -> Any:
+        return self.graph.inspector_class(self.graph, self.inner.inspector(), self.context)
+
+
+class _QueryPort:
+    """The query output port, evaluating to the mutant's QueryObject."""
+
+    def __init__(self, graph: MutantSceneGraph, inner: OutputPort) -> None:
+        self.graph, self.inner = graph, inner
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.inner, name)
+
+    def Eval(self, context: Context) -> Any:
+        return _Query(self.graph, self.inner.Eval(context), context)
+
+
+class MutantSceneGraph(SceneGraph):
+    """reimpl's SceneGraph, handing out the mutant's managers and inspectors.
+
+    ``memory_of(context)`` is what the mutant remembers about one location
+    (None: the model); subclasses say what a fresh one is (``new_memory``).
+    """
+
+    manager_class: ClassVar[type[Manager]] = Manager
+    inspector_class: ClassVar[type[Inspector]] = Inspector
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.memories: dict[Context | None, Any] = {}
+        #: Every transient declaration made through a mutant manager, resolved.
+        self.transients: dict[FilterId, tuple[Resolved, ...]] = {}
+        #: A re-applied declaration's old FilterId → the new ones.
+        self.successors: dict[FilterId, list[FilterId]] = {}
+
+    def new_memory(self) -> Any:
+        return None
+
+    def memory_for_new_context(self) -> Any:
+        """A new context's memory: by default it remembers nothing."""
+        return self.new_memory()
+
+    def memory_of(self, context: Context | None) -> Any:
+        if context not in self.memories:
+            self.memories[context] = self.new_memory()
+        return self.memories[context]
+
+    def real_inspector(self, context: Context | None) -> SceneGraphInspector:
+        if context is None:
+            return super().model_inspector()
+        return cast(SceneGraphInspector, super().get_query_output_port().Eval(context).inspector())
+
+    def real_manager(self, context: Context | None) -> CollisionFilterManager:
+        if context is None:
+            return super().collision_filter_manager()
+        return super().collision_filter_manager(context=context)
+
+    def manager(self, context: Context | None) -> Manager:
+        return self.manager_class(self, self.real_manager(context), context)
+
+    # ------------------------------------------------ the pydrake methods
+    def collision_filter_manager(self, *args: Any, **kwargs: Any) -> CollisionFilterManager:
+        inner = super().collision_filter_manager(*args, **kwargs)
+        return cast(
+            CollisionFilterManager, self.manager_class(self, inner, _context_of(args, kwargs))
+        )
+
+    def model_inspector(self) -> SceneGraphInspector:
+        return cast(
+            SceneGraphInspector, self.inspector_class(self, super().model_inspector(), None)
+        )
+
+    def get_query_output_port(self) -> OutputPort:
+        return cast(OutputPort, _QueryPort(self, super().get_query_output_port()))
+
+    def CreateDefaultContext(self) -> Context:
+        context = super().CreateDefaultContext()
+        self.memories[context] = self.memory_for_new_context()
+        return context
+
+    def SetDefaultContext(self, context: Context) -> None:
+        super().SetDefaultContext(context=context)
+        self.memories[context] = self.memory_for_new_context()
 
 
 # ------------------------------------------------------------------ mutants
-def _allow_clears_invariants() -> list[Patch]:
-    original = CollisionFilter._apply_to
-
-    def _apply_to(
-        self: CollisionFilter,
-        target: BoolMatrix,
-        statements: Sequence[Statement],
-        resolve: Resolver,
-    ) -> tuple[ResolvedStatement, ...]:
-        resolved = original(self, target, statements, resolve)
-        if target is not self._invariant:
-            for item in resolved:
-                if not item.op.filters:
-                    a, b = item.slots_A, item.slots_B
-                    self._invariant[np.ix_(a, b)] = False
-                    self._invariant[np.ix_(b, a)] = False
-        return resolved
-
-    return [(CollisionFilter, "_apply_to", _apply_to)]
+class _AllowBetweenDeclaration(RecordingDeclaration):
+    def AllowBetween(self, set_A: GeometrySet, set_B: GeometrySet) -> Self:
+        super().AllowBetween(set_A=set_A, set_B=set_B)
+        super().AllowWithin(geometry_set=set_A)
+        return super().AllowWithin(geometry_set=set_B)
 
 
-def _allow_between_clears_within() -> list[Patch]:
-    original = CollisionFilter._resolve
+class _ReversingManager(Manager):
+    def Apply(self, declaration: CollisionFilterDeclaration) -> None:
+        super().Apply(_declaration(declaration, reversed(_statements(declaration))))
 
-    def _resolve(
-        self: CollisionFilter, statement: Statement, resolve: Resolver
-    ) -> ResolvedStatement:
-        item = original(self, statement, resolve)
-        if item.op is not StatementOp.kAllowBetween:
-            return item
-        both = np.union1d(item.slots_A, item.slots_B)
-        return ResolvedStatement(item.op, both, both)
-
-    return [(CollisionFilter, "_resolve", _resolve)]
+    def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
+        return super().ApplyTransient(_declaration(declaration, reversed(_statements(declaration))))
 
 
-def _reverse_statement_order() -> list[Patch]:
-    original = CollisionFilterDeclaration.statements
+class ReverseStatementOrder(MutantSceneGraph):
+    """The manager hands reimpl a copy of the declaration with its statements reversed."""
 
-    def statements(self: CollisionFilterDeclaration) -> tuple[Statement, ...]:
-        return original(self)[::-1]
-
-    return [(CollisionFilterDeclaration, "statements", statements)]
+    manager_class = _ReversingManager
 
 
-def _lazy_frame_resolution() -> list[Patch]:
-    original_apply = CollisionFilterManager.Apply
-    original_assign = GeometryState._assign_proximity
-    recorded: weakref.WeakKeyDictionary[GeometryState, list[Statement]] = (
-        weakref.WeakKeyDictionary()
-    )
-
-    def Apply(self: CollisionFilterManager, declaration: CollisionFilterDeclaration) -> None:
-        original_apply(self, declaration)
-        named = [s for s in declaration.statements() if _names_frames(s)]
-        recorded.setdefault(self._state, []).extend(named)
-
-    def _assign_proximity(self: GeometryState, geometry: _Geometry) -> None:
-        original_assign(self, geometry)
-        statements = recorded.get(self)
-        if statements and not self.collision_filter.has_transient_history():
-            live = set(self.geometry_ids())
-
-            def resolve(geometry_set: GeometrySet) -> list[GeometryId]:
-                return self.collect_ids(_filtered_set(geometry_set, live.__contains__, True))
-
-            self.collision_filter.apply(statements, resolve)
-
-    return [
-        (CollisionFilterManager, "Apply", Apply),
-        (GeometryState, "_assign_proximity", _assign_proximity),
-    ]
+class _LazyManager(Manager):
+    def Apply(self, declaration: CollisionFilterDeclaration) -> None:
+        super().Apply(declaration)
+        self.memory.extend(
+            s for s in _statements(declaration) if any(x.num_frames() for x in s.sets())
+        )
 
 
-def _remove_declaration_no_replay() -> list[Patch]:
-    original = CollisionFilter._rederive
+class LazyFrameResolution(MutantSceneGraph):
+    """Remembers persistent statements naming a frame and re-applies them on AssignRole.
 
-    def _rederive(self: CollisionFilter, slots: Slots) -> None:
-        history, self._history = self._history, []
-        try:
-            original(self, slots)
-        finally:
-            self._history = history
+    Like a GeometryState that resolves frames lazily: once a geometry gets the
+    proximity role (and no transient declaration is active), every remembered
+    statement is applied again, to the geometries that are still registered.
+    """
 
-    return [(CollisionFilter, "_rederive", _rederive)]
+    manager_class = _LazyManager
 
+    def new_memory(self) -> list[Statement]:
+        return []
 
-def _context_managers_write_model() -> list[Patch]:
-    def _context_manager(self: SceneGraph, context: Context) -> CollisionFilterManager:
-        self._state_of(context)
-        return self._model_manager()
-
-    return [(SceneGraph, "_context_manager", _context_manager)]
-
-
-def _non_proximity_ids_raise() -> list[Patch]:
-    original = GeometryState.collect_ids
-
-    def collect_ids(self: GeometryState, geometry_set: GeometrySet) -> list[GeometryId]:
-        ids = original(self, geometry_set)
-        for geometry_id in geometry_set.geometry_ids():
-            if not self.has_role(geometry_id, Role.kProximity):
-                raise GeometryStateError(
-                    f"Geometry set includes geometry {geometry_id.get_value()}, "
-                    "which has no proximity role"
-                )
-        return ids
-
-    return [(GeometryState, "collect_ids", collect_ids)]
-
-
-def _apply_during_history_allowed() -> list[Patch]:
-    original = CollisionFilter.apply
-
-    def apply(
-        self: CollisionFilter,
-        statements: Sequence[Statement],
-        resolve: Resolver,
-        *,
-        is_invariant: bool = False,
-    ) -> None:
-        if is_invariant:
-            original(self, statements, resolve, is_invariant=True)
+    def AssignRole(self, *args: Any, **kwargs: Any) -> None:
+        super().AssignRole(*args, **kwargs)
+        if not isinstance(kwargs.get("properties"), ProximityProperties):
             return
-        history, self._history = self._history, []
-        try:
-            original(self, statements, resolve)
-        finally:
-            self._history = history
-
-    return [(CollisionFilter, "apply", apply)]
-
-
-def _role_reassign_keeps_filters() -> list[Patch]:
-    original_add = CollisionFilter.add_geometry
-    original_remove = CollisionFilter.remove_geometry
-    # Per filter: a removed geometry's partners in (base, composite).
-    memory: weakref.WeakKeyDictionary[
-        CollisionFilter, dict[GeometryId, tuple[list[GeometryId], list[GeometryId]]]
-    ] = weakref.WeakKeyDictionary()
-
-    def remove_geometry(self: CollisionFilter, geometry_id: GeometryId) -> None:
-        slot = self._slot_of[geometry_id]
-        partners = (_partners(self._base, self, slot), _partners(self._composite, self, slot))
-        memory.setdefault(self, {})[geometry_id] = partners
-        original_remove(self, geometry_id)
-
-    def add_geometry(self: CollisionFilter, geometry_id: GeometryId) -> None:
-        original_add(self, geometry_id)
-        remembered = memory.get(self, {}).pop(geometry_id, None)
-        if remembered is None:
+        if kwargs.get("assign") is RoleAssign.kReplace:
             return
-        slot = self._slot_of[geometry_id]
-        for matrix, partners in zip((self._base, self._composite), remembered, strict=True):
-            for other in (self._slot_of[p] for p in partners if p in self._slot_of):
-                matrix[slot, other] = matrix[other, slot] = True
+        context = _context_of(args, kwargs)
+        remembered: list[Statement] = self.memory_of(context)
+        manager = self.real_manager(context)
+        if not remembered or manager.has_transient_history():
+            return
+        live = set(self.real_inspector(context).GetAllGeometryIds())
 
-    return [
-        (CollisionFilter, "add_geometry", add_geometry),
-        (CollisionFilter, "remove_geometry", remove_geometry),
-    ]
+        def registered(geometry_set: GeometrySet) -> GeometrySet:
+            return GeometrySet(
+                geometry_ids=[g for g in geometry_set.geometry_ids() if g in live],
+                frame_ids=list(geometry_set.frame_ids()),
+            )
+
+        again = [s.mapped(registered) for s in remembered]
+        manager.Apply(declaration=_declaration(CollisionFilterDeclaration(), again))
 
 
-def _stale_has_transient_history() -> list[Patch]:
-    original = CollisionFilter.apply_transient
-    ever: weakref.WeakSet[CollisionFilter] = weakref.WeakSet()
+class _NoReplayManager(Manager):
+    def RemoveDeclaration(self, filter_id: FilterId) -> bool:
+        current = self.current(filter_id)
+        if not self.inner.IsActive(filter_id=current):
+            return self.inner.RemoveDeclaration(filter_id=current)
+        mentioned: frozenset[GeometryId] = frozenset()
+        for item in self.graph.transients[current]:
+            mentioned |= item.mentioned()
+        self.lifting_history(lambda: None, skip=current, restrict=mentioned)
+        return True
 
-    def apply_transient(
-        self: CollisionFilter, statements: Sequence[Statement], resolve: Resolver
-    ) -> FilterId:
-        filter_id = original(self, statements, resolve)
-        ever.add(self)
+
+class RemoveDeclarationNoReplay(MutantSceneGraph):
+    """RemoveDeclaration drops the removed declaration's geometries from the remaining ones.
+
+    So the pairs of the geometries it mentioned fall back to the persistent
+    base, as if C were re-derived there without replaying the history.
+    """
+
+    manager_class = _NoReplayManager
+
+
+class ContextManagersWriteModel(MutantSceneGraph):
+    """collision_filter_manager(context) checks the context, then returns the model's manager."""
+
+    def collision_filter_manager(self, *args: Any, **kwargs: Any) -> CollisionFilterManager:
+        if _context_of(args, kwargs) is not None:
+            super().collision_filter_manager(*args, **kwargs)  # The same checks.
+        return super().collision_filter_manager()
+
+
+class _StrictManager(Manager):
+    def check(self, sets: Iterable[GeometrySet]) -> None:
+        """Raises at the first registered geometry without the proximity role.
+
+        N.B. An unknown id met first is left for reimpl to report.
+        """
+        inspector = self.inspector()
+        for geometry_set in sets:
+            try:
+                inspector.GetGeometryIds(geometry_set=geometry_set)
+            except (RuntimeError, ValueError, IndexError):
+                return
+            for geometry_id in geometry_set.geometry_ids():
+                if inspector.GetProximityProperties(geometry_id=geometry_id) is None:
+                    raise RuntimeError(
+                        f"Geometry set includes geometry {geometry_id.get_value()}, "
+                        "which has no proximity role"
+                    )
+
+    def statement_sets(self, declaration: CollisionFilterDeclaration) -> Iterator[GeometrySet]:
+        for statement in _statements(declaration):
+            yield from statement.sets()
+
+    def Apply(self, declaration: CollisionFilterDeclaration) -> None:
+        self.check(self.statement_sets(declaration))
+        super().Apply(declaration)
+
+    def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
+        self.check(self.statement_sets(declaration))
+        return super().ApplyTransient(declaration)
+
+    def Activate(self, geometry_set: GeometrySet) -> None:
+        self.check([geometry_set])
+        super().Activate(geometry_set)
+
+    def Deactivate(self, geometry_set: GeometrySet) -> None:
+        self.check([geometry_set])
+        super().Deactivate(geometry_set)
+
+
+class NonProximityIdsRaise(MutantSceneGraph):
+    """The manager checks every set for geometries without the proximity role.
+
+    N.B. reimpl's own check runs first, so unknown ids are reported as before;
+    but statements before the offending one are not applied (reimpl would have
+    written them to C before it failed).
+    """
+
+    manager_class = _StrictManager
+
+
+class _PermissiveManager(Manager):
+    def Apply(self, declaration: CollisionFilterDeclaration) -> None:
+        if not self.inner.has_transient_history():
+            super().Apply(declaration)
+            return
+        self.lifting_history(lambda: self.inner.Apply(declaration=declaration))
+
+
+class ApplyDuringHistoryAllowed(MutantSceneGraph):
+    """Apply under transient history lifts the history, applies, and re-applies it."""
+
+    manager_class = _PermissiveManager
+
+
+@dataclass
+class _Partners:
+    """Per location: a geometry whose proximity role was removed → its filtered partners."""
+
+    of: dict[GeometryId, list[GeometryId]] = field(default_factory=dict)
+
+
+class RoleReassignKeepsFilters(MutantSceneGraph):
+    """Remembers a geometry's filtered pairs when its proximity role goes; re-excludes them.
+
+    N.B. Filtered pairs are read through CollisionFiltered, so a pair filtered
+    only by a transient declaration comes back as a persistent one.
+    """
+
+    def new_memory(self) -> _Partners:
+        return _Partners()
+
+    def proximity(self, context: Context | None) -> set[GeometryId]:
+        return set(self.real_inspector(context).GetAllGeometryIds(role=Role.kProximity))
+
+    def RemoveRole(self, *args: Any, **kwargs: Any) -> int:
+        context = _context_of(args, kwargs)
+        memory: _Partners = self.memory_of(context)
+        if kwargs.get("role") is not Role.kProximity:
+            return super().RemoveRole(*args, **kwargs)
+        inspector = self.real_inspector(context)
+        before = self.proximity(context)
+        losing: set[GeometryId] = set()
+        try:
+            if "frame_id" in kwargs:
+                named = GeometrySet(frame_id=kwargs["frame_id"])
+                losing = set(inspector.GetGeometryIds(geometry_set=named))
+            else:
+                losing = {kwargs["geometry_id"]}
+        except (RuntimeError, ValueError, IndexError, KeyError):
+            pass
+        partners: dict[GeometryId, list[GeometryId]] = {}
+        for g in losing & before:
+            frame = inspector.GetFrameId(geometry_id=g)
+            partners[g] = [
+                h
+                for h in before
+                if h != g
+                and inspector.GetFrameId(geometry_id=h) != frame
+                and inspector.CollisionFiltered(geometry_id1=g, geometry_id2=h)
+            ]
+        count = super().RemoveRole(*args, **kwargs)
+        for g in before - self.proximity(context):
+            memory.of[g] = partners.get(g, [])
+        return count
+
+    def AssignRole(self, *args: Any, **kwargs: Any) -> None:
+        context = _context_of(args, kwargs)
+        memory: _Partners = self.memory_of(context)
+        geometry_id = kwargs.get("geometry_id")
+        try:
+            super().AssignRole(*args, **kwargs)
+        finally:
+            # N.B. Under transient history reimpl raises after the role is assigned.
+            if geometry_id in memory.of and geometry_id in (live := self.proximity(context)):
+                again = [h for h in memory.of.pop(geometry_id) if h in live]
+                if again:
+                    self.restore(context, geometry_id, again)
+
+    def restore(self, context: Context | None, g: GeometryId, partners: list[GeometryId]) -> None:
+        manager = self.manager(context)
+        declaration = CollisionFilterDeclaration().ExcludeBetween(
+            set_A=GeometrySet(geometry_id=g), set_B=GeometrySet(geometry_ids=partners)
+        )
+        if manager.has_transient_history():
+            manager.lifting_history(lambda: manager.inner.Apply(declaration=declaration))
+        else:
+            manager.inner.Apply(declaration=declaration)
+
+
+class _StaleManager(Manager):
+    def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
+        filter_id = super().ApplyTransient(declaration)
+        self.memory.append(True)
         return filter_id
 
-    def has_transient_history(self: CollisionFilter) -> bool:
-        return bool(self._history) or self in ever
-
-    return [
-        (CollisionFilter, "apply_transient", apply_transient),
-        (CollisionFilter, "has_transient_history", has_transient_history),
-    ]
+    def has_transient_history(self) -> bool:
+        return super().has_transient_history() or bool(self.memory)
 
 
-def _world_frame_resolves_nothing() -> list[Patch]:
-    # Only declarations applied through a manager are affected: the invariant
-    # statements GeometryState writes for anchored geometry still see the world.
-    def world_blind(state: GeometryState) -> Callable[[GeometrySet], Iterable[GeometryId]]:
-        def resolve(geometry_set: GeometrySet) -> list[GeometryId]:
-            return state.collect_ids(_filtered_set(geometry_set, lambda _: True, False))
+class StaleHasTransientHistory(MutantSceneGraph):
+    """The manager answers has_transient_history() with "was there ever one here"."""
 
-        return resolve
+    manager_class = _StaleManager
 
-    def Apply(self: CollisionFilterManager, declaration: CollisionFilterDeclaration) -> None:
-        state = self._state
-        state.collision_filter.apply(declaration.statements(), world_blind(state))
-
-    def ApplyTransient(
-        self: CollisionFilterManager, declaration: CollisionFilterDeclaration
-    ) -> FilterId:
-        state = self._state
-        return state.collision_filter.apply_transient(declaration.statements(), world_blind(state))
-
-    return [
-        (CollisionFilterManager, "Apply", Apply),
-        (CollisionFilterManager, "ApplyTransient", ApplyTransient),
-    ]
+    def new_memory(self) -> list[bool]:
+        return []
 
 
-def _no_same_frame_invariant() -> list[Patch]:
-    def _assign_proximity(self: GeometryState, geometry: _Geometry) -> None:
-        self.collision_filter.add_geometry(geometry.id)
-        # An empty invariant Apply keeps the transient-history error, and writes nothing.
-        self.collision_filter.apply([], self.collect_ids, is_invariant=True)
+class _WorldBlindManager(Manager):
+    def world_blind(self, declaration: CollisionFilterDeclaration) -> Any:
+        world = self.graph.world_frame_id()
 
-    return [(GeometryState, "_assign_proximity", _assign_proximity)]
+        def without_world(geometry_set: GeometrySet) -> GeometrySet:
+            return GeometrySet(
+                geometry_ids=list(geometry_set.geometry_ids()),
+                frame_ids=[f for f in geometry_set.frame_ids() if f != world],
+            )
+
+        return _declaration(
+            declaration, (s.mapped(without_world) for s in _statements(declaration))
+        )
+
+    def Apply(self, declaration: CollisionFilterDeclaration) -> None:
+        super().Apply(self.world_blind(declaration))
+
+    def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
+        return super().ApplyTransient(self.world_blind(declaration))
+
+
+class WorldFrameResolvesNothing(MutantSceneGraph):
+    """The manager drops the world frame from every set before reimpl resolves it.
+
+    Only declarations applied through a manager are affected: the invariant
+    pairs reimpl writes for anchored geometry still see the world.
+    """
+
+    manager_class = _WorldBlindManager
+
+
+# -------------------------------- same-frame pairs: C minus the invariant
+@dataclass
+class _SameFrameLedger:
+    """Per location: what user declarations say about pairs on one frame.
+
+    reimpl's public API never shows whether such a pair is filtered by a
+    declaration, since the invariant hides it; these mutants keep the record.
+    """
+
+    #: Pair → filtered, from persistent declarations.
+    base: dict[Pair, bool] = field(default_factory=dict)
+    #: FilterId → (pair → filtered), in history order.
+    transient: dict[FilterId, dict[Pair, bool]] = field(default_factory=dict)
+    #: Pairs that lost their invariant (allow_clears_invariants).
+    cleared: set[Pair] = field(default_factory=set)
+
+    def copy(self) -> _SameFrameLedger:
+        return _SameFrameLedger(dict(self.base), dict(self.transient), set(self.cleared))
+
+    def filtered(self, pair: Pair, manager: Manager) -> bool:
+        value = self.base.get(pair, False)
+        for filter_id, pairs in self.transient.items():
+            if pair in pairs and manager.inner.IsActive(filter_id=filter_id):
+                value = pairs[pair]
+        return value
+
+    def forget(self, live: set[GeometryId]) -> None:
+        def keep(pairs: dict[Pair, bool]) -> dict[Pair, bool]:
+            return {p: v for p, v in pairs.items() if p[0] in live and p[1] in live}
+
+        self.base = keep(self.base)
+        self.transient = {f: keep(pairs) for f, pairs in self.transient.items()}
+        self.cleared = {p for p in self.cleared if p[0] in live and p[1] in live}
+
+
+class _LedgerManager(Manager):
+    def same_frame(self, resolved: Iterable[Resolved]) -> Iterator[tuple[Resolved, Pair]]:
+        inspector = self.inspector()
+        for item in resolved:
+            for a, b in item.pairs():
+                if inspector.GetFrameId(geometry_id=a) == inspector.GetFrameId(geometry_id=b):
+                    yield item, (a, b)
+
+    def note(self, target: dict[Pair, bool], resolved: Iterable[Resolved]) -> None:
+        ledger: _SameFrameLedger = self.memory
+        for item, pair in self.same_frame(resolved):
+            target[pair] = item.filters
+            if not item.filters and cast(_SameFrameMutant, self.graph).allow_clears_invariants:
+                ledger.cleared.add(pair)
+
+    def Apply(self, declaration: CollisionFilterDeclaration) -> None:
+        super().Apply(declaration)
+        ledger: _SameFrameLedger = self.memory
+        self.note(ledger.base, self.resolve(_statements(declaration)))
+
+    def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
+        filter_id = super().ApplyTransient(declaration)
+        ledger: _SameFrameLedger = self.memory
+        self.note(ledger.transient.setdefault(filter_id, {}), self.graph.transients[filter_id])
+        return filter_id
+
+
+class _LedgerInspector(Inspector):
+    def extra(self) -> set[Pair]:
+        """Invariant pairs the mutant reports as candidates: not filtered by a declaration."""
+        graph = cast(_SameFrameMutant, self.graph)
+        manager = graph.manager(self.context)
+        ledger: _SameFrameLedger = graph.memory_of(self.context)
+        live = set(self.inner.GetAllGeometryIds(role=Role.kProximity))
+        ledger.forget(live)
+        return {
+            p
+            for p in graph.invariant_pairs(self.context, ledger, live)
+            if not ledger.filtered(p, manager)
+        }
+
+    def GetCollisionCandidates(self) -> set[Pair]:
+        return super().GetCollisionCandidates() | self.extra()
+
+    def CollisionFiltered(self, geometry_id1: GeometryId, geometry_id2: GeometryId) -> bool:
+        filtered = super().CollisionFiltered(geometry_id1, geometry_id2)
+        return filtered and _pair(geometry_id1, geometry_id2) not in self.extra()
+
+
+class _SameFrameMutant(MutantSceneGraph):
+    """Reports some invariant pairs (same frame) as candidates, unless a declaration filters them.
+
+    N.B. reimpl's public API cannot remove an invariant pair, so these mutants
+    answer the inspector's filtering queries (GetCollisionCandidates,
+    CollisionFiltered) as if the invariant were missing; the state itself is
+    reimpl's.
+    """
+
+    manager_class = _LedgerManager
+    inspector_class = _LedgerInspector
+    allow_clears_invariants = False
+
+    def new_memory(self) -> _SameFrameLedger:
+        return _SameFrameLedger()
+
+    def memory_for_new_context(self) -> _SameFrameLedger:
+        model: _SameFrameLedger = self.memory_of(None)
+        return model.copy()
+
+    def invariant_pairs(
+        self, context: Context | None, ledger: _SameFrameLedger, live: set[GeometryId]
+    ) -> set[Pair]:
+        raise NotImplementedError
+
+    def forget_removed(self, context: Context | None) -> None:
+        ledger: _SameFrameLedger = self.memory_of(context)
+        ledger.forget(set(self.real_inspector(context).GetAllGeometryIds(role=Role.kProximity)))
+
+    def RemoveRole(self, *args: Any, **kwargs: Any) -> int:
+        count = super().RemoveRole(*args, **kwargs)
+        self.forget_removed(_context_of(args, kwargs))
+        return count
+
+    def RemoveGeometry(self, *args: Any, **kwargs: Any) -> None:
+        super().RemoveGeometry(*args, **kwargs)
+        self.forget_removed(_context_of(args, kwargs))
+
+
+class AllowClearsInvariants(_SameFrameMutant):
+    """An Allow statement covering a same-frame pair clears its invariant, for good."""
+
+    allow_clears_invariants = True
+
+    def invariant_pairs(
+        self, context: Context | None, ledger: _SameFrameLedger, live: set[GeometryId]
+    ) -> set[Pair]:
+        return set(ledger.cleared)
+
+
+class NoSameFrameInvariant(_SameFrameMutant):
+    """No pair of proximity geometries on one frame is invariantly excluded."""
+
+    def invariant_pairs(
+        self, context: Context | None, ledger: _SameFrameLedger, live: set[GeometryId]
+    ) -> set[Pair]:
+        inspector = self.real_inspector(context)
+        by_frame: dict[Any, list[GeometryId]] = {}
+        for g in live:
+            by_frame.setdefault(inspector.GetFrameId(geometry_id=g), []).append(g)
+        return {_pair(a, b) for group in by_frame.values() for a in group for b in group if a != b}
+
+
+# ------------------------------------------------------------------- table
+@dataclass(frozen=True)
+class Mutant:
+    """One injected bug: its name, what is wrong, and the public classes that carry it."""
+
+    name: str
+    bug: str
+    scene_graph: type[MutantSceneGraph]
+    declaration: type[RecordingDeclaration] = RecordingDeclaration
+
+    def api(self) -> Api:
+        """reimpl's Api with this mutant's SceneGraph and CollisionFilterDeclaration."""
+        geometry = ModuleType(f"{__name__}.{self.name}.geometry", "reimpl.geometry, mutated")
+        for name in reimpl.geometry.__all__:
+            setattr(geometry, name, getattr(reimpl.geometry, name))
+        geometry.SceneGraph = self.scene_graph  # type: ignore[attr-defined]
+        geometry.CollisionFilterDeclaration = self.declaration  # type: ignore[attr-defined]
+        return Api(
+            name=f"mutant:{self.name}",
+            version=REIMPL_DRAKE_VERSION,
+            geometry=geometry,
+            math=reimpl.math,
+        )
+
+
+class MutantBackend(SceneGraphBackend):
+    """The reimpl backend over ``mutant``'s Api."""
+
+    def __init__(self, mutant: Mutant) -> None:
+        self.mutant = mutant
+        super().__init__(mutant.api())
+
+
+class AllowBetweenClearsWithin(MutantSceneGraph):
+    """Plain: the bug is in the declaration (AllowBetween adds AllowWithin of each set)."""
 
 
 MUTANTS: dict[str, Mutant] = {
@@ -353,68 +876,69 @@ MUTANTS: dict[str, Mutant] = {
         Mutant(
             "allow_clears_invariants",
             "AllowWithin/AllowBetween also clear invariant pairs (same frame, anchored-anchored).",
-            _allow_clears_invariants,
+            AllowClearsInvariants,
         ),
         Mutant(
             "allow_between_clears_within",
             "AllowBetween(A, B) also allows the pairs within A and within B.",
-            _allow_between_clears_within,
+            AllowBetweenClearsWithin,
+            _AllowBetweenDeclaration,
         ),
         Mutant(
             "reverse_statement_order",
             "A declaration's statements are applied in reverse order.",
-            _reverse_statement_order,
+            ReverseStatementOrder,
         ),
         Mutant(
             "lazy_frame_resolution",
             "Persistent declarations naming a frame also cover geometry that gets the "
             "proximity role on that frame later.",
-            _lazy_frame_resolution,
+            LazyFrameResolution,
         ),
         Mutant(
             "remove_declaration_no_replay",
             "RemoveDeclaration re-derives C from the persistent base without replaying the "
             "remaining transient declarations.",
-            _remove_declaration_no_replay,
+            RemoveDeclarationNoReplay,
         ),
         Mutant(
             "context_managers_write_model",
             "collision_filter_manager(context=...) edits the model instead of the context.",
-            _context_managers_write_model,
+            ContextManagersWriteModel,
         ),
         Mutant(
             "non_proximity_ids_raise",
             "A GeometrySet naming a registered geometry without the proximity role raises "
             "instead of ignoring it.",
-            _non_proximity_ids_raise,
+            NonProximityIdsRaise,
         ),
         Mutant(
             "apply_during_history_allowed",
             "Persistent Apply succeeds while transient history is active.",
-            _apply_during_history_allowed,
+            ApplyDuringHistoryAllowed,
         ),
         Mutant(
             "role_reassign_keeps_filters",
             "Removing a geometry's proximity role and assigning it again restores its old "
             "filtered pairs.",
-            _role_reassign_keeps_filters,
+            RoleReassignKeepsFilters,
         ),
         Mutant(
             "stale_has_transient_history",
             "has_transient_history() stays True after the last transient declaration is removed.",
-            _stale_has_transient_history,
+            StaleHasTransientHistory,
         ),
         Mutant(
             "world_frame_resolves_nothing",
             "The world frame in a GeometrySet resolves to no geometry instead of every "
             "anchored proximity geometry.",
-            _world_frame_resolves_nothing,
+            WorldFrameResolvesNothing,
         ),
         Mutant(
             "no_same_frame_invariant",
             "A geometry getting the proximity role is not invariantly excluded from the other "
             "proximity geometries on its frame.",
-            _no_same_frame_invariant,
+            NoSameFrameInvariant,
         ),
     )
 }
