@@ -17,7 +17,13 @@ from conformance.fuzz.lockstep import (
     lockstep_machine,
     planned_operation,
 )
-from conformance.fuzz.operations import Operation
+from conformance.fuzz.operations import (
+    HAND_WRITTEN,
+    OPERATIONS,
+    Operation,
+    generic_operation,
+    issued_ops,
+)
 from conformance.fuzz.strategies import DeclarationTemplate, GeometrySpec, Scene
 from conformance.grammar import GRAMMAR
 from conformance.protocol import Backend, Command, Result
@@ -61,8 +67,33 @@ def test_the_operations_issue_every_scenario_command_but_activation_on_pydrake_1
     run_state_machine_as_test(RecordingMachine, settings=SETTINGS)
     activation = "activation" in PYDRAKE.features()
     unsupported = set() if activation else {"activate", "deactivate"}
-    commands = {op for op, command in GRAMMAR.items() if not command.harness_only}
-    assert RecordingMachine.issued == commands - unsupported
+    assert RecordingMachine.issued == COMMANDS - unsupported
+
+
+COMMANDS = {op for op, command in GRAMMAR.items() if not command.harness_only}
+
+
+def test_the_operations_table_says_it_issues_every_grammar_op() -> None:
+    assert issued_ops(OPERATIONS) == COMMANDS
+    assert set(HAND_WRITTEN) <= set(OPERATIONS)
+
+
+class GenericOnlyMachine(RecordingMachine):
+    """Only the operations derived from the grammar: what a new op gets with no hand-written one."""
+
+    stats = FuzzStats()
+    _pair = None
+    issued: ClassVar[set[str]] = set()
+    OPERATIONS: ClassVar[dict[str, Operation]] = {
+        op: generic_operation(GRAMMAR[op]) for op in sorted(COMMANDS)
+    }
+
+
+def test_operations_derived_from_the_grammar_alone_issue_every_op_and_agree_with_pydrake() -> None:
+    run_state_machine_as_test(GenericOnlyMachine, settings=SETTINGS)
+    unsupported = set() if "activation" in PYDRAKE.features() else {"activate", "deactivate"}
+    assert GenericOnlyMachine.issued == COMMANDS - unsupported
+    assert GenericOnlyMachine.stats.divergences_seen == 0
 
 
 class BundleReadingMachine(LockstepMachine):

@@ -22,18 +22,20 @@ To add an operation, subclass the machine with a larger table::
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any, Protocol
 
 from hypothesis import strategies as st
 
 from conformance.fuzz import strategies as cs
+from conformance.grammar import GRAMMAR, Arg, ArgKind, CommandSpec, NameKind
 from conformance.protocol import ErrorKind, Result
 
 __all__ = [
     "CHOICES",
     "DEFAULT_SOURCE",
+    "HAND_WRITTEN",
     "MAX_CONTEXTS",
     "MAX_SOURCES",
     "OPERATIONS",
@@ -41,6 +43,8 @@ __all__ = [
     "Choice",
     "Machine",
     "Operation",
+    "generic_operation",
+    "issued_ops",
 ]
 
 DEFAULT_SOURCE = "source"
@@ -121,6 +125,8 @@ class Operation:
     run: Callable[..., None]
     arguments: tuple[st.SearchStrategy[Any], ...] = ()
     enabled: Callable[[Machine], bool] = _always
+    #: The ops of the grammar it issues (default: the row's own name).
+    issues: frozenset[str] = frozenset()
 
 
 # ------------------------------------------------------------ registration
@@ -326,23 +332,37 @@ _SET = cs.set_templates()
 #: register_geometries: 1-4 placements of four picks each.
 _PLACEMENTS = st.binary(min_size=4, max_size=16)
 
-#: Operation name → Operation. The first one is where a shrunk step's choice goes.
-OPERATIONS: dict[str, Operation] = {
+#: The hand-written operations. The first one is where a shrunk step's choice goes.
+HAND_WRITTEN: dict[str, Operation] = {
     "has_transient_history": Operation(has_transient_history),
     "is_active": Operation(is_active),
     "remove_declaration": Operation(remove_declaration),
     "collision_filtered": Operation(collision_filtered, enabled=_has("geometries")),
     "register_source": Operation(register_source, enabled=lambda m: m.sources_made < MAX_SOURCES),
     "register_frame": Operation(register_frame),
-    "register_geometries": Operation(register_geometries, (_PLACEMENTS,)),
+    "register_geometries": Operation(
+        register_geometries, (_PLACEMENTS,), issues=frozenset({"register_geometry"})
+    ),
     "assign_role": Operation(assign_role, enabled=_has("geometries")),
     "remove_role": Operation(remove_role, enabled=_has("geometries")),
-    "reassign_proximity": Operation(reassign_proximity, enabled=_has("geometries")),
+    "reassign_proximity": Operation(
+        reassign_proximity,
+        enabled=_has("geometries"),
+        issues=frozenset({"remove_role", "assign_role"}),
+    ),
     "remove_geometry": Operation(remove_geometry, enabled=_has("geometries")),
     "apply": Operation(apply, (_DECLARATION,)),
     "apply_transient": Operation(apply_transient, (_DECLARATION,)),
-    "transient_round_trip": Operation(transient_round_trip, (_DECLARATION,)),
-    "stacked_transients": Operation(stacked_transients, (_DECLARATION, _DECLARATION)),
+    "transient_round_trip": Operation(
+        transient_round_trip,
+        (_DECLARATION,),
+        issues=frozenset({"apply_transient", "remove_declaration"}),
+    ),
+    "stacked_transients": Operation(
+        stacked_transients,
+        (_DECLARATION, _DECLARATION),
+        issues=frozenset({"apply_transient", "remove_declaration"}),
+    ),
     "activate": Operation(activate, (_SET,), enabled=lambda m: m.activation),
     "deactivate": Operation(deactivate, (_SET,), enabled=lambda m: m.activation),
     "create_context": Operation(create_context, enabled=lambda m: m.contexts_made < MAX_CONTEXTS),
@@ -351,4 +371,124 @@ OPERATIONS: dict[str, Operation] = {
         enabled=lambda m: m.contexts_made < MAX_CONTEXTS and bool(m.names["contexts"]),
     ),
     "set_default_context": Operation(set_default_context, enabled=_has("contexts")),
+}
+
+
+# ------------------------------------------------- derived from the grammar
+#: How a generic operation fills an argument of each kind: (CHOICES kind, bundle it declares).
+_GENERIC_NAMES: dict[ArgKind, str] = {
+    ArgKind.SOURCE: "owner",
+    ArgKind.FRAME: "any_frame",
+    ArgKind.GEOMETRY: "any_geometry",
+    ArgKind.CONTEXT: "context",
+    ArgKind.LABEL: "label",
+}
+_REQUIRED_NAMES: dict[ArgKind, str] = {
+    ArgKind.SOURCE: "owner",
+    ArgKind.FRAME: "frame",
+    ArgKind.GEOMETRY: "geometry",
+    ArgKind.CONTEXT: "origin",
+    ArgKind.LABEL: "label",
+}
+_BUNDLE_OF: dict[NameKind, str] = {
+    NameKind.SOURCE: "sources",
+    NameKind.FRAME: "frames",
+    NameKind.GEOMETRY: "geometries",
+    NameKind.CONTEXT: "contexts",
+    NameKind.LABEL: "filter_ids",
+}
+_PREFIX: dict[NameKind, str] = {
+    NameKind.SOURCE: "s",
+    NameKind.FRAME: "f",
+    NameKind.GEOMETRY: "g",
+    NameKind.CONTEXT: "c",
+    NameKind.LABEL: "t",
+}
+_DRAWN_KINDS: dict[ArgKind, st.SearchStrategy[Any]] = {
+    ArgKind.SET: _SET,
+    ArgKind.DECLARATION: _DECLARATION,
+}
+
+
+def _name(m: Machine, arg: Arg, pick: int) -> str | None:
+    return m.name((_REQUIRED_NAMES if arg.required else _GENERIC_NAMES)[arg.kind], pick)
+
+
+#: How a generic operation reads each kind of argument: (machine, arg, pick, templates) → value.
+_READ: dict[ArgKind, Callable[[Machine, Arg, int, Iterator[Any]], Any]] = {
+    **{kind: lambda m, a, p, t: _name(m, a, p) for kind in _GENERIC_NAMES},
+    ArgKind.SET: lambda m, a, p, t: m.geometry_set(next(t)),
+    ArgKind.DECLARATION: lambda m, a, p, t: m.declaration(next(t)),
+    ArgKind.PAIR: lambda m, a, p, t: [m.name("any_geometry", p), m.name("geometry", p // 2)],
+    ArgKind.ROLE: lambda m, a, p, t: cs.ROLES[p % 3],
+    ArgKind.ROLES: lambda m, a, p, t: [cs.ROLES[p % 3]],
+    ArgKind.ANY_ROLE: lambda m, a, p, t: (*cs.ROLES, "unassigned")[p % 4],
+    ArgKind.ASSIGN: lambda m, a, p, t: ("new", "replace")[p % 2],
+}
+
+
+def _generic_value(m: Machine, arg: Arg, pick: int, drawn: Iterator[Any]) -> Any:
+    """The value of ``arg``: a fresh name if it declares one, else as ``_READ`` says.
+
+    Kinds missing from ``_READ`` (``TEXT``) are left out (None).
+    """
+    if arg.kind.declares is not None:
+        return m.fresh(_PREFIX[arg.kind.declares])
+    read = _READ.get(arg.kind)
+    return None if read is None else read(m, arg, pick, drawn)
+
+
+def generic_operation(command: CommandSpec) -> Operation:
+    """An operation that issues ``command`` with arguments read from picks by their kinds.
+
+    Names it declares are kept if the command succeeds. Of a ``one_of``
+    group it gives the first key. It is enabled once the names its required
+    arguments need exist, and for ``activation`` ops only if both backends
+    have them. Every op without a hand-written operation gets one, so a new
+    op needs only its grammar row and its handler to be fuzzed.
+    """
+    skipped = {key for group in command.one_of for key in group[1:]}
+    args = tuple(arg for arg in command.args if arg.key not in skipped)
+    arguments = tuple(_DRAWN_KINDS[a.kind] for a in args if a.kind in _DRAWN_KINDS)
+    needs = {
+        _BUNDLE_OF[a.kind.refers]
+        for a in args
+        if a.required and a.kind.refers in (NameKind.GEOMETRY, NameKind.CONTEXT)
+    }
+    if any(a.kind is ArgKind.PAIR for a in args):
+        needs.add("geometries")
+
+    def run(m: Machine, picks: bytes, *drawn: Any) -> None:
+        templates = iter(drawn)
+        values = {
+            arg.key: _generic_value(m, arg, picks[i % len(picks)], templates)
+            for i, arg in enumerate(args)
+        }
+        result = m.step(command.op, **values)
+        for arg in args:
+            if arg.kind.declares is not None:
+                m.keep_if_made(_BUNDLE_OF[arg.kind.declares], values[arg.key], result)
+
+    def enabled(m: Machine) -> bool:
+        if command.feature == "activation" and not m.activation:
+            return False
+        return all(m.names[bundle] for bundle in needs)
+
+    return Operation(run, arguments, enabled, frozenset({command.op}))
+
+
+def issued_ops(operations: dict[str, Operation]) -> frozenset[str]:
+    """The grammar ops the operations issue (a row issues its own name unless it says)."""
+    return frozenset(op for name, o in operations.items() for op in (o.issues or {name}))
+
+
+#: What a step can do: the hand-written operations, then a generic one for every
+#: grammar op that none of them issues.
+OPERATIONS: dict[str, Operation] = {
+    **HAND_WRITTEN,
+    **{
+        op: generic_operation(command)
+        for op, command in GRAMMAR.items()
+        if not command.harness_only and op not in issued_ops(HAND_WRITTEN)
+    },
 }
