@@ -149,3 +149,36 @@ def scene(api: Api) -> Scene:
 
 def all_pairs(*names: str) -> set[str]:
     return {f"{a}-{b}" for i, a in enumerate(sorted(names)) for b in sorted(names)[i + 1 :]}
+
+
+def _runs_on_pydrake(item: pytest.Item) -> bool:
+    """False only for an item parametrized onto reimpl (its ``api`` or ``implementation``)."""
+    params = getattr(getattr(item, "callspec", None), "params", {})
+    return "reimpl" not in (params.get("api"), params.get("implementation"))
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """``@pytest.mark.release_fact(id)``: the test asserts what a known divergence records.
+
+    The divergence (``conformance/policy/known_divergences.json``) holds for a
+    range of Drake releases. Run on real pydrake of a release outside it, the
+    test is an expected failure naming the divergence (strict: if it passes,
+    the record is wrong). On reimpl it always runs as written.
+    """
+    from importlib.metadata import version  # noqa: PLC0415
+
+    from conformance.policy.divergences import known_divergences  # noqa: PLC0415
+
+    entries = {entry.id: entry for entry in known_divergences()}
+    release = version("drake")
+    for item in items:
+        for marker in item.iter_markers("release_fact"):
+            entry = entries[marker.args[0]]
+            if _runs_on_pydrake(item) and release not in entry.releases:
+                item.add_marker(
+                    pytest.mark.xfail(
+                        reason=f"known divergence {entry.id}: holds for Drake {entry.releases}, "
+                        f"not {release}",
+                        strict=True,
+                    )
+                )

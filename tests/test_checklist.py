@@ -207,6 +207,7 @@ class TestErrors:
         with pytest.raises(RuntimeError, match="doesn't belong to the SceneGraph"):
             scene.apply(scene.decl().ExcludeWithin(geometry_set=scene.set("g0", "g1")))
 
+    @pytest.mark.release_fact("partial-apply-until-1.51")
     def test_apply_is_not_atomic(self, scene: Scene) -> None:
         """Drake ≤ 1.51: statements before the bad id stay applied (pydrake-observed §2)."""
         scene.geometries("a", "b")

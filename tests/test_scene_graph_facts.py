@@ -148,6 +148,7 @@ class TestGeometrySet:
         )
         assert scene.C() == {"a-c", "b-c"}
 
+    @pytest.mark.release_fact("binding-wording-until-1.51")
     def test_mixed_id_list_raises_type_error(self, scene: Scene) -> None:
         self._setup(scene)
         with pytest.raises(TypeError) as info:
@@ -157,18 +158,21 @@ class TestGeometrySet:
             "The following argument types are supported:"
         )
 
+    @pytest.mark.release_fact("binding-wording-until-1.51")
     def test_mixed_id_keyword_list_raises_type_error(self, scene: Scene) -> None:
         self._setup(scene)
         with pytest.raises(TypeError) as info:
             scene.g.GeometrySet(geometry_ids=[scene.ids["a"], scene.frames["f"]])
         assert str(info.value).startswith("__init__(): incompatible constructor arguments")
 
+    @pytest.mark.release_fact("binding-wording-until-1.51")
     def test_python_set_raises_type_error(self, scene: Scene) -> None:
         self._setup(scene)
         with pytest.raises(TypeError) as info:
             scene.g.GeometrySet({scene.ids["a"]})
         assert str(info.value).startswith("__init__(): incompatible constructor arguments")
 
+    @pytest.mark.release_fact("binding-wording-until-1.51")
     def test_int_raises_type_error(self, api: Api) -> None:
         with pytest.raises(TypeError) as info:
             api.geometry.GeometrySet(3)
@@ -191,6 +195,7 @@ ID_TYPES = ("GeometryId", "FrameId", "SourceId", "FilterId")
 
 class TestIds:
     @pytest.mark.parametrize("type_name", ID_TYPES)
+    @pytest.mark.release_fact("binding-wording-until-1.51")
     def test_id_constructor_raises_no_constructor_defined(self, api: Api, type_name: str) -> None:
         with pytest.raises(TypeError) as info:
             getattr(api.geometry, type_name)()
@@ -1033,6 +1038,7 @@ class TestStaleModelManager:
 
 
 # --------------------------------------------------------------------------- C9
+@pytest.mark.release_fact("partial-apply-until-1.51")
 class TestPartialApply:
     """Drake 1.51.1 applies statements before a bad id to C (not to the base)."""
 
