@@ -19,6 +19,7 @@ import pytest
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.corpus.loader import SCENARIO_SCHEMA, Case, ScenarioError, load_file
 from conformance.protocol import Backend
+from conformance.run.report import failure_lines
 from conformance.run.runner import CaseReport, Status, run_case
 
 __all__ = ["ScenarioCaseItem", "ScenarioFileCollector"]
@@ -106,15 +107,8 @@ class ScenarioCaseItem(pytest.Item):
 
     def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> str:
         if isinstance(excinfo.value, _ConformanceError):
-            lines = [f"{self.case.qualified_name} ({self.case.file.path})"]
-            report = excinfo.value.report
-            for failure in report.failures:
-                if report.status.get(failure.backend) is not Status.FAIL:
-                    continue
-                lines.append(f"  {failure.step}: {failure.what} [{failure.backend} failed]")
-                lines.append(f"    expected: {failure.expected!r} ({failure.source})")
-                lines.append(f"    actual:   {failure.actual!r}")
-            return "\n".join(lines)
+            header = f"{self.case.qualified_name} ({self.case.file.path})"
+            return "\n".join([header, *failure_lines(excinfo.value.report)])
         return str(super().repr_failure(excinfo))
 
     def reportinfo(self) -> tuple[Path, int, str]:

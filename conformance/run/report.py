@@ -20,7 +20,7 @@ from typing import Any, TextIO
 from conformance.protocol import Backend
 from conformance.run.runner import CaseReport, Status
 
-__all__ = ["RunReport", "write_json", "write_junit"]
+__all__ = ["RunReport", "failure_lines", "write_json", "write_junit"]
 
 
 @dataclass
@@ -76,12 +76,8 @@ class RunReport:
     def print_failures(self, out: TextIO, *, prog: str) -> None:
         for case in self.failed:
             out.write(f"\nFAIL {case.case.qualified_name}\n")
-            for failure in case.failures:
-                if case.status.get(failure.backend) is not Status.FAIL:
-                    continue
-                out.write(f"  {failure.step}: {failure.what} [{failure.backend} failed]\n")
-                out.write(f"    expected: {_show(failure.expected)}  ({failure.source})\n")
-                out.write(f"    actual:   {_show(failure.actual)}\n")
+            for line in failure_lines(case):
+                out.write(line + "\n")
             rerun = [
                 *prog.split(),
                 "run",
@@ -128,6 +124,17 @@ class RunReport:
                 for c in self.cases
             ],
         }
+
+
+def failure_lines(case: CaseReport) -> list[str]:
+    """The failures of the backends that failed ``case``: what, expected (and from where), actual."""
+    lines = []
+    for failure in case.failures:
+        if case.status.get(failure.backend) is Status.FAIL:
+            lines.append(f"  {failure.step}: {failure.what} [{failure.backend} failed]")
+            lines.append(f"    expected: {_show(failure.expected)}  ({failure.source})")
+            lines.append(f"    actual:   {_show(failure.actual)}")
+    return lines
 
 
 def _cell(counts: Any) -> str:
