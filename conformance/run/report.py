@@ -127,7 +127,7 @@ class RunReport:
 
 
 def failure_lines(case: CaseReport) -> list[str]:
-    """The failures of the backends that failed ``case``: what, expected (and from where), actual."""
+    """The failures of the backends that failed ``case``: what, expected (from where), actual."""
     lines = []
     for failure in case.failures:
         if case.status.get(failure.backend) is Status.FAIL:
