@@ -1038,7 +1038,6 @@ class TestStaleModelManager:
 
 
 # --------------------------------------------------------------------------- C9
-@pytest.mark.release_fact("partial-apply-until-1.51")
 class TestPartialApply:
     """Drake 1.51.1 applies statements before a bad id to C (not to the base)."""
 
@@ -1054,6 +1053,7 @@ class TestPartialApply:
             apply(declaration)
 
     @pytest.mark.parametrize("transient", [False, True], ids=["apply", "apply_transient"])
+    @pytest.mark.release_fact("partial-apply-until-1.51")
     def test_failed_apply_leaves_the_first_statement_in_c(
         self, scene: Scene, transient: bool
     ) -> None:
@@ -1062,6 +1062,7 @@ class TestPartialApply:
         assert scene.manager().has_transient_history() is False
 
     @pytest.mark.parametrize("transient", [False, True], ids=["apply", "apply_transient"])
+    @pytest.mark.release_fact("partial-apply-until-1.51")
     def test_unknown_frame_also_leaves_the_first_statement_in_c(
         self, scene: Scene, transient: bool
     ) -> None:
@@ -1099,6 +1100,7 @@ class TestPartialApply:
             )
         assert scene.C() == all_pairs("a", "b", "c")
 
+    @pytest.mark.release_fact("partial-apply-until-1.51")
     def test_only_statements_before_the_bad_one_are_applied(self, scene: Scene) -> None:
         scene.geometries("a", "b", "c")
         bad = scene.g.GeometrySet(geometry_ids=[scene.g.GeometryId.get_new_id()])
@@ -1111,6 +1113,7 @@ class TestPartialApply:
         assert scene.C() == {"a-c", "b-c"}
 
     @pytest.mark.parametrize("transient", [False, True], ids=["apply", "apply_transient"])
+    @pytest.mark.release_fact("partial-apply-until-1.51")
     def test_leftover_survives_a_following_transient_add(
         self, scene: Scene, transient: bool
     ) -> None:
@@ -1128,11 +1131,13 @@ class TestPartialApply:
         assert scene.C() == all_pairs("a", "b", "c")
         assert scene.manager().has_transient_history() is False
 
+    @pytest.mark.release_fact("partial-apply-until-1.51")
     def test_leftover_survives_removing_an_unknown_filter_id(self, scene: Scene) -> None:
         self._fail(scene, transient=False)
         assert scene.remove(scene.g.FilterId.get_new_id()) is False
         assert scene.C() == {"a-c", "b-c"}
 
+    @pytest.mark.release_fact("partial-apply-until-1.51")
     def test_leftover_is_not_in_the_persistent_base(self, scene: Scene) -> None:
         self._fail(scene, transient=False)
         scene.apply(excl(scene, "b", "c"))
@@ -1140,6 +1145,7 @@ class TestPartialApply:
         scene.remove(scene.apply_transient(scene.decl()))
         assert scene.C() == {"a-b", "a-c"}
 
+    @pytest.mark.release_fact("partial-apply-until-1.51")
     def test_partial_transient_while_another_is_active_leaves_its_first_statement(
         self, scene: Scene
     ) -> None:
@@ -1151,6 +1157,7 @@ class TestPartialApply:
         assert scene.remove(t1) is True
         assert scene.C() == all_pairs("a", "b", "c")
 
+    @pytest.mark.release_fact("partial-apply-until-1.51")
     def test_context_created_while_the_leftover_exists_has_it(self, scene: Scene) -> None:
         self._fail(scene, transient=False)
         context = scene.sg.CreateDefaultContext()
