@@ -12,6 +12,7 @@ from conformance.corpus.loader import Case, load_corpus
 from conformance.policy.divergences import KnownDivergence, known_divergences
 from conformance.policy.guards import GUARDS
 from conformance.policy.versions import version_in_range
+from conformance.protocol import BackendId
 from conformance.run.runner import Status, run_case
 
 CASES: dict[str, Case] = {c.qualified_name: c for f in load_corpus() for c in f.cases}
@@ -42,14 +43,16 @@ def test_an_xfail_matcher_names_existing_cases_and_a_diverging_step(entry: Known
         assert fnmatch.filter(CASES, pattern), f"{entry.id}: no case matches {pattern!r}"
 
 
-def test_the_partial_apply_entry_acts_only_from_drake_1_52_and_only_on_reimpl() -> None:
+def test_the_partial_apply_entry_acts_against_drake_1_52_on_for_backends_that_follow_1_51() -> None:
     entry = next(e for e in ENTRIES if e.id == "reimpl-follows-1.51-apply")
     assert entry.xfail is not None
     case = entry.xfail.cases[0]
-    assert entry.xfail.matches_case(case, "reimpl", "1.58.0")
-    assert entry.xfail.matches_case(case, "reimpl", "1.52.0")
-    assert not entry.xfail.matches_case(case, "reimpl", "1.51.1")
-    assert not entry.xfail.matches_case(case, "pydrake", "1.58.0")
+    reimpl, mutant = BackendId("reimpl", "1.51.1"), BackendId("mutant:x", "1.51.1")
+    assert entry.xfail.matches_case(case, reimpl, "1.58.0")
+    assert entry.xfail.matches_case(case, reimpl, "1.52.0")
+    assert entry.xfail.matches_case(case, mutant, "1.58.0")
+    assert not entry.xfail.matches_case(case, reimpl, "1.51.1")
+    assert not entry.xfail.matches_case(case, BackendId("pydrake", "1.58.0"), "1.58.0")
 
 
 def test_every_release_guard_names_a_known_divergence_of_kind_drake_crash() -> None:

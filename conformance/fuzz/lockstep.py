@@ -67,7 +67,7 @@ from conformance.fuzz import operations as ops
 from conformance.fuzz import strategies as cs
 from conformance.policy.divergences import match_step
 from conformance.policy.guards import arm_guards
-from conformance.protocol import Backend, Command, Observation, Result
+from conformance.protocol import Backend, Command, Observation, Result, backend_id
 
 __all__ = [
     "Divergence",
@@ -362,7 +362,7 @@ class LockstepMachine(RuleBasedStateMachine):
             # Any command since the state last agreed may be the one that diverged.
             for item in self.trace[self._agreed_upto :]:
                 known = match_step(
-                    item.command, item.reference, self.backend.name, self.reference.version()
+                    item.command, item.reference, backend_id(self.backend), self.reference.version()
                 )
                 if known is not None:
                     stats.known[known.id] = stats.known.get(known.id, 0) + 1

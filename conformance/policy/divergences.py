@@ -5,6 +5,9 @@ releases it holds for, and the scenarios or tests that show it. An entry may
 also say when a failure is *expected* (its ``xfail`` object):
 
 - ``backends``: the backends that may fail this way (the one blamed; empty: any);
+- ``backend_drake``: the releases the blamed backend must claim (its
+  ``version()``), e.g. ``{"until": "1.51.1"}`` for any backend that follows
+  1.51.1, reimpl and the mutants built on it alike;
 - ``cases``: ``fnmatch`` patterns of case qualified names (``file > description``);
 - ``steps``: patterns of the diverging step, for the fuzzer, which has no case
   name: ``op`` (one of), ``reference_error`` (whether the reference raised),
@@ -22,13 +25,13 @@ from __future__ import annotations
 import fnmatch
 import json
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
 from typing import Any
 
 from conformance.policy.versions import VersionRange
-from conformance.protocol import Command, Result
+from conformance.protocol import BackendId, Command, Result
 
 __all__ = [
     "KnownDivergence",
@@ -69,16 +72,23 @@ class XfailMatcher:
     backends: frozenset[str] = frozenset()
     cases: tuple[str, ...] = ()
     steps: tuple[StepPattern, ...] = ()
+    backend_releases: VersionRange = field(default_factory=VersionRange)
 
-    def _applies(self, blamed: str, release: str) -> bool:
-        return release in self.releases and (not self.backends or blamed in self.backends)
+    def _applies(self, blamed: BackendId, release: str) -> bool:
+        return (
+            release in self.releases
+            and blamed.version in self.backend_releases
+            and (not self.backends or blamed.name in self.backends)
+        )
 
-    def matches_case(self, qualified_name: str, blamed: str, release: str) -> bool:
+    def matches_case(self, qualified_name: str, blamed: BackendId, release: str) -> bool:
         return self._applies(blamed, release) and any(
             fnmatch.fnmatchcase(qualified_name, pattern) for pattern in self.cases
         )
 
-    def matches_step(self, command: Command, reference: Result, blamed: str, release: str) -> bool:
+    def matches_step(
+        self, command: Command, reference: Result, blamed: BackendId, release: str
+    ) -> bool:
         return self._applies(blamed, release) and any(
             step.matches(command, reference) for step in self.steps
         )
@@ -116,6 +126,7 @@ def _matcher(data: Mapping[str, Any] | None, releases: VersionRange) -> XfailMat
     return XfailMatcher(
         releases=_range(data["drake"]) if "drake" in data else releases,
         backends=frozenset(data.get("backends", ())),
+        backend_releases=_range(data.get("backend_drake", {})),
         cases=tuple(data.get("cases", ())),
         steps=tuple(
             StepPattern(
@@ -153,7 +164,7 @@ def known_divergences() -> tuple[KnownDivergence, ...]:
 
 def match_case(
     qualified_name: str,
-    blamed: str,
+    blamed: BackendId,
     release: str,
     entries: Sequence[KnownDivergence] | None = None,
 ) -> KnownDivergence | None:
@@ -167,7 +178,7 @@ def match_case(
 def match_step(
     command: Command,
     reference: Result,
-    blamed: str,
+    blamed: BackendId,
     release: str,
     entries: Sequence[KnownDivergence] | None = None,
 ) -> KnownDivergence | None:

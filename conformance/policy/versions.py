@@ -15,6 +15,8 @@ def parse_version(text: str) -> tuple[int, ...]:
 def version_in_range(version: str, since: str | None, until: str | None) -> bool:
     """since ≤ version ≤ until, by dotted release number (``until`` "1.51" covers 1.51.x)."""
     v = parse_version(version)
+    if not v:  # "unknown": no release claimed, so only the open range holds it
+        return since is None and until is None
     if since is not None and v < parse_version(since):
         return False
     if until is None:

@@ -28,7 +28,7 @@ from conformance.corpus.loader import Case, Step
 from conformance.policy.divergences import KnownDivergence, match_case
 from conformance.policy.guards import arm_guards
 from conformance.policy.versions import version_in_range
-from conformance.protocol import Backend, Command, Observation, Result
+from conformance.protocol import Backend, BackendId, Command, Observation, Result, backend_id
 from conformance.run.expectations import check
 
 __all__ = [
@@ -195,24 +195,24 @@ def run_case(
     release = ref.version() if ref is not None else ""
     for backend in active:
         report.status[backend.name] = _status(
-            report, backend.name, release, strict_divergences, divergences
+            report, backend_id(backend), release, strict_divergences, divergences
         )
     return report
 
 
 def _status(
     report: CaseReport,
-    backend: str,
+    backend: BackendId,
     release: str,
     strict: bool,
     divergences: Sequence[KnownDivergence] | None,
 ) -> Status:
-    if not report.failures_of(backend):
+    if not report.failures_of(backend.name):
         return Status.PASS
     if strict:
         return Status.FAIL
     known = match_case(report.case.qualified_name, backend, release, divergences)
     if known is None:
         return Status.FAIL
-    report.xfails[backend] = known.id
+    report.xfails[backend.name] = known.id
     return Status.XFAIL
