@@ -12,7 +12,7 @@ from conformance.corpus.loader import Case, load_corpus
 from conformance.policy.divergences import KnownDivergence, known_divergences
 from conformance.policy.guards import GUARDS
 from conformance.policy.versions import version_in_range
-from conformance.protocol import BackendId
+from conformance.protocol import BackendId, Command, ErrorInfo, ErrorKind, Result
 from conformance.run.runner import Status, run_case
 
 CASES: dict[str, Case] = {c.qualified_name: c for f in load_corpus() for c in f.cases}
@@ -76,3 +76,16 @@ def test_divergence_scenario_holds_on_real_pydrake(entry: KnownDivergence, scena
     if report.status["pydrake"] is Status.SKIP:
         pytest.skip(report.skip_reasons["pydrake"])
     assert report.status["pydrake"] is Status.PASS, report.failures
+
+
+def test_the_partial_apply_step_pattern_needs_both_sides_to_raise_an_unknown_id_error() -> None:
+    entry = next(e for e in ENTRIES if e.id == "reimpl-follows-1.51-apply")
+    assert entry.xfail is not None
+    reimpl = BackendId("reimpl", "1.51.1")
+    apply = Command("apply", {"declaration": {"statements": []}})
+    unknown = Result(error=ErrorInfo(ErrorKind.UNKNOWN_FRAME, "Referenced frame # has not been"))
+    history = Result(error=ErrorInfo(ErrorKind.TRANSIENT_HISTORY, "You cannot attempt to"))
+    assert entry.xfail.matches_step(apply, unknown, unknown, reimpl, "1.58.0")
+    # A backend that does not raise where Drake refuses is a real bug, not this divergence.
+    assert not entry.xfail.matches_step(apply, unknown, Result(), reimpl, "1.58.0")
+    assert not entry.xfail.matches_step(apply, history, history, reimpl, "1.58.0")

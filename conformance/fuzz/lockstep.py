@@ -362,7 +362,11 @@ class LockstepMachine(RuleBasedStateMachine):
             # Any command since the state last agreed may be the one that diverged.
             for item in self.trace[self._agreed_upto :]:
                 known = match_step(
-                    item.command, item.reference, backend_id(self.backend), self.reference.version()
+                    item.command,
+                    item.reference,
+                    item.backend,
+                    blamed=backend_id(self.backend),
+                    release=self.reference.version(),
                 )
                 if known is not None:
                     stats.known[known.id] = stats.known.get(known.id, 0) + 1

@@ -11,7 +11,9 @@ also say when a failure is *expected* (its ``xfail`` object):
 - ``cases``: ``fnmatch`` patterns of case qualified names (``file > description``);
 - ``steps``: patterns of the diverging step, for the fuzzer, which has no case
   name: ``op`` (one of), ``reference_error`` (whether the reference raised),
-  ``reference_message`` (a prefix of the reference's error message);
+  ``reference_kinds`` (the error kinds it may have raised),
+  ``reference_message`` (a prefix of its error message), ``backend_error``
+  (whether the backend raised too);
 - ``drake``: the releases it applies to, if narrower than the entry's.
 
 The release checked is that of the run's reference backend: the Drake
@@ -49,19 +51,22 @@ class StepPattern:
 
     ops: frozenset[str]
     reference_error: bool | None = None
+    reference_kinds: frozenset[str] = frozenset()
     reference_message: str | None = None
+    backend_error: bool | None = None
 
-    def matches(self, command: Command, reference: Result) -> bool:
-        if command.op not in self.ops:
-            return False
-        raised = reference.error is not None
-        if self.reference_error is not None and raised != self.reference_error:
-            return False
-        if self.reference_message is None:
-            return True
-        return reference.error is not None and reference.error.message.startswith(
-            self.reference_message
+    def matches(self, command: Command, reference: Result, backend: Result) -> bool:
+        error = reference.error
+        checks = (
+            command.op in self.ops,
+            self.reference_error is None or (error is not None) == self.reference_error,
+            not self.reference_kinds
+            or (error is not None and error.kind.value in self.reference_kinds),
+            self.reference_message is None
+            or (error is not None and error.message.startswith(self.reference_message)),
+            self.backend_error is None or (backend.error is not None) == self.backend_error,
         )
+        return all(checks)
 
 
 @dataclass(frozen=True)
@@ -87,10 +92,10 @@ class XfailMatcher:
         )
 
     def matches_step(
-        self, command: Command, reference: Result, blamed: BackendId, release: str
+        self, command: Command, reference: Result, backend: Result, blamed: BackendId, release: str
     ) -> bool:
         return self._applies(blamed, release) and any(
-            step.matches(command, reference) for step in self.steps
+            step.matches(command, reference, backend) for step in self.steps
         )
 
 
@@ -132,7 +137,9 @@ def _matcher(data: Mapping[str, Any] | None, releases: VersionRange) -> XfailMat
             StepPattern(
                 ops=frozenset(step["op"]),
                 reference_error=step.get("reference_error"),
+                reference_kinds=frozenset(step.get("reference_kinds", ())),
                 reference_message=step.get("reference_message"),
+                backend_error=step.get("backend_error"),
             )
             for step in data.get("steps", ())
         ),
@@ -178,6 +185,8 @@ def match_case(
 def match_step(
     command: Command,
     reference: Result,
+    backend: Result,
+    *,
     blamed: BackendId,
     release: str,
     entries: Sequence[KnownDivergence] | None = None,
@@ -185,7 +194,7 @@ def match_step(
     """The known divergence that a disagreement on ``command`` is, if any (for the fuzzer)."""
     for entry in known_divergences() if entries is None else entries:
         if entry.xfail is not None and entry.xfail.matches_step(
-            command, reference, blamed, release
+            command, reference, backend, blamed, release
         ):
             return entry
     return None
