@@ -167,13 +167,12 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     """
     from importlib.metadata import version  # noqa: PLC0415
 
-    from conformance.policy.divergences import known_divergences  # noqa: PLC0415
+    from conformance.policy.divergences import divergence  # noqa: PLC0415
 
-    entries = {entry.id: entry for entry in known_divergences()}
     release = version("drake")
     for item in items:
         for marker in item.iter_markers("release_fact"):
-            entry = entries[marker.args[0]]
+            entry = divergence(marker.args[0])
             if _runs_on_pydrake(item) and release not in entry.releases:
                 item.add_marker(
                     pytest.mark.xfail(

@@ -15,6 +15,7 @@ from typing import TextIO
 
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.cli.run import PROG
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
 from conformance.fuzz.lockstep import FuzzStats, HarnessError
@@ -23,8 +24,6 @@ from conformance.protocol import Backend
 from conformance.run.runner import run_case
 
 __all__ = ["Progress", "fuzz_command", "replays"]
-
-PROG = "python -m conformance"
 
 
 class Progress:

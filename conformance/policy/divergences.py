@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import fnmatch
 import json
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
@@ -39,6 +39,7 @@ __all__ = [
     "KnownDivergence",
     "StepPattern",
     "XfailMatcher",
+    "divergence",
     "known_divergences",
     "match_case",
     "match_step",
@@ -169,6 +170,24 @@ def known_divergences() -> tuple[KnownDivergence, ...]:
     return tuple(entries)
 
 
+@cache
+def divergence(divergence_id: str) -> KnownDivergence:
+    """The known divergence with this id (KeyError if there is none)."""
+    for entry in known_divergences():
+        if entry.id == divergence_id:
+            return entry
+    raise KeyError(f"no known divergence {divergence_id!r}")
+
+
+def _first(
+    entries: Sequence[KnownDivergence] | None, matches: Callable[[XfailMatcher], bool]
+) -> KnownDivergence | None:
+    for entry in known_divergences() if entries is None else entries:
+        if entry.xfail is not None and matches(entry.xfail):
+            return entry
+    return None
+
+
 def match_case(
     qualified_name: str,
     blamed: BackendId,
@@ -176,10 +195,7 @@ def match_case(
     entries: Sequence[KnownDivergence] | None = None,
 ) -> KnownDivergence | None:
     """The known divergence that a failure of ``blamed`` on this case is, if any."""
-    for entry in known_divergences() if entries is None else entries:
-        if entry.xfail is not None and entry.xfail.matches_case(qualified_name, blamed, release):
-            return entry
-    return None
+    return _first(entries, lambda x: x.matches_case(qualified_name, blamed, release))
 
 
 def match_step(
@@ -192,9 +208,4 @@ def match_step(
     entries: Sequence[KnownDivergence] | None = None,
 ) -> KnownDivergence | None:
     """The known divergence that a disagreement on ``command`` is, if any (for the fuzzer)."""
-    for entry in known_divergences() if entries is None else entries:
-        if entry.xfail is not None and entry.xfail.matches_step(
-            command, reference, backend, blamed, release
-        ):
-            return entry
-    return None
+    return _first(entries, lambda x: x.matches_step(command, reference, backend, blamed, release))

@@ -17,7 +17,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from conformance.policy.divergences import known_divergences
+from conformance.policy.divergences import divergence
 from conformance.policy.versions import VersionRange
 from conformance.protocol import Backend
 
@@ -33,10 +33,7 @@ class Guard:
 
     @property
     def releases(self) -> VersionRange:
-        for entry in known_divergences():
-            if entry.id == self.divergence:
-                return entry.releases
-        raise KeyError(f"guard names an unknown divergence {self.divergence!r}")
+        return divergence(self.divergence).releases
 
     def message(self) -> str:
         return f"refused ({self.divergence}): {self.refuses} aborts pydrake {self.releases}"

@@ -120,12 +120,11 @@ def _execute(backend: Backend, step: Step) -> Result:
     if step.op == "check":
         return Result()
     try:
-        result = backend.execute(Command(step.op, step.args))
+        return backend.execute(Command(step.op, step.args))
     except (KeyError, AttributeError, AssertionError) as exc:
         raise BackendError(
             f"backend {backend.name!r} failed on {step.label} ({step.op}): {exc!r}"
         ) from exc
-    return result
 
 
 def _expectation_failures(
