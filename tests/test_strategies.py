@@ -12,6 +12,8 @@ from conformance.backends.loader import load_backend
 from conformance.compare import diff
 from conformance.corpus.loader import load_file
 from conformance.fuzz import strategies as cs
+from conformance.fuzz.operations import OPERATIONS, issued_ops
+from conformance.fuzz.sequences import CONTEXT_OPS, command_sequences
 from conformance.protocol import Command
 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=list(HealthCheck))
@@ -138,7 +140,7 @@ def test_set_template_reads_counts_from_byte_0_and_drops_repeated_names() -> Non
 
 
 @SETTINGS
-@given(cs.command_sequences(max_commands=12))
+@given(command_sequences(max_operations=12))
 def test_command_sequences_are_valid_scenario_cases(
     tmp_path_factory: object, commands: list[Command]
 ) -> None:
@@ -158,12 +160,36 @@ def test_command_sequences_are_valid_scenario_cases(
     assert len(loaded.cases[0].steps) == len(commands) + 1
 
 
+@SETTINGS
+@given(command_sequences(max_operations=12, contexts=False, special=False))
+def test_command_sequences_without_contexts_never_name_a_context_or_a_special_id(
+    commands: list[Command],
+) -> None:
+    assert not {c.op for c in commands} & CONTEXT_OPS
+    assert all("context" not in c.args for c in commands)
+    text = json.dumps([c.to_json() for c in commands])
+    assert cs.UNKNOWN not in text
+    assert cs.FOREIGN not in text
+
+
+def test_command_sequences_reach_every_op_the_lockstep_operations_issue() -> None:
+    """One generator: what the fuzzer's OPERATIONS issue, drawn sequences issue too."""
+    for op in sorted(issued_ops(OPERATIONS)):  # find raises NoSuchExample if never drawn
+        find(
+            command_sequences(max_operations=8, activation=True),
+            lambda commands, op=op: op in {c.op for c in commands},
+            settings=settings(max_examples=2000, database=None),
+        )
+
+
 REIMPL = load_backend("reimpl")
 PYDRAKE = load_backend("pydrake")
+#: The sequences are drawn against their own pydrake, so only names that were made are used.
+DRAWN_ON = load_backend("pydrake")
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck))
-@given(cs.command_sequences(max_commands=15))
+@given(command_sequences(max_operations=15, backend=DRAWN_ON))
 def test_reimpl_and_pydrake_agree_on_drawn_command_sequences(commands: list[Command]) -> None:
     REIMPL.reset()
     PYDRAKE.reset()

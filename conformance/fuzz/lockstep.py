@@ -65,6 +65,8 @@ from conformance.backends.loader import load_backend
 from conformance.compare import Difference, diff_observations, diff_results
 from conformance.fuzz import operations as ops
 from conformance.fuzz import strategies as cs
+from conformance.fuzz.names import NameBook, register_scene
+from conformance.fuzz.operations import planned_operation
 from conformance.policy.divergences import match_step
 from conformance.policy.guards import arm_guards
 from conformance.protocol import Backend, Command, Observation, Result, backend_id
@@ -174,14 +176,6 @@ _RUNNER = st.runner()  # built once: building a strategy on every draw costs
 Plan = list[tuple[str, bytes, tuple[Any, ...]]]
 
 
-def planned_operation(byte: int, enabled: Sequence[str]) -> str | None:
-    """The operation a plan byte names.
-
-    0 names none (bytes shrink to 0); any other byte ``enabled[(byte - 1) % len(enabled)]``.
-    """
-    return enabled[(byte - 1) % len(enabled)] if byte else None
-
-
 @st.composite
 def _steps(draw: st.DrawFn) -> Plan:
     """The plan of one step: ``operations_per_step`` operations with their arguments.
@@ -203,7 +197,7 @@ def _steps(draw: st.DrawFn) -> Plan:
     return plan
 
 
-class LockstepMachine(RuleBasedStateMachine):
+class LockstepMachine(NameBook, RuleBasedStateMachine):
     """Runs the same commands on ``backend`` and ``reference``; see the module doc."""
 
     #: Zero-argument factories; a subclass sets them (``lockstep_machine`` does).
@@ -223,12 +217,6 @@ class LockstepMachine(RuleBasedStateMachine):
     #: Report known divergences (``policy.divergences``) as divergences too.
     strict_divergences: ClassVar[bool] = False
 
-    #: Both backends have Activate/Deactivate.
-    activation: bool
-    #: Sources (with the implicit one) and contexts made so far.
-    sources_made: int
-    contexts_made: int
-
     sources = Bundle("sources")
     frames = Bundle("frames")
     geometries = Bundle("geometries")
@@ -245,16 +233,10 @@ class LockstepMachine(RuleBasedStateMachine):
         self.trace: list[TraceStep] = []
         #: How many commands of ``trace`` the last state comparison covered.
         self._agreed_upto = 0
+        #: Both backends have Activate/Deactivate.
         self.activation = "activation" in (self.backend.features() & self.reference.features())
-        #: The names of each Bundle, in the order added (what picks read).
-        self.names: dict[str, list[str]] = {
-            bundle: [] for bundle in ("sources", "frames", "geometries", "filter_ids", "contexts")
-        }
         #: Operations switched off for this example (swarm testing).
         self.switched_off: frozenset[str] = frozenset()
-        self.sources_made = 1
-        self.contexts_made = 0
-        self._counter = 0
         self._noting = _is_final_run()  # Hypothesis shows only the final replay's notes.
         type(self).stats.examples += 1
 
@@ -268,41 +250,11 @@ class LockstepMachine(RuleBasedStateMachine):
         return cls._pair
 
     # ------------------------------------------------------------- names
-    def fresh(self, prefix: str) -> str:
-        self._counter += 1
-        return f"{prefix}{self._counter}"
-
     def keep(self, bundle: str, *names: str) -> None:
         """Files ``names`` in ``self.names[bundle]`` and in the Bundle of that name."""
         if names:
-            self.names[bundle].extend(names)
+            super().keep(bundle, *names)
             _file(self, bundle, names)
-
-    def keep_if_made(self, bundle: str, name: str, result: Result) -> None:
-        """``keep(bundle, name)`` if the command that made ``name`` succeeded."""
-        if result.error is None:
-            self.keep(bundle, name)
-
-    def name(self, kind: str, pick: int) -> str | None:
-        """The name a pick stands for, as ``operations.CHOICES[kind]`` reads it."""
-        choice = ops.CHOICES[kind]
-        return cs.pick(
-            self.names[choice.bundle], pick, rare=choice.rare, none_below=choice.none_below
-        )
-
-    def _any_geometry(self, pick: int) -> str | None:
-        return self.name("any_geometry", pick)
-
-    def _any_frame(self, pick: int) -> str | None:
-        return self.name("any_frame", pick)
-
-    def declaration(self, template: cs.DeclarationTemplate) -> dict[str, Any]:
-        """A drawn declaration, resolved against the names so far."""
-        return template.resolve(self._any_geometry, self._any_frame)
-
-    def geometry_set(self, template: cs.SetTemplate) -> dict[str, list[str]]:
-        """A drawn geometry set, resolved against the names so far."""
-        return template.resolve(self._any_geometry, self._any_frame)
 
     def enabled_operations(self) -> list[str]:
         """The operations that can run now and are not switched off (all that can, if none)."""
@@ -405,20 +357,7 @@ class LockstepMachine(RuleBasedStateMachine):
             for i, name in enumerate(self.OPERATIONS)
             if swarm[1 + i % (_SWARM_BYTES - 1)] < threshold
         )
-        self.keep("sources", ops.DEFAULT_SOURCE)
-        frames: dict[str, str] = {}
-        for name, parent in scene.frames:
-            frames[name] = self.fresh("f")
-            self.step("register_frame", name=frames[name], parent=frames.get(parent or ""))
-        self.keep("frames", cs.WORLD, *frames.values())
-        geometries = []
-        for geometry in scene.geometries:
-            name = self.fresh("g")
-            frame = frames.get(geometry.frame, cs.WORLD)
-            result = self.step("register_geometry", name=name, frame=frame, roles=[*geometry.roles])
-            if result.error is None:
-                geometries.append(name)
-        self.keep("geometries", *geometries)
+        register_scene(self, scene)
 
     @rule(plan=_steps())
     def command(self, plan: Plan) -> None:

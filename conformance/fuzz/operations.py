@@ -22,13 +22,14 @@ To add an operation, subclass the machine with a larger table::
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
 from hypothesis import strategies as st
 
 from conformance.fuzz import strategies as cs
+from conformance.fuzz.names import CHOICES, DEFAULT_SOURCE, Choice
 from conformance.grammar import GRAMMAR, Arg, ArgKind, CommandSpec, NameKind
 from conformance.protocol import ErrorKind, Result
 
@@ -45,9 +46,9 @@ __all__ = [
     "Operation",
     "generic_operation",
     "issued_ops",
+    "planned_operation",
 ]
 
-DEFAULT_SOURCE = "source"
 MAX_SOURCES = 3
 MAX_CONTEXTS = 3
 #: Picks every step draws (the operations read the first ones they need).
@@ -79,35 +80,6 @@ class Machine(Protocol):
     def declaration(self, template: cs.DeclarationTemplate) -> dict[str, Any]: ...
 
     def geometry_set(self, template: cs.SetTemplate) -> dict[str, list[str]]: ...
-
-
-@dataclass(frozen=True)
-class Choice:
-    """How a name argument reads a pick: ``strategies.pick(names[bundle], pick, ...)``."""
-
-    bundle: str
-    #: Picks below this leave the argument out (it shrinks to being left out).
-    none_below: int = 0
-    #: Names drawn one time in eight (always, while the bundle is empty).
-    rare: tuple[str, ...] = ()
-
-
-_SPECIAL = (cs.UNKNOWN, cs.FOREIGN)
-
-#: Every kind of name argument the operations take (picks are 0-255).
-CHOICES: dict[str, Choice] = {
-    "context": Choice("contexts", none_below=128),  # the model half the time
-    "owner": Choice("sources", none_below=128),  # the implicit source half the time
-    "parent": Choice("frames", none_below=128),  # the world half the time
-    "reused_frame": Choice("frames", none_below=192),  # a duplicate name one time in four
-    "reused_geometry": Choice("geometries", none_below=192),
-    "frame": Choice("frames"),
-    "geometry": Choice("geometries"),
-    "any_geometry": Choice("geometries", rare=_SPECIAL),  # now and then @unknown/@foreign
-    "any_frame": Choice("frames", rare=_SPECIAL),
-    "label": Choice("filter_ids", rare=(cs.UNKNOWN,)),
-    "origin": Choice("contexts"),
-}
 
 
 def _always(machine: Machine) -> bool:
@@ -475,6 +447,14 @@ def generic_operation(command: CommandSpec) -> Operation:
         return all(m.names[bundle] for bundle in needs)
 
     return Operation(run, arguments, enabled, frozenset({command.op}))
+
+
+def planned_operation(byte: int, enabled: Sequence[str]) -> str | None:
+    """The operation a plan byte names.
+
+    0 names none (bytes shrink to 0); any other byte ``enabled[(byte - 1) % len(enabled)]``.
+    """
+    return enabled[(byte - 1) % len(enabled)] if byte else None
 
 
 def issued_ops(operations: dict[str, Operation]) -> frozenset[str]:
