@@ -22,6 +22,7 @@ from reimpl.geometry.geometry_roles import (
 )
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FilterId, FrameId, GeometryId, SourceId
+from reimpl.geometry.mesh import Convex, Mesh, MeshSource
 from reimpl.geometry.query_object import (
     FramePoseVector,
     FramePoseVector_,
@@ -30,14 +31,26 @@ from reimpl.geometry.query_object import (
 )
 from reimpl.geometry.scene_graph import SceneGraph, SceneGraph_
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector, SceneGraphInspector_
-from reimpl.geometry.shape import Box, Capsule, Cylinder, Ellipsoid, HalfSpace, Shape, Sphere
+from reimpl.geometry.shape import (
+    Box,
+    Capsule,
+    Cylinder,
+    Ellipsoid,
+    HalfSpace,
+    MeshcatCone,
+    Shape,
+    Sphere,
+)
+from reimpl.geometry.shape_volume import CalcVolume
 
 __all__ = [
     "Box",
+    "CalcVolume",
     "Capsule",
     "CollisionFilterDeclaration",
     "CollisionFilterManager",
     "CollisionFilterScope",
+    "Convex",
     "Cylinder",
     "Ellipsoid",
     "FilterId",
@@ -51,6 +64,9 @@ __all__ = [
     "GeometrySet",
     "HalfSpace",
     "IllustrationProperties",
+    "Mesh",
+    "MeshSource",
+    "MeshcatCone",
     "PerceptionProperties",
     "ProximityProperties",
     "QueryObject",

@@ -1,137 +1,215 @@
-"""Shape specifications (drake/geometry/shape_specification.h).
+"""Shape specifications (drake/geometry/shape_specification.h), as pydrake 1.51.1 measures them.
 
-Filtering never looks at a shape; these exist so that scripts construct the
-same objects and print them as pydrake does.
+Filtering never looks at a shape; these exist so that scripts construct, copy,
+print and pickle the same objects as with pydrake:
+
+* Constructors take the measures positionally, by keyword, or (all but Sphere)
+  as one ``measures=`` vector; MeshcatCone's ``a`` and ``b`` default to 1.
+* An invalid measure raises ``SystemExit`` with Drake's DRAKE_THROW_UNLESS text
+  (see ``_shape_checks``): non-finite or non-positive for all, negative for
+  Sphere (radius 0 is valid).
+* ``repr`` prints each measure in shortest round-trip form without a trailing
+  ``.0`` (``Box(width=0.1, depth=0.2, height=0.30000000000000004)``), so
+  ``eval(repr(shape))`` rebuilds it. ``Clone()``, ``copy.copy`` and
+  ``copy.deepcopy`` make a new object of the same class.
+* Pickling stores the measures (a float for Sphere, a tuple otherwise);
+  HalfSpace cannot be pickled, as in pydrake.
+* ``Box.size()`` is read-only (1.51.1; 1.58.0 returns a writeable copy).
+  pydrake has no ``Box.MakeCube``, so neither has reimpl.
+
+Mesh and Convex are in ``reimpl.geometry.mesh``; CalcVolume in
+``reimpl.geometry.shape_volume``.
 """
 
 from __future__ import annotations
 
-import math
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
+import numpy.typing as npt
 
-__all__ = ["Box", "Capsule", "Cylinder", "Ellipsoid", "HalfSpace", "Shape", "Sphere"]
+from reimpl._overload import REQUIRED, Overload, Param, dispatch
+from reimpl.geometry._drake_text import shortest
+from reimpl.geometry._half_space_pose import make_pose_columns
+from reimpl.geometry._shape_args import is_float, is_vector
+from reimpl.geometry._shape_checks import measure_names, require
+from reimpl.math import RigidTransform, RotationMatrix
 
-
-def _require_positive(owner: str, **measures: float) -> None:
-    for name, value in measures.items():
-        if not (math.isfinite(value) and value > 0):
-            raise RuntimeError(f"{owner}(): {name} = {value} is not finite positive")
-
-
-def _fmt(value: float) -> str:
-    """As pydrake prints a measure: integral values without a point, others round-trip."""
-    return str(int(value)) if value.is_integer() else repr(value)
+__all__ = [
+    "Box",
+    "Capsule",
+    "Cylinder",
+    "Ellipsoid",
+    "HalfSpace",
+    "MeshcatCone",
+    "Shape",
+    "Sphere",
+]
 
 
 class Shape:
-    """Base of all shapes."""
+    """Base of all shapes; pydrake gives it no constructor."""
 
-    _fields: tuple[str, ...] = ()
+    __slots__ = ()
 
-    def __repr__(self) -> str:
-        args = ", ".join(f"{f}={_fmt(getattr(self, '_' + f))}" for f in self._fields)
-        return f"{type(self).__name__}({args})"
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        raise TypeError("reimpl.geometry.Shape: No constructor defined!")
 
     def Clone(self) -> Shape:
         clone = object.__new__(type(self))
-        clone.__dict__.update(self.__dict__)
+        for cls in type(self).__mro__:
+            for slot in cls.__dict__.get("__slots__", ()):
+                object.__setattr__(clone, slot, getattr(self, slot))
         return clone
 
+    def __copy__(self) -> Shape:
+        return self.Clone()
 
-class Sphere(Shape):
-    _fields = ("radius",)
-
-    def __init__(self, radius: float) -> None:
-        if not (math.isfinite(radius) and radius >= 0):
-            raise RuntimeError(f"Sphere(): radius = {radius} is not finite non-negative")
-        self._radius = float(radius)
-
-    def radius(self) -> float:
-        return self._radius
+    def __deepcopy__(self, memo: dict[int, Any]) -> Shape:
+        return self.Clone()
 
 
-class Box(Shape):
-    _fields = ("width", "depth", "height")
+class _Primitive(Shape):
+    """A shape given by a few named measures, validated and printed alike."""
+
+    __slots__ = ("_measures",)
+    _measures: tuple[float, ...]
+    #: Defaults of trailing measures (MeshcatCone's a and b).
+    _defaults: ClassVar[dict[str, float]] = {}
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
-        if len(args) + len(kwargs) == 1:
-            measures = np.asarray(next(iter([*args, *kwargs.values()])), dtype=float)
-            width, depth, height = (float(x) for x in measures.reshape(3))
-        else:
-            values = dict(zip(("width", "depth", "height"), args, strict=False)) | kwargs
-            width, depth, height = (float(values[k]) for k in ("width", "depth", "height"))
-        _require_positive("Box", width=width, depth=depth, height=height)
-        self._width, self._depth, self._height = width, depth, height
+        names = measure_names(type(self).__name__)
+        scalars = tuple(Param(n, is_float, self._defaults.get(n, REQUIRED)) for n in names)
+        overloads = [Overload(scalars, lambda **values: self._set(*(values[n] for n in names)))]
+        if len(names) > 1:
+            vector = Param("measures", is_vector(len(names)))
+            overloads.append(Overload((vector,), self._set_vector))
+        dispatch(f"reimpl.geometry.{type(self).__name__}", "__init__", overloads, args, kwargs)
 
-    @staticmethod
-    def MakeCube(edge_size: float) -> Box:
-        return Box(edge_size, edge_size, edge_size)
+    def _set_vector(self, measures: Any) -> None:
+        self._set(*np.asarray(measures, dtype=float).reshape(-1))
+
+    def _set(self, *values: Any) -> None:
+        measures = tuple(float(v) for v in values)
+        owner = type(self).__name__
+        for name, value in zip(measure_names(owner), measures, strict=True):
+            require(owner, name, value)
+        self._measures = measures
+
+    def __repr__(self) -> str:
+        names = measure_names(type(self).__name__)
+        args = ", ".join(f"{n}={shortest(v)}" for n, v in zip(names, self._measures, strict=True))
+        return f"{type(self).__name__}({args})"
+
+    def __getstate__(self) -> float | tuple[float, ...]:
+        return self._measures[0] if len(self._measures) == 1 else self._measures
+
+    def __setstate__(self, state: float | tuple[float, ...]) -> None:
+        self._set(*(state if isinstance(state, tuple) else (state,)))
+
+
+class Sphere(_Primitive):
+    __slots__ = ()
+
+    def radius(self) -> float:
+        return self._measures[0]
+
+
+class Box(_Primitive):
+    __slots__ = ()
 
     def width(self) -> float:
-        return self._width
+        return self._measures[0]
 
     def depth(self) -> float:
-        return self._depth
+        return self._measures[1]
 
     def height(self) -> float:
-        return self._height
+        return self._measures[2]
 
-    def size(self) -> np.ndarray[Any, np.dtype[np.float64]]:
-        return np.array([self._width, self._depth, self._height])
+    def size(self) -> npt.NDArray[np.float64]:
+        size = np.array(self._measures)
+        size.flags.writeable = False
+        return size
 
 
-class _RadiusLength(Shape):
-    _fields = ("radius", "length")
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        if len(args) + len(kwargs) == 1:
-            measures = np.asarray(next(iter([*args, *kwargs.values()])), dtype=float)
-            radius, length = (float(x) for x in measures.reshape(2))
-        else:
-            values = dict(zip(("radius", "length"), args, strict=False)) | kwargs
-            radius, length = float(values["radius"]), float(values["length"])
-        _require_positive(type(self).__name__, radius=radius, length=length)
-        self._radius, self._length = radius, length
+class Capsule(_Primitive):
+    __slots__ = ()
 
     def radius(self) -> float:
-        return self._radius
+        return self._measures[0]
 
     def length(self) -> float:
-        return self._length
+        return self._measures[1]
 
 
-class Cylinder(_RadiusLength):
-    pass
+class Cylinder(_Primitive):
+    __slots__ = ()
+
+    def radius(self) -> float:
+        return self._measures[0]
+
+    def length(self) -> float:
+        return self._measures[1]
 
 
-class Capsule(_RadiusLength):
-    pass
-
-
-class Ellipsoid(Shape):
-    _fields = ("a", "b", "c")
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        if len(args) + len(kwargs) == 1:
-            measures = np.asarray(next(iter([*args, *kwargs.values()])), dtype=float)
-            a, b, c = (float(x) for x in measures.reshape(3))
-        else:
-            values = dict(zip(("a", "b", "c"), args, strict=False)) | kwargs
-            a, b, c = (float(values[k]) for k in ("a", "b", "c"))
-        _require_positive("Ellipsoid", a=a, b=b, c=c)
-        self._a, self._b, self._c = a, b, c
+class Ellipsoid(_Primitive):
+    __slots__ = ()
 
     def a(self) -> float:
-        return self._a
+        return self._measures[0]
 
     def b(self) -> float:
-        return self._b
+        return self._measures[1]
 
     def c(self) -> float:
-        return self._c
+        return self._measures[2]
+
+
+class MeshcatCone(_Primitive):
+    """An elliptic cone: apex at the origin, base at z = height with semi-axes a and b."""
+
+    __slots__ = ()
+    _defaults: ClassVar[dict[str, float]] = {"a": 1.0, "b": 1.0}
+
+    def height(self) -> float:
+        return self._measures[0]
+
+    def a(self) -> float:
+        return self._measures[1]
+
+    def b(self) -> float:
+        return self._measures[2]
 
 
 class HalfSpace(Shape):
-    pass
+    """The half space z ≤ 0 of its canonical frame."""
+
+    __slots__ = ()
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        dispatch(
+            "reimpl.geometry.HalfSpace", "__init__", (Overload((), lambda: None),), args, kwargs
+        )
+
+    def __repr__(self) -> str:
+        return "HalfSpace()"
+
+    def __reduce_ex__(self, protocol: Any) -> Any:
+        raise TypeError("cannot pickle 'reimpl.geometry.HalfSpace' object")
+
+    @staticmethod
+    def MakePose(*args: Any, **kwargs: Any) -> RigidTransform:
+        """X_FH of the half space whose outward normal is ``Hz_dir_F``, through ``p_FB``."""
+
+        def make(Hz_dir_F: Any, p_FB: Any) -> RigidTransform:
+            columns, p_FH = make_pose_columns(
+                np.asarray(Hz_dir_F, dtype=float).reshape(3).tolist(),
+                np.asarray(p_FB, dtype=float).reshape(3).tolist(),
+            )
+            return RigidTransform(RotationMatrix(np.array(columns).T), np.array(p_FH))
+
+        params = (Param("Hz_dir_F", is_vector(3)), Param("p_FB", is_vector(3)))
+        return dispatch(  # type: ignore[no-any-return]
+            "reimpl.geometry.HalfSpace", "MakePose", (Overload(params, make),), args, kwargs
+        )

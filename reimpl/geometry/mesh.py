@@ -1,0 +1,214 @@
+"""Mesh, Convex and MeshSource for meshes named by a file path, as pydrake 1.51.1 measures them.
+
+reimpl never reads a mesh file; it keeps the path and the scale, as Drake's
+shape specification does:
+
+* ``Mesh(filename, scale=1.0)``, ``Mesh(filename, scale3=[x, y, z])`` and the
+  same with ``source=MeshSource(...)``. A relative filename is made absolute
+  against the current directory the way ``std::filesystem::absolute`` does it
+  (``'a//b/./c.obj'`` becomes ``'<cwd>/a//b/./c.obj'``); an empty one raises
+  RuntimeError. A MeshSource keeps its path as given.
+* Every scale factor must be finite with magnitude ≥ 1e-8 (negative is fine),
+  else RuntimeError ``Mesh |scale| cannot be < 1e-8 on any axis, given [0 0 0].``
+  (Eigen's 1.51.1 layout; 1.58.0 writes ``[0, 0, 0]ᵀ``).
+* ``MeshSource.path()`` is a ``pathlib.Path`` of the stored text, so it (and
+  ``repr``, and pickling, which goes through it) shows pathlib's spelling;
+  ``description()`` is the text itself, ``'<empty path>'`` when empty.
+  ``extension()`` is ``std::filesystem::path::extension()`` with ASCII letters
+  lowered: ``'.obj'`` for ``a.OBJ``, ``''`` for ``.hidden``, ``'.'`` for ``a.``.
+* ``repr`` is ``Mesh(filename='/tmp/a.obj', scale3=[1.5, 1.5, 1.5])``;
+  ``Clone``/``copy`` keep the stored text, pickling stores
+  ``(MeshSource, scale3)`` and ``{'path': Path}``.
+
+Out of scope, because they need the file's contents: in-memory meshes
+(``InMemoryMesh``, ``mesh_data=``, ``MeshSource(mesh=...)``), ``Convex(points=...)``
+and ``GetConvexHull()`` are absent (AttributeError / TypeError from the overload
+set); ``CalcVolume`` of a Mesh or Convex raises NotImplementedError.
+``MeshSource.in_memory()`` raises pydrake's own error for a path source, the
+only kind reimpl has.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import pathlib
+import string
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.geometry._drake_text import eigen_row
+from reimpl.geometry._shape_args import is_float, is_path_like, is_vector, path_text
+from reimpl.geometry.shape import Shape
+
+__all__ = ["Convex", "Mesh", "MeshSource"]
+
+_ASCII_LOWER = str.maketrans(string.ascii_uppercase, string.ascii_lowercase)
+_MIN_SCALE = 1e-8
+
+
+def _extension(path: str) -> str:
+    """``std::filesystem::path(path).extension()`` (libstdc++), ASCII-lowered as Drake does."""
+    name = path.rsplit("/", 1)[-1]
+    dot = name.rfind(".")
+    if dot <= 0 or (len(name) <= 2 and name.startswith(".")):  # none, ".hidden", "." or ".."
+        return ""
+    return name[dot:].translate(_ASCII_LOWER)
+
+
+def _absolute(path: str) -> str:
+    """``std::filesystem::absolute(path)`` (libstdc++): cwd joined, nothing normalised."""
+    if not path:
+        raise RuntimeError("filesystem error: cannot make absolute path: Invalid argument []")
+    if path.startswith("/"):
+        return path
+    cwd = os.getcwd()
+    return cwd + path if cwd.endswith("/") else f"{cwd}/{path}"
+
+
+class MeshSource:
+    """Where a mesh's data comes from; in reimpl always a file path."""
+
+    __slots__ = ("_path",)
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        def from_path(path: Any) -> None:
+            self._path = path_text(path)
+
+        def from_other(other: MeshSource) -> None:
+            self._path = other._path
+
+        dispatch(
+            "reimpl.geometry.MeshSource",
+            "__init__",
+            (
+                Overload((Param("path", is_path_like),), from_path),
+                Overload((Param("other", instance_of(MeshSource)),), from_other),
+            ),
+            args,
+            kwargs,
+        )
+
+    def is_path(self) -> bool:
+        return True
+
+    def is_in_memory(self) -> bool:
+        return False
+
+    def path(self) -> pathlib.Path:
+        return pathlib.Path(self._path)
+
+    def in_memory(self) -> Any:
+        raise RuntimeError("std::get: wrong index for variant")
+
+    def description(self) -> str:
+        return self._path or "<empty path>"
+
+    def extension(self) -> str:
+        return _extension(self._path)
+
+    def __repr__(self) -> str:
+        return f"MeshSource(path={str(self.path())!r})"
+
+    def __copy__(self) -> MeshSource:
+        return MeshSource(other=self)
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> MeshSource:
+        return MeshSource(other=self)
+
+    def __getstate__(self) -> dict[str, pathlib.Path]:
+        return {"path": self.path()}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self._path = path_text(state["path"])
+
+
+class _MeshShape(Shape):
+    """What Mesh and Convex share: a MeshSource and a per-axis scale."""
+
+    __slots__ = ("_scale3", "_source")
+    _source: MeshSource
+    _scale3: tuple[float, float, float]
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        def from_file(filename: Any, scale: Any = None, scale3: Any = None) -> None:
+            self._set(MeshSource(_absolute(path_text(filename))), scale, scale3)
+
+        def from_source(source: MeshSource, scale: Any = None, scale3: Any = None) -> None:
+            self._set(MeshSource(other=source), scale, scale3)
+
+        scale = Param("scale", is_float, 1.0)
+        scale3 = Param("scale3", is_vector(3))
+        filename = Param("filename", is_path_like)
+        source = Param("source", instance_of(MeshSource))
+        dispatch(
+            f"reimpl.geometry.{type(self).__name__}",
+            "__init__",
+            (
+                Overload((filename, scale), from_file),
+                Overload((filename, scale3), from_file),
+                Overload((source, scale), from_source),
+                Overload((source, scale3), from_source),
+            ),
+            args,
+            kwargs,
+        )
+
+    def _set(self, source: MeshSource, scale: Any, scale3: Any) -> None:
+        if scale3 is None:
+            scale3 = (scale,) * 3
+        x, y, z = (float(s) for s in np.asarray(scale3, dtype=float).reshape(3))
+        if not all(math.isfinite(s) and abs(s) >= _MIN_SCALE for s in (x, y, z)):
+            raise RuntimeError(
+                f"{type(self).__name__} |scale| cannot be < 1e-8 on any axis, "
+                f"given {eigen_row((x, y, z))}."
+            )
+        self._source, self._scale3 = source, (x, y, z)
+
+    def source(self) -> MeshSource:
+        return MeshSource(other=self._source)
+
+    def extension(self) -> str:
+        return self._source.extension()
+
+    def scale(self) -> float:
+        x, y, z = self._scale3
+        if not x == y == z:
+            name = type(self).__name__
+            raise RuntimeError(
+                f"{name}::scale() can only be called for uniform scaling. This mesh has scale "
+                f"{eigen_row(self._scale3)}. Use {name}::scale3() instead."
+            )
+        return x
+
+    def scale3(self) -> npt.NDArray[np.float64]:
+        return np.array(self._scale3)
+
+    def __repr__(self) -> str:
+        filename = str(self._source.path())
+        return f"{type(self).__name__}(filename={filename!r}, scale3={list(self._scale3)!r})"
+
+    def __getstate__(self) -> tuple[MeshSource, npt.NDArray[np.float64]]:
+        return self.source(), self.scale3()
+
+    def __setstate__(self, state: tuple[MeshSource, Any]) -> None:
+        source, scale = state
+        if is_float(scale):
+            self._set(MeshSource(other=source), scale, None)
+        else:
+            self._set(MeshSource(other=source), None, scale)
+
+
+class Mesh(_MeshShape):
+    """A (possibly non-convex) mesh, by file path."""
+
+    __slots__ = ()
+
+
+class Convex(_MeshShape):
+    """A mesh that Drake treats as its convex hull, by file path."""
+
+    __slots__ = ()
