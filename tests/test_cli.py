@@ -68,7 +68,8 @@ def test_broken_expectation_exits_one_with_step_values_and_rerun_command(tmp_pat
     path = write(tmp_path, bad)
     code, out, _ = run(str(path))
     assert code == EXIT_FAILURE
-    assert "FAIL case > exclude_within of two geometries empties C" in out
+    name = path.resolve().with_suffix("").as_posix()  # a file outside the corpus and the cwd
+    assert f"FAIL {name} > exclude_within of two geometries empties C" in out
     assert "step 1: candidates at model [reimpl failed]" in out
     assert 'expected: ["a-b"]  (case)' in out
     assert "actual:   []" in out

@@ -1,25 +1,41 @@
 """The scenario corpus: Corpus → ScenarioFile → Case → Step, loaded and checked.
 
-Loading validates each file against the scenario schema (with the
-``jsonschema`` library; its step rules come from ``conformance.grammar``)
-and then checks names statically: every source,
-frame, geometry, context and declaration label a step refers to must have been
-declared earlier in the same case. Any problem raises ``ScenarioError`` naming
-the file, the case and the field, so the CLI can report it and exit 2.
+A scenario file is JSON (``.json``) or YAML (``.yaml``, ``.yml``); both are read
+by ``conformance.corpus.documents`` into the same data. Loading validates each
+file against the scenario schema (with the ``jsonschema`` library; its step
+rules come from ``conformance.grammar``) and then checks names statically:
+every source, frame, geometry, context and declaration label a step refers to
+must have been declared earlier in the same case, and an expectation's pair
+names two different geometries. Any problem raises ``ScenarioError`` naming
+the file, the case and the field, so the CLI can report it and exit 2; input
+echoed in a message is cut to about 200 characters.
+
+A file's ``name`` (and so every case's ``qualified_name``) does not depend on
+how its path was spelled: it is the path below the first of these roots that
+holds the file, without the suffix: the embedded corpus, the nearest directory
+holding ``scenario.schema.json`` (a corpus root, as for the pytest plugin), the
+current directory; else it is the absolute path.
 """
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
+from itertools import chain
 from pathlib import Path
 from typing import Any
 
 import jsonschema
 
+from conformance.corpus.documents import (
+    DOCUMENT_SUFFIXES,
+    TOO_DEEP,
+    DocumentError,
+    clip,
+    read_document,
+)
 from conformance.grammar import declared_names, referenced_names
 from conformance.grammar.schema import SCHEMA_FILE as SCENARIO_SCHEMA
 from conformance.grammar.schema import scenario_schema
@@ -37,6 +53,18 @@ __all__ = [
 
 _SPECIAL_REFS = frozenset({"@unknown", "@foreign"})
 _NON_ARGS = frozenset({"op", "comment", "expect"})
+#: Expectation keys whose value is a list of geometry-name pairs.
+_PAIR_KEYS = ("candidates", "filtered", "unfiltered")
+#: What the top level of a document is, when it is not an object (bool before int).
+_KINDS: tuple[tuple[type | tuple[type, ...], str], ...] = (
+    (type(None), "null"),
+    (bool, "a boolean"),
+    ((int, float), "a number"),
+    (str, "a string"),
+    (list, "an array"),
+)
+#: A schema message is cut to this many characters (its echoed instance to ~200 first).
+_MESSAGE_LIMIT = 400
 
 
 class ScenarioError(ValueError):
@@ -51,7 +79,7 @@ class ScenarioError(ValueError):
         self.message = message
         parts = [path]
         if case is not None:
-            parts.append(f"case {case!r}")
+            parts.append(f"case {clip(repr(case))}")
         if where is not None:
             parts.append(where)
         super().__init__(f"{': '.join(parts)}: {message}")
@@ -95,7 +123,7 @@ class Case:
 @dataclass(frozen=True)
 class ScenarioFile:
     path: Path
-    name: str  # path relative to the corpus root, without ".json"
+    name: str  # path below a stable root (see the module docstring), without the suffix
     description: str
     cases: tuple[Case, ...] = field(default=(), compare=False)
 
@@ -113,8 +141,25 @@ def default_corpus_root() -> Path:
     return Path(str(resources.files("scenarios")))
 
 
-def _json_path(parts: Iterable[object]) -> str:
-    return "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in parts) or "(top level)"
+def _json_path(parts: Iterable[object], whole: str = "(top level)") -> str:
+    shown = (f"[{p}]" if isinstance(p, int) else f".{clip(str(p), 40)}" for p in parts)
+    return "".join(shown) or whole
+
+
+def _case_label(data: Any, index: int) -> str:
+    try:
+        return str(data["cases"][index]["description"])
+    except (KeyError, IndexError, TypeError):
+        return f"#{index + 1}"
+
+
+def _schema_message(error: jsonschema.ValidationError) -> str:
+    """The error's message with its echoed instance, and then the whole, cut short."""
+    message = error.message
+    echoed = repr(error.instance)
+    if len(echoed) > len(clip(echoed)):
+        message = message.replace(echoed, clip(echoed))
+    return clip(message, _MESSAGE_LIMIT)
 
 
 def _describe_schema_error(data: Any, error: jsonschema.ValidationError) -> tuple[str | None, str]:
@@ -123,39 +168,56 @@ def _describe_schema_error(data: Any, error: jsonschema.ValidationError) -> tupl
     path = list(best.absolute_path)
     case = None
     if len(path) >= 2 and path[0] == "cases" and isinstance(path[1], int):
-        try:
-            case = str(data["cases"][path[1]].get("description", f"#{path[1] + 1}"))
-        except (KeyError, IndexError, TypeError, AttributeError):
-            case = f"#{path[1] + 1}"
+        case = _case_label(data, path[1])
         if len(path) >= 4 and path[2] == "steps" and isinstance(path[3], int):
             where = f"step {path[3] + 1}, field {_json_path(path[4:])}"
         else:
-            where = f"field {_json_path(path[2:])}"
+            where = f"field {_json_path(path[2:], '(the case)')}"
     else:
         where = f"field {_json_path(path)}"
-    return case, f"{where}: {best.message}"
+    return case, f"{where}: {_schema_message(best)}"
+
+
+def _error_order(error: jsonschema.ValidationError) -> list[tuple[int, int, str]]:
+    """Sorts errors by path; YAML may put a non-string key beside a string one."""
+    return [(0, p, "") if isinstance(p, int) else (1, 0, str(p)) for p in error.absolute_path]
+
+
+def _kind(value: Any) -> str:
+    return next((name for types, name in _KINDS if isinstance(value, types)), type(value).__name__)
+
+
+def _validate(shown: str, data: Any) -> None:
+    """Raises ``ScenarioError`` unless ``data`` is a scenario object valid under the schema."""
+    if not isinstance(data, dict):
+        raise ScenarioError(
+            shown, f"the top level is {_kind(data)}, not an object with 'description' and 'cases'"
+        )
+    try:
+        errors = sorted(_validator().iter_errors(data), key=_error_order)
+        described = _describe_schema_error(data, errors[0]) if errors else None
+    except RecursionError:
+        raise ScenarioError(shown, TOO_DEEP) from None
+    except ValueError as exc:  # repr() of an integer too long to print in decimal
+        raise ScenarioError(shown, f"cannot be validated: {clip(str(exc))}") from None
+    if described is not None:
+        case, message = described
+        raise ScenarioError(shown, f"schema violation at {message}", case=case)
 
 
 def load_file(path: Path, *, root: Path | None = None) -> ScenarioFile:
-    """Loads, validates and name-checks one scenario file."""
+    """Loads, validates and name-checks one scenario file (``.json``, ``.yaml`` or ``.yml``).
+
+    Its ``name`` is the path below ``root`` if given and the file is under it,
+    else the stable name of the module docstring.
+    """
     shown = str(path)
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ScenarioError(shown, f"cannot read the file: {exc.strerror}") from None
-    except json.JSONDecodeError as exc:
-        raise ScenarioError(
-            shown, f"malformed JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}"
-        ) from None
-    errors = sorted(_validator().iter_errors(data), key=lambda e: list(e.absolute_path))
-    if errors:
-        where, message = _describe_schema_error(data, errors[0])
-        raise ScenarioError(shown, f"schema violation at {message}", case=where)
-    try:
-        name = path.resolve().relative_to((root or path.parent).resolve()).with_suffix("")
-    except ValueError:
-        name = Path(path.stem)
-    file = ScenarioFile(path=path, name=name.as_posix(), description=data["description"])
+        data = read_document(path)
+    except DocumentError as exc:
+        raise ScenarioError(shown, str(exc)) from None
+    _validate(shown, data)
+    file = ScenarioFile(path=path, name=_name(path, root), description=data["description"])
     file_features = frozenset(data.get("features", ["core"]))
     cases = []
     seen: set[str] = set()
@@ -176,9 +238,36 @@ def load_file(path: Path, *, root: Path | None = None) -> ScenarioFile:
             drake_refs=tuple(raw.get("drake_refs", ())),
         )
         _check_names(shown, case)
+        _check_pairs(shown, case)
         cases.append(case)
     object.__setattr__(file, "cases", tuple(cases))
     return file
+
+
+def _enclosing_corpus(path: Path) -> Path | None:
+    """The nearest directory above ``path`` holding the scenario schema, if any."""
+    return next((p for p in path.parents if (p / SCENARIO_SCHEMA).is_file()), None)
+
+
+def _name_roots(path: Path) -> Iterator[Path]:
+    """The roots a file's name is taken below, first match wins (all resolved)."""
+    yield default_corpus_root().resolve()
+    corpus = _enclosing_corpus(path)
+    if corpus is not None:
+        yield corpus
+    try:
+        yield Path.cwd().resolve()
+    except OSError:  # the current directory was removed
+        return
+
+
+def _name(path: Path, root: Path | None = None) -> str:
+    """The file's name: its path below ``root`` or the first stable root, without the suffix."""
+    resolved = path.resolve()
+    roots = chain([root.resolve()] if root is not None else [], _name_roots(resolved))
+    below = next((r for r in roots if resolved.is_relative_to(r)), None)
+    name = resolved if below is None else resolved.relative_to(below)
+    return name.with_suffix("").as_posix()
 
 
 def _step(index: int, raw: Mapping[str, Any]) -> Step:
@@ -209,12 +298,34 @@ def _refs(step: Step) -> Iterator[tuple[str, str, str]]:
 def _expectation_refs(expectation: Mapping[str, Any]) -> Iterator[tuple[str, str, str]]:
     if "at" in expectation:
         yield "context", expectation["at"], "expect.at"
-    for key in ("candidates", "filtered", "unfiltered"):
+    for key in _PAIR_KEYS:
         for pair in expectation.get(key, ()):
             for name in pair:
                 yield "geometry", name, f"expect.{key}"
     for label in expectation.get("active", {}):
         yield "label", label, "expect.active"
+
+
+def _expectation_pairs(step: Step) -> Iterator[tuple[str, Sequence[str]]]:
+    """(field, pair) for every geometry pair in the step's expectations."""
+    for i, expectation in enumerate(step.expect):
+        prefix = f"expect[{i}]" if len(step.expect) > 1 else "expect"
+        for key in _PAIR_KEYS:
+            for j, pair in enumerate(expectation.get(key, ())):
+                yield f"{prefix}.{key}[{j}]", pair
+
+
+def _check_pairs(path: str, case: Case) -> None:
+    """An expectation's pair is two different geometries (C never holds a geometry with itself)."""
+    for step in case.steps:
+        for where, (a, b) in _expectation_pairs(step):
+            if a == b:
+                raise ScenarioError(
+                    path,
+                    f"the pair names geometry {clip(repr(a))} twice; a pair is two geometries",
+                    case=case.description,
+                    where=f"{step.label}, field {where}",
+                )
 
 
 def _declares(step: Step) -> Iterator[tuple[str, str]]:
@@ -236,7 +347,7 @@ def _check_names(path: str, case: Case) -> None:
             if name in declared[kind] and kind != "label":
                 raise ScenarioError(
                     path,
-                    f"{kind} {name!r} is declared twice",
+                    f"{kind} {clip(repr(name))} is declared twice",
                     case=case.description,
                     where=f"{step.label}, field name",
                 )
@@ -258,32 +369,61 @@ def _require(
         if name not in _SPECIAL_REFS and name not in declared[kind]:
             raise ScenarioError(
                 path,
-                f"unknown {kind} name {name!r} (declare it in the scene or an earlier step)",
+                f"unknown {kind} name {clip(repr(name))} "
+                "(declare it in the scene or an earlier step)",
                 case=case.description,
                 where=f"{step.label}, field {where}",
             )
 
 
-def load_corpus(paths: Sequence[Path] = ()) -> list[ScenarioFile]:
-    """Loads files and directories (recursively, ``*.json`` except the schema)."""
-    root = default_corpus_root()
-    targets = list(paths) or [root]
-    files: list[ScenarioFile] = []
+def _is_scenario(path: Path) -> bool:
+    """A file the walker loads: a known suffix, and not a schema (``*.schema.json``)."""
+    suffix = path.suffix.lower()
+    return (
+        suffix in DOCUMENT_SUFFIXES
+        and not path.name.lower().endswith(f".schema{suffix}")
+        and path.is_file()
+    )
+
+
+def _walk(targets: Iterable[Path]) -> Iterator[Path]:
+    """The scenario files of ``targets``: files as given, directories walked in sorted order."""
     for target in targets:
         if target.is_dir():
-            for path in sorted(target.rglob("*.json")):
-                if path.name != SCENARIO_SCHEMA:
-                    files.append(load_file(path, root=target))
+            yield from sorted(p for p in target.rglob("*") if _is_scenario(p))
         elif target.exists():
-            files.append(load_file(target, root=_root_for(target, root)))
+            yield target
         else:
             raise ScenarioError(str(target), "no such file or directory")
+
+
+def _once(paths: Iterable[Path]) -> Iterator[Path]:
+    """``paths`` without repeats of one file (however spelled), first spelling kept."""
+    seen: set[Path] = set()
+    for path in paths:
+        resolved = path.resolve()
+        if resolved not in seen:
+            seen.add(resolved)
+            yield path
+
+
+def _check_unique_names(files: Iterable[ScenarioFile]) -> None:
+    """Two files may not share a name (say ``x.json`` and ``x.yaml``): their cases would clash."""
+    first: dict[str, Path] = {}
+    for file in files:
+        other = first.setdefault(file.name, file.path)
+        if other != file.path:
+            raise ScenarioError(
+                str(file.path), f"has the same name {file.name!r} as {other}; rename one"
+            )
+
+
+def load_corpus(paths: Sequence[Path] = ()) -> list[ScenarioFile]:
+    """Loads files and directories, each file once.
+
+    Directories are walked recursively for ``*.json``, ``*.yaml`` and ``*.yml``
+    files, skipping schemas (``*.schema.json``). No paths: the embedded corpus.
+    """
+    files = [load_file(path) for path in _once(_walk(paths or [default_corpus_root()]))]
+    _check_unique_names(files)
     return files
-
-
-def _root_for(path: Path, root: Path) -> Path:
-    try:
-        path.resolve().relative_to(root.resolve())
-    except ValueError:
-        return path.parent
-    return root
