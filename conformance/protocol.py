@@ -38,6 +38,7 @@ __all__ = [
     "Observation",
     "Pair",
     "Result",
+    "UnknownNameError",
     "backend_id",
     "classify_error",
     "normalise_message",
@@ -47,6 +48,22 @@ __all__ = [
 MODEL = "model"
 
 Pair = tuple[str, str]
+
+
+class UnknownNameError(KeyError):
+    """A command names a source, frame, geometry, context or label that no earlier command made.
+
+    An input error in the scenario (or the fuzz sequence), not a backend
+    fault: any backend may raise it from ``execute``.
+    """
+
+    def __init__(self, kind: str, name: str) -> None:
+        super().__init__(f"unknown {kind} name {name!r}")
+        self.kind = kind
+        self.name = name
+
+    def __str__(self) -> str:
+        return str(self.args[0])
 
 
 class ErrorKind(enum.Enum):

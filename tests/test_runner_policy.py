@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 from conformance.backends.loader import load_backend
-from conformance.corpus.loader import load_corpus
+from conformance.corpus.loader import Step, load_corpus, load_file
 from conformance.policy.divergences import KnownDivergence, XfailMatcher
 from conformance.policy.guards import armed_guards
 from conformance.policy.versions import VersionRange
-from conformance.run.runner import Status, choose_reference, run_case
+from conformance.protocol import Command, Observation, Result
+from conformance.run.runner import Status, _observed_steps, choose_reference, run_case
 
 MUTANT = "conformance.testing.mutants:allow_clears_invariants"
 FILE = "statements/allow_within"
@@ -72,3 +76,69 @@ def test_the_anchored_deactivation_guard_is_armed_only_by_releases_1_55_to_1_58(
     assert "deactivate-anchored-aborts" in armed_guards(["1.55.0"])
     assert "deactivate-anchored-aborts" not in armed_guards(["1.59.0"])
     assert "older-context-pose-port-aborts" in armed_guards(["1.51.1"])
+
+
+class _CountingObserver:
+    """reimpl, counting observe() calls."""
+
+    def __init__(self) -> None:
+        self._inner = load_backend("reimpl")
+        self.name = "counting"
+        self.observed = 0
+
+    def version(self) -> str:
+        return self._inner.version()
+
+    def features(self) -> frozenset[str]:
+        return self._inner.features()
+
+    def reset(self) -> None:
+        self._inner.reset()
+
+    def execute(self, command: Command) -> Result:
+        return self._inner.execute(command)
+
+    def observe(self) -> Observation:
+        self.observed += 1
+        return self._inner.observe()
+
+
+def test_a_scene_is_observed_once_after_its_last_registration(tmp_path: Path) -> None:
+    """40 registrations, then two steps (one without expectations): 3 observations, not 42."""
+    scenario = {
+        "description": "observation count",
+        "cases": [
+            {
+                "description": "a scene of 20 frames and 20 geometries",
+                "scene": {
+                    "frames": [{"name": f"f{i}"} for i in range(20)],
+                    "geometries": [
+                        {"name": f"g{i}", "frame": f"f{i}", "roles": ["proximity"]}
+                        for i in range(20)
+                    ],
+                },
+                "steps": [
+                    {"op": "collision_filtered", "pair": ["g0", "g1"]},
+                    {"op": "check", "expect": {"history": False}},
+                ],
+            }
+        ],
+    }
+    path = tmp_path / "count.json"
+    path.write_text(json.dumps(scenario))
+    (case,) = load_file(path, root=tmp_path).cases
+    counting = _CountingObserver()
+    report = run_case(case, [counting, load_backend("reimpl")])
+    assert report.status == {"counting": Status.PASS, "reimpl": Status.PASS}
+    assert counting.observed == 3
+
+
+def test_state_is_observed_after_the_scene_and_after_every_later_step() -> None:
+    steps = [
+        Step(0, "register_frame", {"name": "f"}, ()),
+        Step(0, "register_frame", {"name": "g"}, ()),
+    ]
+    assert _observed_steps(steps) == [False, True]
+    with_expectation = [Step(0, "register_frame", {"name": "f"}, ({"history": False},)), steps[1]]
+    assert _observed_steps(with_expectation) == [True, True]
+    assert _observed_steps([*steps, Step(1, "check", {}, ())]) == [False, True, True]

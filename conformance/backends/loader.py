@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import importlib
+import os
+import sys
 from collections.abc import Callable
+from typing import Any, cast
 
 from conformance.protocol import Backend
 
@@ -32,10 +35,74 @@ def _pydrake() -> Backend:
 BUILTIN_BACKENDS: dict[str, Callable[[], Backend]] = {"reimpl": _reimpl, "pydrake": _pydrake}
 
 _REQUIRED = ("name", "version", "features", "reset", "execute", "observe")
+#: What the identity methods (or attributes) must answer.
+_ANSWERS: dict[str, tuple[type, ...]] = {
+    "name": (str,),
+    "version": (str,),
+    "features": (frozenset, set),
+}
+
+
+def _describe(exc: BaseException) -> str:
+    return f"{type(exc).__name__}: {exc}" if str(exc) else type(exc).__name__
+
+
+def _import(spec: str, module_name: str) -> Any:
+    """Imports ``module_name``; the current folder is importable, as under ``python -m``."""
+    here = os.getcwd()
+    if here not in sys.path and "" not in sys.path:
+        sys.path.append(here)
+    try:
+        return importlib.import_module(module_name)
+    except KeyboardInterrupt:
+        raise
+    except BaseException as exc:  # a plugin's import may raise anything
+        raise BackendLoadError(
+            f"backend {spec!r}: cannot import {module_name!r}: {_describe(exc)}"
+        ) from None
+
+
+def _make(spec: str, factory: Callable[[], Any]) -> Any:
+    try:
+        return factory()
+    except KeyboardInterrupt:
+        raise
+    except BackendLoadError:
+        raise
+    except BaseException as exc:  # SystemExit too: a plugin must not end the run
+        raise BackendLoadError(f"backend {spec!r}: its factory raised {_describe(exc)}") from None
+
+
+def _checked(spec: str, backend: Any) -> Backend:
+    """``backend`` if it has the protocol's methods and its name, version and features answer."""
+    missing = [m for m in _REQUIRED if not hasattr(backend, m)]
+    if missing:
+        raise BackendLoadError(
+            f"backend {spec!r} does not implement the Backend protocol: missing {missing}"
+        )
+    for method, kinds in _ANSWERS.items():
+        try:
+            value = getattr(backend, method)
+            value = value() if callable(value) else value
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:
+            raise BackendLoadError(f"backend {spec!r}: {method} raised {_describe(exc)}") from None
+        if not isinstance(value, kinds):
+            raise BackendLoadError(
+                f"backend {spec!r}: {method} is a {type(value).__name__}, "
+                f"not {' or '.join(k.__name__ for k in kinds)}"
+            )
+    return cast(Backend, backend)
 
 
 def load_backend(spec: str) -> Backend:
-    """``reimpl``, ``pydrake``, or ``package.module:attribute`` (a class or factory)."""
+    """``reimpl``, ``pydrake``, or ``package.module:attribute`` (a class or factory).
+
+    Anything that goes wrong (an import or a factory raising, a missing
+    method, a ``version()`` that is not a string) is a ``BackendLoadError``
+    naming the spec.
+    """
     if spec in BUILTIN_BACKENDS:
         try:
             return BUILTIN_BACKENDS[spec]()
@@ -47,17 +114,8 @@ def load_backend(spec: str) -> Backend:
             f"unknown backend {spec!r}: use one of {known}, or package.module:attribute"
         )
     module_name, _, attribute = spec.partition(":")
-    try:
-        module = importlib.import_module(module_name)
-    except ImportError as exc:
-        raise BackendLoadError(f"backend {spec!r}: cannot import {module_name!r}: {exc}") from None
+    module = _import(spec, module_name)
     factory = getattr(module, attribute, None)
     if factory is None or not callable(factory):
         raise BackendLoadError(f"backend {spec!r}: {module_name} has no callable {attribute!r}")
-    backend = factory()
-    missing = [m for m in _REQUIRED if not hasattr(backend, m)]
-    if missing:
-        raise BackendLoadError(
-            f"backend {spec!r} does not implement the Backend protocol: missing {missing}"
-        )
-    return backend  # type: ignore[no-any-return]
+    return _checked(spec, _make(spec, factory))

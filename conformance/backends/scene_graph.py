@@ -29,6 +29,7 @@ from conformance.protocol import (
     Observation,
     Pair,
     Result,
+    UnknownNameError,
     classify_error,
 )
 
@@ -55,18 +56,6 @@ BASE_FEATURES = frozenset({"core", "transient", "contexts", "errors", "roles", "
 
 class RefusedCallError(Exception):
     """Raised (and reported as ErrorKind.REFUSED) for a call the harness will not make."""
-
-
-class UnknownNameError(KeyError):
-    """Raised when a command names a source, frame, geometry, context or label never declared."""
-
-    def __init__(self, kind: str, name: str) -> None:
-        super().__init__(f"unknown {kind} name {name!r}")
-        self.kind = kind
-        self.name = name
-
-    def __str__(self) -> str:
-        return str(self.args[0])
 
 
 @dataclass(frozen=True)

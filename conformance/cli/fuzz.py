@@ -9,9 +9,14 @@ with the scenario runner to confirm that ``run`` reproduces it.
 from __future__ import annotations
 
 import argparse
+import tempfile
+import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import TextIO
+
+from hypothesis.errors import HypothesisException
 
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
@@ -19,11 +24,15 @@ from conformance.cli.run import PROG
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
 from conformance.fuzz.lockstep import FuzzStats, HarnessError
-from conformance.fuzz.regression import write_regression
+from conformance.fuzz.regression import write_regression, write_reproducer
 from conformance.protocol import Backend
+from conformance.run.outputs import unwritable_dir
 from conformance.run.runner import run_case
 
-__all__ = ["Progress", "fuzz_command", "replays"]
+__all__ = ["FALLBACK_FINDINGS", "Progress", "fuzz_command", "replays"]
+
+#: Where findings go when ``--out`` cannot be written after all.
+FALLBACK_FINDINGS = Path(tempfile.gettempdir()) / "drake-filter-conformance-findings"
 
 
 class Progress:
@@ -35,6 +44,7 @@ class Progress:
         self.quiet = quiet
         self.start = time.perf_counter()
         self.last = self.start
+        self.last_step = self.start
         self.found = 0
 
     def line(self, stats: FuzzStats) -> str:
@@ -48,10 +58,30 @@ class Progress:
 
     def __call__(self, stats: FuzzStats) -> None:
         now = time.perf_counter()
+        self.last_step = now
         if not self.quiet and now - self.last >= self.interval:
             self.last = now
             self.err.write(self.line(stats) + "\n")
             self.err.flush()
+
+    def watch(self, *, after: float = 10.0, every: float = 10.0) -> threading.Event:
+        """Says so on ``err`` every ``every`` s while no step has finished for ``after`` s.
+
+        A backend that hangs shows as waiting, not as silence. Set the
+        returned event to stop watching.
+        """
+        stop = threading.Event()
+
+        def run() -> None:
+            while not stop.wait(every):
+                waited = time.perf_counter() - self.last_step
+                if not self.quiet and waited >= after:
+                    line = f"[fuzz] waiting: no backend call has returned for {waited:.0f}s"
+                    self.err.write(line + "\n")
+                    self.err.flush()
+
+        threading.Thread(target=run, name="fuzz-progress", daemon=True).start()
+        return stop
 
 
 def replays(path: Path, backends: list[Backend]) -> bool:
@@ -72,14 +102,22 @@ def _report(
     if divergence is None:
         return
     backend, reference = backends
-    path = write_regression(
-        divergence,
+    path = _write_finding(
+        lambda folder: write_regression(
+            divergence,
+            folder,
+            backend=args.backend,
+            reference=args.against,
+            reference_version=reference.version(),
+            seed=args.seed,
+        ),
         args.out,
-        backend=args.backend,
-        reference=args.against,
-        reference_version=reference.version(),
-        seed=args.seed,
+        out,
     )
+    if path is None:
+        out.write(f"DIVERGENCE (batch seed {outcome.seed}), not written: {divergence}\n")
+        written.append(args.out)
+        return
     written.append(path)
     reproduced = replays(path, [backend, reference])
     out.write(
@@ -89,6 +127,37 @@ def _report(
         f"  replay:  {PROG} run {path} --backend {args.backend} --backend {args.against}"
         f"  ({'reproduces' if reproduced else 'does NOT reproduce: a flaky backend?'})\n"
     )
+
+
+def _write_finding(write: Callable[[Path], Path | None], folder: Path, out: TextIO) -> Path | None:
+    """``write(folder)``; if that fails, ``write(FALLBACK_FINDINGS)``, saying so."""
+    try:
+        return write(folder)
+    except OSError as exc:
+        out.write(f"warning: cannot write into {folder} ({exc}); using {FALLBACK_FINDINGS}\n")
+    try:
+        return write(FALLBACK_FINDINGS)
+    except OSError as exc:
+        out.write(f"error: cannot write into {FALLBACK_FINDINGS} either ({exc})\n")
+        return None
+
+
+def _broken(exc: HarnessError, args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
+    """Reports a broken backend with a reproducer file; exit 2."""
+    err.write(f"error: a backend broke (not a divergence): {exc}\n")
+    path = _write_finding(
+        lambda folder: write_reproducer(
+            exc, folder, backend=args.backend, reference=args.against, seed=args.seed
+        ),
+        args.out,
+        out,
+    )
+    if path is not None:
+        err.write(
+            f"  reproducer: {path} ({len(exc.commands)} commands)\n"
+            f"  replay:     {PROG} run {path} --backend {args.backend} --backend {args.against}\n"
+        )
+    return EXIT_USAGE
 
 
 def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
@@ -106,15 +175,30 @@ def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
         out.write(f"fuzz: known divergence {divergence} met in {examples} example(s), set aside\n")
 
 
+def _load_pair(args: argparse.Namespace) -> tuple[Backend, Backend]:
+    backend, reference = load_backend(args.backend), load_backend(args.against)
+    if backend.name == reference.name:
+        raise BackendLoadError(f"--backend and --against are both named {backend.name!r}")
+    return backend, reference
+
+
 def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Runs ``fuzz``; returns the exit code (see ``conformance.cli.exit_codes``)."""
+    problems = [
+        f"{option} {path}: {problem}"
+        for option, path in (("--out", args.out), ("--database", args.database))
+        if path is not None and (problem := unwritable_dir(path)) is not None
+    ]
+    if args.step_timeout < 0:
+        problems.append(f"--step-timeout must be 0 (none) or positive, got {args.step_timeout:g}")
+    if problems:
+        for problem in problems:
+            err.write(f"error: {problem}\n")
+        return EXIT_USAGE
     try:
-        backend, reference = load_backend(args.backend), load_backend(args.against)
+        backend, reference = _load_pair(args)
     except BackendLoadError as exc:
         err.write(f"error: {exc}\n")
-        return EXIT_USAGE
-    if backend.name == reference.name:
-        err.write(f"error: --backend and --against are both named {backend.name!r}\n")
         return EXIT_USAGE
     progress = Progress(err, quiet=args.quiet)
     written: list[Path] = []
@@ -139,6 +223,7 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         on_batch=on_batch,
         stop_at_first=not args.keep_going,
         strict_divergences=args.strict_divergences,
+        step_timeout=args.step_timeout or None,
     )
     err.write(
         f"fuzz: {backend.name} {backend.version()} against {reference.name} "
@@ -146,14 +231,20 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         + (f"{max_examples} examples" if max_examples else f"time budget {args.time_budget}s")
         + f", {args.steps} steps each\n"
     )
+    watching = progress.watch()
     try:
         result = campaign.run()
     except HarnessError as exc:
-        err.write(f"error: a backend broke (not a divergence): {exc}\n")
-        return EXIT_USAGE
+        return _broken(exc, args, out, err)
     except ScenarioError as exc:
         err.write(f"error: could not write the finding as a scenario: {exc}\n")
         return EXIT_USAGE
+    except HypothesisException as exc:  # e.g. a flaky backend Hypothesis could not replay
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        err.write(f"error: the fuzz run failed ({type(exc).__name__}): {first}\n")
+        return EXIT_USAGE
+    finally:
+        watching.set()
     _summary(result, out, progress)
     return _exit_code(result, written, err)
 

@@ -19,9 +19,11 @@ import argparse
 import json
 import sys
 from collections.abc import Callable, Sequence
+from importlib import metadata
 from pathlib import Path
 from typing import Any, TextIO
 
+from conformance.backends.calls import DEFAULT_STEP_TIMEOUT
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
 from conformance.cli.run import PROG, add_run_parser, run_command
@@ -41,6 +43,7 @@ class _Parser(argparse.ArgumentParser):
 
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description=__doc__.split("\n\n")[0] if __doc__ else None)
+    parser.add_argument("--version", action="version", version=_version())
     commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     add_run_parser(commands)
     _add_fuzz(commands)
@@ -51,6 +54,19 @@ def _parser() -> argparse.ArgumentParser:
         "--write", action="store_true", help="write it to scenarios/scenario.schema.json"
     )
     return parser
+
+
+def _version() -> str:
+    """This package's version, and the Drake release installed here (if any)."""
+    try:
+        mine = metadata.version("drake-filter-conformance")
+    except metadata.PackageNotFoundError:
+        mine = "unknown (not installed)"
+    try:
+        drake = f"drake {metadata.version('drake')}"
+    except metadata.PackageNotFoundError:
+        drake = "no drake installed"
+    return f"drake-filter-conformance {mine} ({drake}, Python {sys.version.split()[0]})"
 
 
 def _positive(kind: type[int] | type[float]) -> Callable[[str], float]:
@@ -103,6 +119,14 @@ def _add_fuzz(commands: Any) -> None:
         "--strict-divergences",
         action="store_true",
         help="report known divergences as findings (default: set aside and counted)",
+    )
+    fuzz.add_argument(
+        "--step-timeout",
+        type=float,
+        default=DEFAULT_STEP_TIMEOUT,
+        metavar="SEC",
+        help=f"a backend call taking longer breaks the run, exit 2 "
+        f"(default {DEFAULT_STEP_TIMEOUT:g}; 0: none)",
     )
     fuzz.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
 

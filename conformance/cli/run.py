@@ -14,13 +14,14 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TextIO
 
+from conformance.backends.calls import DEFAULT_STEP_TIMEOUT
 from conformance.backends.loader import BackendLoadError, load_backend
-from conformance.backends.scene_graph import UnknownNameError
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.corpus.loader import Case, ScenarioError, load_corpus
 from conformance.protocol import Backend
+from conformance.run.outputs import unwritable, write_or_fall_back
 from conformance.run.report import RunReport, write_json, write_junit
-from conformance.run.runner import BackendError, Status, choose_reference, run_case
+from conformance.run.runner import Status, choose_reference, run_case
 
 __all__ = ["PROG", "add_run_parser", "load_backends", "run_command", "select_cases"]
 
@@ -52,6 +53,14 @@ def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignor
         "--strict-divergences",
         action="store_true",
         help="report known divergences as failures, not xfail",
+    )
+    run.add_argument(
+        "--step-timeout",
+        type=float,
+        default=DEFAULT_STEP_TIMEOUT,
+        metavar="SEC",
+        help=f"a backend call taking longer is a timeout, exit 2 "
+        f"(default {DEFAULT_STEP_TIMEOUT:g}; 0: none)",
     )
     run.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
     run.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
@@ -87,8 +96,24 @@ def _progress(out: TextIO, index: int, total: int, name: str, statuses: dict[str
     out.flush()
 
 
+def _output_problems(args: argparse.Namespace) -> list[str]:
+    """Why --json/--junit cannot be written, checked before the run."""
+    return [
+        f"--{option} {path}: {problem}"
+        for option, path in (("json", args.json), ("junit", args.junit))
+        if path is not None and (problem := unwritable(path)) is not None
+    ]
+
+
 def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Runs ``run``; returns the exit code (see ``conformance.cli.exit_codes``)."""
+    problems = _output_problems(args)
+    if args.step_timeout < 0:
+        problems.append(f"--step-timeout must be 0 (none) or positive, got {args.step_timeout:g}")
+    if problems:
+        for problem in problems:
+            err.write(f"error: {problem}\n")
+        return EXIT_USAGE
     try:
         backends = load_backends(args.backends)
         reference = choose_reference(backends, args.reference).name
@@ -106,37 +131,16 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         reference=reference,
         rerun_options=["--strict-divergences"] if args.strict_divergences else [],
     )
-    code = EXIT_OK
-    try:
-        for index, case in enumerate(cases, 1):
-            try:
-                case_report = run_case(
-                    case,
-                    backends,
-                    reference=reference,
-                    strict_divergences=args.strict_divergences,
-                )
-            except (BackendError, UnknownNameError) as exc:
-                report.aborted = f"{case.qualified_name}: {exc}"
-                err.write(f"error: {case.file.path}: case {case.description!r}: {exc}\n")
-                code = EXIT_USAGE
-                break
-            report.cases.append(case_report)
-            if not args.quiet:
-                _progress(err, index, len(cases), case.qualified_name, case_report.status)
-    except KeyboardInterrupt:
-        report.aborted = "interrupted"
-        err.write("interrupted: reporting the cases finished so far\n")
-        code = EXIT_USAGE
+    code = _run_cases(args, cases, report, err)
     report.print_failures(out, prog=PROG)
     out.write("\n")
     report.print_xfails(out)
     report.print_skips(out)
     report.print_summary(out)
     if args.junit:
-        write_junit(report, args.junit)
+        write_or_fall_back(args.junit, lambda path: write_junit(report, path), err)
     if args.json:
-        write_json(report, args.json)
+        write_or_fall_back(args.json, lambda path: write_json(report, path), err)
     if code == EXIT_OK and report.failed:
         code = EXIT_FAILURE
     ran = sum(1 for c in report.cases for s in c.status.values() if s is not Status.SKIP)
@@ -144,3 +148,36 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         err.write("error: no case ran on any backend\n")
         code = EXIT_USAGE
     return code
+
+
+def _run_cases(
+    args: argparse.Namespace,
+    cases: Sequence[Case],
+    report: RunReport,
+    err: TextIO,
+) -> int:
+    """Runs the cases into ``report``; stops at the first broken backend or input error."""
+    try:
+        for index, case in enumerate(cases, 1):
+            case_report = run_case(
+                case,
+                report.backends,
+                reference=report.reference,
+                strict_divergences=args.strict_divergences,
+                step_timeout=args.step_timeout or None,
+            )
+            report.cases.append(case_report)
+            if not args.quiet:
+                _progress(err, index, len(cases), case.qualified_name, case_report.status)
+            if case_report.aborted is not None:
+                report.aborted = f"{case.qualified_name}: {case_report.aborted}"
+                err.write(
+                    f"error: {case.file.path}: case {case.description!r}: {case_report.aborted}\n"
+                    f"stopped after {index} of {len(cases)} cases; reporting what was found\n"
+                )
+                return EXIT_USAGE
+    except KeyboardInterrupt:
+        report.aborted = "interrupted"
+        err.write("interrupted: reporting the cases finished so far\n")
+        return EXIT_USAGE
+    return EXIT_OK

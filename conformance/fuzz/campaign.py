@@ -31,7 +31,13 @@ from hypothesis import seed as hypothesis_seed
 from hypothesis.database import DirectoryBasedExampleDatabase
 from hypothesis.stateful import run_state_machine_as_test
 
-from conformance.fuzz.lockstep import Divergence, FuzzStats, LockstepMachine, lockstep_machine
+from conformance.fuzz.lockstep import (
+    Divergence,
+    FuzzStats,
+    HarnessAbort,
+    LockstepMachine,
+    lockstep_machine,
+)
 from conformance.protocol import Backend
 
 __all__ = [
@@ -147,9 +153,15 @@ class Campaign:
     scene_geometries: tuple[int, int] | None = None
     #: Report known divergences as divergences (default: set them aside, counted).
     strict_divergences: bool = False
+    #: Seconds one backend call may take; None: no limit.
+    step_timeout: float | None = None
 
     def run(self) -> CampaignResult:
-        """Runs the campaign. On Ctrl-C, keeps the smallest divergence seen so far."""
+        """Runs the campaign. On Ctrl-C, keeps the smallest divergence seen so far.
+
+        A backend that breaks raises ``HarnessError`` (with the commands that
+        led there) at once, after the batches done so far were reported.
+        """
         load_local_modules()
         stats = FuzzStats(on_step=self.on_step)
         result = CampaignResult(stats=stats)
@@ -194,6 +206,7 @@ class Campaign:
             scene_frames=self.scene_frames,
             scene_geometries=self.scene_geometries,
             strict_divergences=self.strict_divergences,
+            step_timeout=self.step_timeout,
         )
         hypothesis_seed(seed)(machine)
         stats.best = None
@@ -206,4 +219,6 @@ class Campaign:
             )
         except Divergence as divergence:
             return divergence
+        except HarnessAbort as abort:
+            raise abort.error from None
         return None

@@ -53,7 +53,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from functools import cache
-from typing import Any, ClassVar
+from typing import Any, ClassVar, TypeVar
 
 from hypothesis import note, reject
 from hypothesis import strategies as st
@@ -61,6 +61,7 @@ from hypothesis.control import current_build_context
 from hypothesis.errors import InvalidArgument
 from hypothesis.stateful import Bundle, RuleBasedStateMachine, initialize, invariant, rule
 
+from conformance.backends.calls import BackendError, call
 from conformance.backends.loader import load_backend
 from conformance.compare import Difference, diff_observations, diff_results
 from conformance.fuzz import operations as ops
@@ -69,17 +70,27 @@ from conformance.fuzz.names import NameBook, register_scene
 from conformance.fuzz.operations import planned_operation
 from conformance.policy.divergences import match_step
 from conformance.policy.guards import arm_guards
-from conformance.protocol import Backend, Command, Observation, Result, backend_id
+from conformance.protocol import (
+    Backend,
+    Command,
+    Observation,
+    Result,
+    UnknownNameError,
+    backend_id,
+)
 
 __all__ = [
     "Divergence",
     "FuzzStats",
+    "HarnessAbort",
     "HarnessError",
     "LockstepMachine",
     "TraceStep",
     "lockstep_machine",
     "planned_operation",
 ]
+
+T = TypeVar("T")
 
 #: Bytes of the swarm draw: a threshold, then one byte per operation (mod 31).
 _SWARM_BYTES = 32
@@ -135,7 +146,29 @@ class Divergence(AssertionError):  # noqa: N818 (a finding, named as users say i
 
 
 class HarnessError(RuntimeError):
-    """A backend broke (raised instead of returning a Result), or named something unknown."""
+    """A backend broke (raised, returned the wrong type, or timed out), not a divergence.
+
+    ``commands`` is the sequence that led there, the breaking command last:
+    a reproducer (``conformance.fuzz.regression.write_reproducer``).
+    """
+
+    def __init__(self, message: str, commands: Sequence[Command] = ()) -> None:
+        super().__init__(message)
+        self.commands = list(commands)
+
+
+class HarnessAbort(BaseException):
+    """Carries a ``HarnessError`` out through Hypothesis at once.
+
+    As an ``Exception`` it would be a failing example: Hypothesis would
+    shrink it, calling the broken (or hanging) backend again and again, and
+    report an intermittent one as a ``FlakyFailure``. A ``BaseException`` ends
+    the run; ``Campaign.run`` turns it back into the ``HarnessError``.
+    """
+
+    def __init__(self, error: HarnessError) -> None:
+        super().__init__(str(error))
+        self.error = error
 
 
 @dataclass
@@ -216,6 +249,8 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
     _pair: ClassVar[tuple[Backend, Backend] | None] = None
     #: Report known divergences (``policy.divergences``) as divergences too.
     strict_divergences: ClassVar[bool] = False
+    #: Seconds one backend call may take (``backends.calls``); None: no limit.
+    step_timeout: ClassVar[float | None] = None
 
     sources = Bundle("sources")
     frames = Bundle("frames")
@@ -226,11 +261,11 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
     def __init__(self) -> None:
         super().__init__()
         self.backend, self.reference = self._backends()
-        start = time.perf_counter()
-        self.backend.reset()
-        self.reference.reset()
-        type(self).stats.backend_seconds += time.perf_counter() - start
         self.trace: list[TraceStep] = []
+        start = time.perf_counter()
+        self._call(self.backend, "reset", returns=object, where="reset")
+        self._call(self.reference, "reset", returns=object, where="reset")
+        type(self).stats.backend_seconds += time.perf_counter() - start
         #: How many commands of ``trace`` the last state comparison covered.
         self._agreed_upto = 0
         #: Both backends have Activate/Deactivate.
@@ -264,13 +299,29 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         return [name for name in ready if name not in self.switched_off] or ready
 
     # ------------------------------------------------------------- steps
-    def _execute(self, backend: Backend, command: Command) -> Result:
+    def _call(
+        self,
+        backend: Backend,
+        method: str,
+        *args: Any,
+        returns: type[T],
+        where: str,
+        command: Command | None = None,
+    ) -> T:
+        """``backends.calls.call``; a broken backend aborts the run (``HarnessAbort``)."""
         try:
-            return backend.execute(command)
-        except Exception as exc:  # A broken backend, not a disagreement.
-            raise HarnessError(
-                f"backend {backend.name!r} raised on {json.dumps(command.to_json())}: {exc!r}"
-            ) from exc
+            return call(
+                backend, method, *args, where=where, returns=returns, timeout=self.step_timeout
+            )
+        except (BackendError, UnknownNameError) as exc:
+            commands = [item.command for item in self.trace]
+            if command is not None:
+                commands.append(command)
+            raise HarnessAbort(HarnessError(str(exc), commands)) from exc
+
+    def _execute(self, backend: Backend, command: Command) -> Result:
+        where = f"step {len(self.trace) + 1} ({json.dumps(command.to_json())})"
+        return self._call(backend, "execute", command, returns=Result, where=where, command=command)
 
     def step(self, op: str, **args: Any) -> Result:
         """Runs one command on both backends; raises Divergence if the Results differ."""
@@ -294,10 +345,9 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
     def _observe(self) -> tuple[Observation, Observation]:
         stats = type(self).stats
         start = time.perf_counter()
-        try:
-            got, want = self.backend.observe(), self.reference.observe()
-        except Exception as exc:
-            raise HarnessError(f"observe() raised: {exc!r}") from exc
+        where = f"observe after step {len(self.trace)}"
+        got = self._call(self.backend, "observe", returns=Observation, where=where)
+        want = self._call(self.reference, "observe", returns=Observation, where=where)
         stats.backend_seconds += time.perf_counter() - start
         return got, want
 
@@ -382,12 +432,14 @@ def lockstep_machine(
     scene_frames: tuple[int, int] | None = None,
     scene_geometries: tuple[int, int] | None = None,
     strict_divergences: bool = False,
+    step_timeout: float | None = None,
     name: str = "Lockstep",
 ) -> type[LockstepMachine]:
     """A subclass of ``base`` for two backend factories, with its own stats.
 
     ``scene_frames`` and ``scene_geometries`` bound the initial scene (default:
-    ``base``'s bounds); ``strict_divergences`` reports known divergences too.
+    ``base``'s bounds); ``strict_divergences`` reports known divergences too;
+    ``step_timeout`` bounds each backend call.
     """
     namespace: dict[str, Any] = {
         "backend_factory": staticmethod(backend),
@@ -395,6 +447,7 @@ def lockstep_machine(
         "stats": stats if stats is not None else FuzzStats(),
         "_pair": None,
         "strict_divergences": strict_divergences,
+        "step_timeout": step_timeout,
     }
     if scene_frames is not None:
         namespace["scene_frames"] = scene_frames

@@ -23,11 +23,17 @@ from pathlib import Path
 from typing import Any
 
 from conformance.corpus.loader import ScenarioError, load_file
-from conformance.fuzz.lockstep import Divergence
+from conformance.fuzz.lockstep import Divergence, HarnessError
 from conformance.grammar import GRAMMAR
-from conformance.protocol import Observation, Result
+from conformance.protocol import Command, Observation, Result
 
-__all__ = ["DEFAULT_REGRESSIONS", "regression_scenario", "write_regression"]
+__all__ = [
+    "DEFAULT_REGRESSIONS",
+    "regression_scenario",
+    "reproducer_scenario",
+    "write_regression",
+    "write_reproducer",
+]
 
 #: Where ``fuzz`` writes findings by default (relative to the working directory).
 DEFAULT_REGRESSIONS = Path("scenarios/regressions")
@@ -79,8 +85,7 @@ def regression_scenario(
         if expectations:
             step["expect"] = expectations[0] if len(expectations) == 1 else expectations
         steps.append(step)
-    ops = {item.command.op for item in divergence.trace}
-    features = sorted({"core"} | {GRAMMAR[op].feature for op in ops})
+    features = _features([item.command for item in divergence.trace])
     if any(item.reference.error is not None for item in divergence.trace):
         features.append("errors")
     seeded = f" --seed {seed}" if seed is not None else ""
@@ -97,6 +102,29 @@ def regression_scenario(
     }
 
 
+def _features(commands: list[Command]) -> list[str]:
+    return sorted({"core"} | {GRAMMAR[c.op].feature for c in commands})
+
+
+def _write_checked(scenario: dict[str, Any], out_dir: Path, stem: str) -> Path:
+    """Writes ``scenario`` as ``out_dir/<stem>-<hash of its steps>.json`` and validates it.
+
+    A file that fails validation is removed and ScenarioError raised, so a
+    bad file never lands.
+    """
+    body = json.dumps(scenario["cases"][0]["steps"], sort_keys=True)
+    digest = hashlib.sha256(body.encode()).hexdigest()[:10]
+    out_dir.mkdir(parents=True, exist_ok=True)
+    path = out_dir / f"{stem}-{digest}.json"
+    path.write_text(json.dumps(scenario, indent=2) + "\n")
+    try:
+        load_file(path, root=out_dir)
+    except ScenarioError:
+        path.unlink()
+        raise
+    return path
+
+
 def write_regression(
     divergence: Divergence,
     out_dir: Path,
@@ -106,11 +134,7 @@ def write_regression(
     reference_version: str,
     seed: int | None = None,
 ) -> Path:
-    """Writes the scenario for ``divergence`` into ``out_dir``; returns its path.
-
-    The file is validated (schema and names) after writing; a file that fails
-    validation is removed and ScenarioError raised, so a bad file never lands.
-    """
+    """Writes the scenario for ``divergence`` into ``out_dir``; returns its path."""
     scenario = regression_scenario(
         divergence,
         backend=backend,
@@ -118,14 +142,40 @@ def write_regression(
         reference_version=reference_version,
         seed=seed,
     )
-    body = json.dumps(scenario["cases"][0]["steps"], sort_keys=True)
-    digest = hashlib.sha256(body.encode()).hexdigest()[:10]
-    out_dir.mkdir(parents=True, exist_ok=True)
-    path = out_dir / f"{_slug(backend)}-vs-{_slug(reference)}-{digest}.json"
-    path.write_text(json.dumps(scenario, indent=2) + "\n")
-    try:
-        load_file(path, root=out_dir)
-    except ScenarioError:
-        path.unlink()
-        raise
-    return path
+    return _write_checked(scenario, out_dir, f"{_slug(backend)}-vs-{_slug(reference)}")
+
+
+def reproducer_scenario(
+    error: HarnessError, *, backend: str, reference: str, seed: int | None = None
+) -> dict[str, Any]:
+    """A scenario replaying the commands that broke a backend (no expectations).
+
+    ``run`` on it with the same backends meets the same fault, if the fault
+    is deterministic.
+    """
+    seeded = f" --seed {seed}" if seed is not None else ""
+    message = str(error)
+    return {
+        "description": f"Fuzz reproducer: a backend broke ({backend} vs {reference})"[:150],
+        "comment": (
+            f"Written by `python -m conformance fuzz --backend {backend} --against {reference}"
+            f"{seeded}` when a backend broke (not a divergence): {message[:500]}"
+        ),
+        "features": _features(error.commands),
+        "cases": [
+            {
+                "description": f"the commands up to the fault ({len(error.commands)})",
+                "steps": [c.to_json() for c in error.commands],
+            }
+        ],
+    }
+
+
+def write_reproducer(
+    error: HarnessError, out_dir: Path, *, backend: str, reference: str, seed: int | None = None
+) -> Path | None:
+    """Writes ``reproducer_scenario`` into ``out_dir`` (None if there are no commands)."""
+    if not error.commands:
+        return None
+    scenario = reproducer_scenario(error, backend=backend, reference=reference, seed=seed)
+    return _write_checked(scenario, out_dir, f"broken-{_slug(backend)}-vs-{_slug(reference)}")

@@ -75,9 +75,12 @@ class RunReport:
 
     def print_failures(self, out: TextIO, *, prog: str) -> None:
         for case in self.failed:
-            out.write(f"\nFAIL {case.case.qualified_name}\n")
+            verdict = "FAIL" if case.aborted is None else "ERROR"
+            out.write(f"\n{verdict} {case.case.qualified_name}\n")
             for line in failure_lines(case):
                 out.write(line + "\n")
+            if case.aborted is not None:
+                out.write(f"  {case.aborted}\n")
             rerun = [
                 *prog.split(),
                 "run",
@@ -119,6 +122,7 @@ class RunReport:
                     "status": {k: v.value for k, v in c.status.items()},
                     "skip_reasons": c.skip_reasons,
                     "xfails": c.xfails,
+                    "aborted": c.aborted,
                     "failures": [f.to_json() for f in c.failures],
                 }
                 for c in self.cases
@@ -137,9 +141,16 @@ def failure_lines(case: CaseReport) -> list[str]:
     return lines
 
 
+#: Always shown in a table cell; the others (error, timeout) only when they occur.
+_ALWAYS_SHOWN = (Status.PASS, Status.FAIL, Status.XFAIL, Status.SKIP)
+
+
 def _cell(counts: Any) -> str:
-    passed, failed, xfailed, skipped = counts
-    return f"{passed} pass, {failed} fail, {xfailed} xfail, {skipped} skip"
+    return ", ".join(
+        f"{count} {status.value}"
+        for status, count in zip(Status, counts, strict=True)
+        if count or status in _ALWAYS_SHOWN
+    )
 
 
 def _show(value: Any) -> str:
@@ -154,7 +165,7 @@ def write_json(report: RunReport, path: Path) -> None:
 def write_junit(report: RunReport, path: Path) -> None:
     """One <testcase> per case and backend; classname is the scenario file."""
     suite = ET.Element("testsuite", name="conformance")
-    counts = {"tests": 0, "failures": 0, "skipped": 0}
+    counts = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}
     for case in report.cases:
         for backend in report.backends:
             status = case.status.get(backend.name)
@@ -174,6 +185,10 @@ def write_junit(report: RunReport, path: Path) -> None:
                 counts["skipped"] += 1
                 divergence = case.xfails.get(backend.name, "")
                 ET.SubElement(element, "skipped", type="xfail", message=f"xfail: {divergence}")
+            elif status in (Status.ERROR, Status.TIMEOUT):
+                counts["errors"] += 1
+                error = ET.SubElement(element, "error", type=status.value, message=status.value)
+                error.text = case.aborted or ""
             elif status is Status.FAIL:
                 counts["failures"] += 1
                 failures = case.failures_of(backend.name)
@@ -185,7 +200,6 @@ def write_junit(report: RunReport, path: Path) -> None:
                 )
     for key, value in counts.items():
         suite.set(key, str(value))
-    suite.set("errors", "0")
     ET.indent(suite)
     path.parent.mkdir(parents=True, exist_ok=True)
     ET.ElementTree(suite).write(path, encoding="utf-8", xml_declaration=True)

@@ -11,6 +11,15 @@ else the first real Drake (``pydrake``, or ``drake==X`` in its own
 environment), else the first backend. A disagreement is the fault of the
 backend that is not the reference, and only it is failed.
 
+State is observed after every step that has expectations or is not part of
+the scene, and after the scene's last registration: a big scene costs one
+observation, not one per geometry (the scene's Results are still compared).
+
+A backend that breaks (raises, returns the wrong type, or exceeds
+``step_timeout``; see ``backends.calls``) ends the case: the report gets
+status ``error`` or ``timeout`` for that backend and ``aborted`` says why.
+A step naming something never made ends it too (an input error).
+
 A backend whose first failure in a case matches a known divergence
 (``policy.divergences``) for the reference's release gets ``xfail`` with
 the divergence's id instead of ``fail``, unless ``strict_divergences``.
@@ -23,12 +32,21 @@ from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from conformance.compare import diff
+from conformance.backends.calls import BackendError, StepTimeoutError, call
+from conformance.compare import diff, diff_results
 from conformance.corpus.loader import Case, Step
 from conformance.policy.divergences import KnownDivergence, match_case
 from conformance.policy.guards import arm_guards
 from conformance.policy.versions import version_in_range
-from conformance.protocol import Backend, BackendId, Command, Observation, Result, backend_id
+from conformance.protocol import (
+    Backend,
+    BackendId,
+    Command,
+    Observation,
+    Result,
+    UnknownNameError,
+    backend_id,
+)
 from conformance.run.expectations import check
 
 __all__ = [
@@ -49,10 +67,8 @@ class Status(enum.Enum):
     FAIL = "fail"
     XFAIL = "xfail"  # failed as a known divergence says it does
     SKIP = "skip"
-
-
-class BackendError(RuntimeError):
-    """Raised when a backend itself breaks (not a conformance failure): exit 2."""
+    ERROR = "error"  # the backend broke: raised, returned the wrong type
+    TIMEOUT = "timeout"  # a call took longer than the step timeout
 
 
 @dataclass(frozen=True)
@@ -94,10 +110,13 @@ class CaseReport:
     failures: list[Failure] = field(default_factory=list)
     #: backend → the id of the known divergence its failures are.
     xfails: dict[str, str] = field(default_factory=dict)
+    #: Why the case stopped early (a backend broke, or a step named something unknown).
+    aborted: str | None = None
 
     @property
     def passed(self) -> bool:
-        return Status.FAIL not in self.status.values()
+        broken = {Status.FAIL, Status.ERROR, Status.TIMEOUT} & set(self.status.values())
+        return self.aborted is None and not broken
 
     def failures_of(self, backend: str) -> list[Failure]:
         return [f for f in self.failures if f.backend == backend]
@@ -116,15 +135,25 @@ def choose_reference(backends: Sequence[Backend], name: str | None = None) -> Ba
     return backends[0]
 
 
-def _execute(backend: Backend, step: Step) -> Result:
+def _execute(backend: Backend, step: Step, timeout: float | None) -> Result:
     if step.op == "check":
         return Result()
-    try:
-        return backend.execute(Command(step.op, step.args))
-    except (KeyError, AttributeError, AssertionError) as exc:
-        raise BackendError(
-            f"backend {backend.name!r} failed on {step.label} ({step.op}): {exc!r}"
-        ) from exc
+    command = Command(step.op, step.args)
+    where = f"{step.label} ({step.op})"
+    return call(backend, "execute", command, where=where, returns=Result, timeout=timeout)
+
+
+def _observe(backend: Backend, step: Step, timeout: float | None) -> Observation:
+    where = f"{step.label} ({step.op}), observe"
+    return call(backend, "observe", where=where, returns=Observation, timeout=timeout)
+
+
+def _observed_steps(steps: Sequence[Step]) -> list[bool]:
+    """Whether the state is observed after each step (see the module doc)."""
+    return [
+        bool(step.expect) or step.index != 0 or i + 1 == len(steps) or steps[i + 1].index != 0
+        for i, step in enumerate(steps)
+    ]
 
 
 def _expectation_failures(
@@ -162,6 +191,7 @@ def run_case(
     reference: str | None = None,
     strict_divergences: bool = False,
     divergences: Sequence[KnownDivergence] | None = None,
+    step_timeout: float | None = None,
 ) -> CaseReport:
     """Runs ``case`` on every backend whose features cover it (see the module doc)."""
     oracle = choose_reference(backends, reference)
@@ -175,13 +205,48 @@ def run_case(
         else:
             active.append(backend)
     arm_guards(active)
-    for backend in active:
-        backend.reset()
     ref = oracle if oracle in active else (active[0] if active else None)
     report.reference = ref.name if ref is not None and len(active) > 1 else None
-    for step in case.steps:
-        results = {b.name: _execute(b, step) for b in active}
-        observations = {b.name: b.observe() for b in active}
+    try:
+        _run_steps(case, active, ref, report, step_timeout)
+    except BackendError as exc:
+        report.status[exc.backend] = (
+            Status.TIMEOUT if isinstance(exc, StepTimeoutError) else Status.ERROR
+        )
+        report.aborted = str(exc)
+        return report
+    except UnknownNameError as exc:
+        report.aborted = f"{exc} (the case names something no earlier step made)"
+        return report
+    release = ref.version() if ref is not None else ""
+    for backend in active:
+        report.status[backend.name] = _status(
+            report, backend_id(backend), release, strict_divergences, divergences
+        )
+    return report
+
+
+def _run_steps(
+    case: Case,
+    active: Sequence[Backend],
+    ref: Backend | None,
+    report: CaseReport,
+    timeout: float | None,
+) -> None:
+    """Runs the steps on ``active``, adding failures to ``report``."""
+    for backend in active:
+        call(backend, "reset", where="reset", returns=object, timeout=timeout)
+    for step, observed in zip(case.steps, _observed_steps(case.steps), strict=True):
+        results = {b.name: _execute(b, step, timeout) for b in active}
+        if not observed:
+            for other in active:
+                if ref is not None and other is not ref:
+                    report.failures.extend(
+                        Failure(step.label, d.what, d.reference, d.other, other.name, ref.name)
+                        for d in diff_results(results[ref.name], results[other.name], op=step.op)
+                    )
+            continue
+        observations = {b.name: _observe(b, step, timeout) for b in active}
         for backend in active:
             report.failures.extend(
                 _expectation_failures(
@@ -191,12 +256,6 @@ def run_case(
         for other in active:
             if ref is not None and other is not ref:
                 report.failures.extend(_disagreements(step, ref, other, results, observations))
-    release = ref.version() if ref is not None else ""
-    for backend in active:
-        report.status[backend.name] = _status(
-            report, backend_id(backend), release, strict_divergences, divergences
-        )
-    return report
 
 
 def _status(

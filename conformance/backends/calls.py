@@ -1,0 +1,116 @@
+"""Calling a backend: every way a call can go wrong becomes one narrow error.
+
+The runner and the lockstep fuzzer call backends only through ``call``. A
+backend is someone else's code, so a call may raise anything (including
+``SystemExit``, which must never end a run as a success), return the wrong
+type, or never return. ``call`` turns each into a ``BackendError`` that
+names the backend, the step and what went wrong:
+
+==========================================  ===================================
+the backend ...                             ``call`` raises
+==========================================  ===================================
+raises ``UnknownNameError``                 it unchanged (the input's fault)
+raises ``KeyboardInterrupt``                it unchanged (the user's Ctrl-C)
+raises anything else, ``SystemExit`` too    ``BackendError``
+returns a value not of type ``returns``     ``BackendError``
+takes longer than ``timeout`` seconds       ``StepTimeoutError`` (a ``BackendError``)
+==========================================  ===================================
+
+The timeout is a ``SIGALRM`` timer, so it works in the main thread of a
+POSIX process, and it interrupts Python code only: a call stuck inside a C++
+extension (pydrake) is interrupted when it returns to Python. Backends in
+their own process (the release matrix's workers) can be timed out exactly.
+"""
+
+from __future__ import annotations
+
+import signal
+import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import Any, TypeVar
+
+from conformance.protocol import Backend, UnknownNameError
+
+__all__ = ["DEFAULT_STEP_TIMEOUT", "BackendError", "StepTimeoutError", "call", "deadline"]
+
+#: Seconds a single backend call may take before the step is reported as a timeout.
+DEFAULT_STEP_TIMEOUT = 300.0
+
+T = TypeVar("T")
+
+#: Raised through a backend call unchanged: they are not the backend's fault.
+_PASS_THROUGH = (UnknownNameError, KeyboardInterrupt)
+
+
+class BackendError(RuntimeError):
+    """A backend broke (raised, returned the wrong type, or hung) at ``where``: exit 2."""
+
+    def __init__(self, backend: str, where: str, message: str) -> None:
+        super().__init__(f"backend {backend!r} at {where}: {message}")
+        self.backend = backend
+        self.where = where
+        self.message = message
+
+
+class StepTimeoutError(BackendError):
+    """A backend call took longer than the step timeout."""
+
+
+@contextmanager
+def deadline(seconds: float | None, backend: str, where: str) -> Iterator[None]:
+    """Raises ``StepTimeoutError`` in the block after ``seconds`` (None or 0: no limit).
+
+    Outside the main thread, or where there is no ``setitimer``, there is no limit.
+    """
+    if (
+        not seconds
+        or threading.current_thread() is not threading.main_thread()
+        or not hasattr(signal, "setitimer")
+    ):
+        yield
+        return
+
+    def expire(signum: int, frame: object) -> None:
+        raise StepTimeoutError(backend, where, f"no answer within {seconds:g} s (--step-timeout)")
+
+    previous = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def call(
+    backend: Backend,
+    method: str,
+    *args: Any,
+    where: str,
+    returns: type[T],
+    timeout: float | None = None,
+) -> T:
+    """``backend.<method>(*args)``, checked as the module doc's table says."""
+    name = str(getattr(backend, "name", type(backend).__name__))
+    try:
+        with deadline(timeout, name, where):
+            value = getattr(backend, method)(*args)
+    except (*_PASS_THROUGH, StepTimeoutError):
+        raise
+    except BaseException as exc:
+        raise BackendError(name, where, f"{method}() raised {_describe(exc)}") from exc
+    if not isinstance(value, returns):
+        raise BackendError(
+            name,
+            where,
+            f"{method}() returned {type(value).__name__}, not {returns.__name__}",
+        )
+    return value
+
+
+def _describe(exc: BaseException) -> str:
+    text = str(exc)
+    if len(text) > 300:
+        text = text[:300] + "…"
+    return f"{type(exc).__name__}({text!r})" if text else type(exc).__name__
