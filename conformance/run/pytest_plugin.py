@@ -28,15 +28,14 @@ with pytest-xdist (``-n``) and ``--junitxml``.
 
 from __future__ import annotations
 
-import importlib
-import json
-from collections.abc import Callable, Generator, Iterator, Sequence
+from collections.abc import Generator, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 import pytest
 
 from conformance.backends.loader import BackendLoadError, load_backend
+from conformance.corpus.documents import DOCUMENT_SUFFIXES, DocumentError, read_document
 from conformance.corpus.loader import SCENARIO_SCHEMA, Case, ScenarioError, load_file
 from conformance.grammar.schema import scenario_schema
 from conformance.protocol import Backend
@@ -51,20 +50,8 @@ FEATURE_TAGS: tuple[str, ...] = tuple(scenario_schema()["$defs"]["features"]["it
 _DEFAULT_BACKENDS = ("reimpl", "pydrake")
 
 
-def _yaml(text: str) -> Any:
-    try:
-        yaml = importlib.import_module("yaml")
-    except ImportError:
-        raise ValueError("PyYAML is not installed") from None
-    try:
-        return yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        raise ValueError(str(exc)) from None
-
-
-#: A scenario file's suffix → how to parse it just enough to see whether it holds ``cases``.
-_PEEKS: dict[str, Callable[[str], Any]] = {".json": json.loads, ".yaml": _yaml, ".yml": _yaml}
-SCENARIO_SUFFIXES = frozenset(_PEEKS)
+#: The suffixes of scenario files (the corpus loader's document types).
+SCENARIO_SUFFIXES = frozenset(DOCUMENT_SUFFIXES)
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
@@ -129,14 +116,14 @@ def _other_data(path: Path) -> bool:
     A file that does not parse counts as a scenario, so that loading it reports the problem.
     """
     try:
-        data = _PEEKS[path.suffix](path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        data = read_document(path)
+    except DocumentError:
         return False
     return not (isinstance(data, dict) and "cases" in data)
 
 
 def pytest_collect_file(parent: pytest.Collector, file_path: Path) -> pytest.Collector | None:
-    if file_path.suffix not in SCENARIO_SUFFIXES or file_path.name == SCENARIO_SCHEMA:
+    if file_path.suffix.lower() not in SCENARIO_SUFFIXES or file_path.name == SCENARIO_SCHEMA:
         return None
     explicit = parent.session.isinitpath(file_path)
     if not explicit and (
@@ -234,7 +221,7 @@ class ScenarioCaseItem(pytest.Item):
             report = excinfo.value.report
             header = f"{self.case.qualified_name} ({self.case.file.path})"
             lines = [header, *failure_lines(report)]
-            aborted: str | None = getattr(report, "aborted", None)  # why the run stopped early
+            aborted = report.aborted  # why the case stopped early
             if aborted:
                 lines.append(f"  {aborted}")
             return "\n".join(lines)
