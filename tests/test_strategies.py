@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from hypothesis import HealthCheck, find, given, settings
+from hypothesis import HealthCheck, assume, find, given, settings
 from hypothesis import strategies as st
 
 from conformance.backends.loader import load_backend
@@ -14,7 +14,8 @@ from conformance.corpus.loader import load_file
 from conformance.fuzz import strategies as cs
 from conformance.fuzz.operations import OPERATIONS, issued_ops
 from conformance.fuzz.sequences import CONTEXT_OPS, command_sequences
-from conformance.protocol import Command
+from conformance.policy.divergences import match_step
+from conformance.protocol import Command, backend_id
 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=list(HealthCheck))
 
@@ -195,6 +196,8 @@ def test_reimpl_and_pydrake_agree_on_drawn_command_sequences(commands: list[Comm
     PYDRAKE.reset()
     for command in commands:
         a, b = REIMPL.execute(command), PYDRAKE.execute(command)
-        assert diff((b, PYDRAKE.observe()), (a, REIMPL.observe()), op=command.op) == [], (
-            command.to_json()
-        )
+        differences = diff((b, PYDRAKE.observe()), (a, REIMPL.observe()), op=command.op)
+        # A known divergence for this pydrake release is not a finding (as in the fuzzer).
+        known = match_step(command, b, a, blamed=backend_id(REIMPL), release=PYDRAKE.version())
+        assume(not differences or known is None)
+        assert differences == [], command.to_json()
