@@ -142,3 +142,12 @@ def test_state_is_observed_after_the_scene_and_after_every_later_step() -> None:
     with_expectation = [Step(0, "register_frame", {"name": "f"}, ({"history": False},)), steps[1]]
     assert _observed_steps(with_expectation) == [True, True]
     assert _observed_steps([*steps, Step(1, "check", {}, ())]) == [False, True, True]
+
+
+def test_on_step_reports_each_step_before_it_runs() -> None:
+    calls: list[tuple[int, int]] = []
+    run_case(
+        CASE, [load_backend("reimpl")], on_step=lambda done, total: calls.append((done, total))
+    )
+    total = len(CASE.steps)
+    assert calls == [(done, total) for done in range(total)]

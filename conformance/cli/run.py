@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import fnmatch
+import time
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TextIO
@@ -90,6 +91,21 @@ def select_cases(cases: Sequence[Case], pattern: str | None) -> list[Case]:
     ]
 
 
+class _LongCase:
+    """Progress inside a case: a line every ``every`` s once the case has run that long."""
+
+    def __init__(self, err: TextIO, name: str, *, every: float = 5.0, quiet: bool = False) -> None:
+        self.err, self.name, self.every, self.quiet = err, name, every, quiet
+        self.start = self.last = time.perf_counter()
+
+    def __call__(self, done: int, total: int) -> None:
+        now = time.perf_counter()
+        if not self.quiet and now - self.last >= self.every:
+            self.last = now
+            self.err.write(f"    {self.name}: step {done}/{total} ({now - self.start:.0f}s)\n")
+            self.err.flush()
+
+
 def _progress(out: TextIO, index: int, total: int, name: str, statuses: dict[str, Status]) -> None:
     marks = " ".join(f"{b}:{s.value}" for b, s in statuses.items())
     out.write(f"[{index:>{len(str(total))}}/{total}] {name}  {marks}\n")
@@ -165,6 +181,7 @@ def _run_cases(
                 reference=report.reference,
                 strict_divergences=args.strict_divergences,
                 step_timeout=args.step_timeout or None,
+                on_step=_LongCase(err, case.qualified_name, quiet=args.quiet),
             )
             report.cases.append(case_report)
             if not args.quiet:

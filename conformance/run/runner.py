@@ -28,7 +28,7 @@ the divergence's id instead of ``fail``, unless ``strict_divergences``.
 from __future__ import annotations
 
 import enum
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -192,8 +192,12 @@ def run_case(
     strict_divergences: bool = False,
     divergences: Sequence[KnownDivergence] | None = None,
     step_timeout: float | None = None,
+    on_step: Callable[[int, int], None] | None = None,
 ) -> CaseReport:
-    """Runs ``case`` on every backend whose features cover it (see the module doc)."""
+    """Runs ``case`` on every backend whose features cover it (see the module doc).
+
+    ``on_step(done, total)`` is called after each step (for progress on long cases).
+    """
     oracle = choose_reference(backends, reference)
     report = CaseReport(case)
     active: list[Backend] = []
@@ -208,7 +212,7 @@ def run_case(
     ref = oracle if oracle in active else (active[0] if active else None)
     report.reference = ref.name if ref is not None and len(active) > 1 else None
     try:
-        _run_steps(case, active, ref, report, step_timeout)
+        _run_steps(case, active, ref, report, timeout=step_timeout, on_step=on_step)
     except BackendError as exc:
         report.status[exc.backend] = (
             Status.TIMEOUT if isinstance(exc, StepTimeoutError) else Status.ERROR
@@ -231,12 +235,18 @@ def _run_steps(
     active: Sequence[Backend],
     ref: Backend | None,
     report: CaseReport,
+    *,
     timeout: float | None,
+    on_step: Callable[[int, int], None] | None = None,
 ) -> None:
     """Runs the steps on ``active``, adding failures to ``report``."""
     for backend in active:
         call(backend, "reset", where="reset", returns=object, timeout=timeout)
-    for step, observed in zip(case.steps, _observed_steps(case.steps), strict=True):
+    for done, (step, observed) in enumerate(
+        zip(case.steps, _observed_steps(case.steps), strict=True), start=1
+    ):
+        if on_step is not None:
+            on_step(done - 1, len(case.steps))
         results = {b.name: _execute(b, step, timeout) for b in active}
         if not observed:
             for other in active:
