@@ -289,7 +289,7 @@ def test_a_report_that_cannot_be_written_after_all_goes_to_the_fallback(tmp_path
 def test_a_negative_step_timeout_is_a_usage_error(tmp_path: Path) -> None:
     process = cli(tmp_path, "run", str(TABLE1), "--step-timeout", "-1")
     assert_clean_exit(process, EXIT_USAGE)
-    assert "--step-timeout must be 0 (none) or positive, got -1" in process.stderr
+    assert "argument --step-timeout: must be 0 (none) or positive, got -1" in process.stderr
 
 
 def test_version_names_the_package_and_the_installed_drake(tmp_path: Path) -> None:

@@ -20,6 +20,7 @@ from hypothesis.errors import HypothesisException
 
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.cli.options import refuse
 from conformance.cli.run import PROG
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
@@ -189,11 +190,7 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         for option, path in (("--out", args.out), ("--database", args.database))
         if path is not None and (problem := unwritable_dir(path)) is not None
     ]
-    if args.step_timeout < 0:
-        problems.append(f"--step-timeout must be 0 (none) or positive, got {args.step_timeout:g}")
-    if problems:
-        for problem in problems:
-            err.write(f"error: {problem}\n")
+    if refuse(problems, err):
         return EXIT_USAGE
     try:
         backend, reference = _load_pair(args)

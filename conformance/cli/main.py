@@ -23,9 +23,9 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any, TextIO
 
-from conformance.backends.calls import DEFAULT_STEP_TIMEOUT
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
+from conformance.cli.options import add_step_timeout
 from conformance.cli.run import PROG, add_run_parser, run_command
 from conformance.fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
 from conformance.fuzz.regression import DEFAULT_REGRESSIONS
@@ -120,14 +120,7 @@ def _add_fuzz(commands: Any) -> None:
         action="store_true",
         help="report known divergences as findings (default: set aside and counted)",
     )
-    fuzz.add_argument(
-        "--step-timeout",
-        type=float,
-        default=DEFAULT_STEP_TIMEOUT,
-        metavar="SEC",
-        help=f"a backend call taking longer breaks the run, exit 2 "
-        f"(default {DEFAULT_STEP_TIMEOUT:g}; 0: none)",
-    )
+    add_step_timeout(fuzz, what="breaks the run")
     fuzz.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
 
 

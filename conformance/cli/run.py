@@ -15,9 +15,9 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TextIO
 
-from conformance.backends.calls import DEFAULT_STEP_TIMEOUT
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.cli.options import add_step_timeout, refuse
 from conformance.corpus.loader import Case, ScenarioError, load_corpus
 from conformance.protocol import Backend
 from conformance.run.outputs import unwritable, write_or_fall_back
@@ -55,14 +55,7 @@ def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignor
         action="store_true",
         help="report known divergences as failures, not xfail",
     )
-    run.add_argument(
-        "--step-timeout",
-        type=float,
-        default=DEFAULT_STEP_TIMEOUT,
-        metavar="SEC",
-        help=f"a backend call taking longer is a timeout, exit 2 "
-        f"(default {DEFAULT_STEP_TIMEOUT:g}; 0: none)",
-    )
+    add_step_timeout(run, what="is a timeout")
     run.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
     run.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
     run.add_argument("-q", "--quiet", action="store_true", help="no per-case progress lines")
@@ -123,12 +116,7 @@ def _output_problems(args: argparse.Namespace) -> list[str]:
 
 def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Runs ``run``; returns the exit code (see ``conformance.cli.exit_codes``)."""
-    problems = _output_problems(args)
-    if args.step_timeout < 0:
-        problems.append(f"--step-timeout must be 0 (none) or positive, got {args.step_timeout:g}")
-    if problems:
-        for problem in problems:
-            err.write(f"error: {problem}\n")
+    if refuse(_output_problems(args), err):
         return EXIT_USAGE
     try:
         backends = load_backends(args.backends)

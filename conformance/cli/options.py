@@ -1,0 +1,41 @@
+"""Options and checks that ``run`` and ``fuzz`` share."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Sequence
+from typing import TextIO
+
+from conformance.backends.calls import DEFAULT_STEP_TIMEOUT
+
+__all__ = ["add_step_timeout", "refuse"]
+
+
+def _seconds(text: str) -> float:
+    """A non-negative number of seconds (0: no limit)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not value >= 0:  # also refuses nan
+        raise argparse.ArgumentTypeError(f"must be 0 (none) or positive, got {text}")
+    return value
+
+
+def add_step_timeout(parser: argparse.ArgumentParser, *, what: str) -> None:
+    """``--step-timeout SEC``: how long one backend call may take."""
+    parser.add_argument(
+        "--step-timeout",
+        type=_seconds,
+        default=DEFAULT_STEP_TIMEOUT,
+        metavar="SEC",
+        help=f"a backend call taking longer {what}, exit 2 "
+        f"(default {DEFAULT_STEP_TIMEOUT:g}; 0: none)",
+    )
+
+
+def refuse(problems: Sequence[str], err: TextIO) -> bool:
+    """Writes each problem as an ``error:`` line; True if there were any."""
+    for problem in problems:
+        err.write(f"error: {problem}\n")
+    return bool(problems)
