@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
+from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.corpus.loader import default_corpus_root, load_file
 from conformance.run.outputs import fallback_path, write_or_fall_back
 
@@ -128,6 +128,25 @@ FAULTY = textwrap.dedent(
         return Intermittent("intermittent", after=1)
 
 
+    class Crashes(_Faulty):
+        """An isolated backend (a worker) whose process dies on its Nth call of each case."""
+
+        isolated = True
+
+        def reset(self):
+            self.calls = 0
+            self._inner.reset()
+
+        def fault(self, command):
+            from conformance.backends.calls import BackendCrashError
+
+            raise BackendCrashError(self.name, "execute", "the worker killed by SIGABRT")
+
+
+    def crashes():
+        return Crashes("crashes", after=2)
+
+
     def factory_raises():
         raise ValueError("no licence for this backend")
 
@@ -233,6 +252,20 @@ def test_a_backend_that_breaks_mid_run_exits_two_and_keeps_every_report(
     assert message in case["aborted"]
     assert report["aborted"].startswith("statements/allow_within > ")
     assert 'errors="1"' in (tmp_path / "report.xml").read_text()
+
+
+def test_an_isolated_backend_that_crashes_is_recorded_per_case_and_the_run_goes_on(
+    tmp_path: Path,
+) -> None:
+    process = cli(tmp_path, "run", str(TABLE1), "--backend", "faulty:crashes", "--backend",
+                  "pydrake", "--json", "report.json")  # fmt: skip
+    assert_clean_exit(process, EXIT_FAILURE)
+    assert process.stderr.count("(a new worker takes over)") == 2
+    report = json.loads((tmp_path / "report.json").read_text())
+    assert [c["status"]["crashes"] for c in report["cases"]] == ["crash", "crash"]
+    assert report["aborted"] is None
+    assert "the worker killed by SIGABRT" in report["cases"][1]["aborted"]
+    assert "2 crash" in process.stdout
 
 
 def test_a_fault_after_some_cases_keeps_their_results(tmp_path: Path) -> None:

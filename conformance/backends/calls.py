@@ -14,6 +14,7 @@ raises ``KeyboardInterrupt``                it unchanged (the user's Ctrl-C)
 raises anything else, ``SystemExit`` too    ``BackendError``
 returns a value not of type ``returns``     ``BackendError``
 takes longer than ``timeout`` seconds       ``StepTimeoutError`` (a ``BackendError``)
+dies in its own process                     ``BackendCrashError``, naming the step
 ==========================================  ===================================
 
 The timeout is a ``SIGALRM`` timer, so it works in the main thread of a
@@ -32,7 +33,14 @@ from typing import Any, TypeVar
 
 from conformance.protocol import Backend, UnknownNameError
 
-__all__ = ["DEFAULT_STEP_TIMEOUT", "BackendError", "StepTimeoutError", "call", "deadline"]
+__all__ = [
+    "DEFAULT_STEP_TIMEOUT",
+    "BackendCrashError",
+    "BackendError",
+    "StepTimeoutError",
+    "call",
+    "deadline",
+]
 
 #: Seconds a single backend call may take before the step is reported as a timeout.
 DEFAULT_STEP_TIMEOUT = 300.0
@@ -55,6 +63,10 @@ class BackendError(RuntimeError):
 
 class StepTimeoutError(BackendError):
     """A backend call took longer than the step timeout."""
+
+
+class BackendCrashError(BackendError):
+    """The backend's own process died (a signal, or an exit) during a call."""
 
 
 @contextmanager
@@ -98,6 +110,8 @@ def call(
             value = getattr(backend, method)(*args)
     except (*_PASS_THROUGH, StepTimeoutError):
         raise
+    except BackendCrashError as exc:
+        raise BackendCrashError(name, where, exc.message) from exc
     except BaseException as exc:
         raise BackendError(name, where, f"{method}() raised {_describe(exc)}") from exc
     if not isinstance(value, returns):

@@ -8,6 +8,9 @@ import sys
 from collections.abc import Callable
 from typing import Any, cast
 
+from conformance.backends.calls import BackendError
+from conformance.backends.environments import DrakeEnvironmentError
+from conformance.backends.subprocess_backend import worker_spec_version
 from conformance.protocol import Backend
 
 __all__ = ["BUILTIN_BACKENDS", "BackendLoadError", "load_backend"]
@@ -96,8 +99,23 @@ def _checked(spec: str, backend: Any) -> Backend:
     return cast(Backend, backend)
 
 
+def _worker(spec: str, release: str) -> Backend:
+    """A ``drake==X`` worker; building its environment is reported on stderr."""
+    from conformance.backends.subprocess_backend import WorkerBackend  # noqa: PLC0415
+
+    def log(line: str) -> None:
+        sys.stderr.write(line + "\n")
+        sys.stderr.flush()
+
+    try:
+        return WorkerBackend(release, log=log)
+    except (DrakeEnvironmentError, BackendError) as exc:
+        raise BackendLoadError(f"backend {spec!r}: {exc}") from None
+
+
 def load_backend(spec: str) -> Backend:
-    """``reimpl``, ``pydrake``, or ``package.module:attribute`` (a class or factory).
+    """``reimpl``, ``pydrake``, ``drake==X`` (release X in a worker process), or
+    ``package.module:attribute`` (a class or factory).
 
     Anything that goes wrong (an import or a factory raising, a missing
     method, a ``version()`` that is not a string) is a ``BackendLoadError``
@@ -108,10 +126,14 @@ def load_backend(spec: str) -> Backend:
             return BUILTIN_BACKENDS[spec]()
         except ImportError as exc:
             raise BackendLoadError(f"backend {spec!r} is unavailable: {exc}") from None
+    release = worker_spec_version(spec)
+    if release is not None:
+        return _worker(spec, release)
     if ":" not in spec:
         known = ", ".join(sorted(BUILTIN_BACKENDS))
         raise BackendLoadError(
-            f"unknown backend {spec!r}: use one of {known}, or package.module:attribute"
+            f"unknown backend {spec!r}: use one of {known}, drake==X.Y.Z, "
+            "or package.module:attribute"
         )
     module_name, _, attribute = spec.partition(":")
     module = _import(spec, module_name)

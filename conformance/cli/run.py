@@ -174,7 +174,9 @@ def _run_cases(
             report.cases.append(case_report)
             if not args.quiet:
                 _progress(err, index, len(cases), case.qualified_name, case_report.status)
-            if case_report.aborted is not None:
+            if case_report.aborted is not None and case_report.recoverable:
+                err.write(f"    {case_report.aborted}\n    (a new worker takes over)\n")
+            elif case_report.aborted is not None:
                 report.aborted = f"{case.qualified_name}: {case_report.aborted}"
                 err.write(
                     f"error: {case.file.path}: case {case.description!r}: {case_report.aborted}\n"

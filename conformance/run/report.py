@@ -185,7 +185,7 @@ def write_junit(report: RunReport, path: Path) -> None:
                 counts["skipped"] += 1
                 divergence = case.xfails.get(backend.name, "")
                 ET.SubElement(element, "skipped", type="xfail", message=f"xfail: {divergence}")
-            elif status in (Status.ERROR, Status.TIMEOUT):
+            elif status in (Status.ERROR, Status.TIMEOUT, Status.CRASH):
                 counts["errors"] += 1
                 error = ET.SubElement(element, "error", type=status.value, message=status.value)
                 error.text = case.aborted or ""

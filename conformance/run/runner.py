@@ -15,9 +15,12 @@ State is observed after every step that has expectations or is not part of
 the scene, and after the scene's last registration: a big scene costs one
 observation, not one per geometry (the scene's Results are still compared).
 
-A backend that breaks (raises, returns the wrong type, or exceeds
-``step_timeout``; see ``backends.calls``) ends the case: the report gets
-status ``error`` or ``timeout`` for that backend and ``aborted`` says why.
+A backend that breaks (raises, returns the wrong type, exceeds
+``step_timeout``, or its worker process dies; see ``backends.calls``) ends
+the case: the report gets status ``error``, ``timeout`` or ``crash`` for
+that backend and ``aborted`` says why. After a crash or a timeout of an
+*isolated* backend (``isolated = True``: a worker, replaced at its next
+reset) the case is ``recoverable`` and a run may go on.
 A step naming something never made ends it too (an input error).
 
 A backend whose first failure in a case matches a known divergence
@@ -32,7 +35,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from conformance.backends.calls import BackendError, StepTimeoutError, call
+from conformance.backends.calls import BackendCrashError, BackendError, StepTimeoutError, call
 from conformance.compare import diff, diff_results
 from conformance.corpus.loader import Case, Step
 from conformance.policy.divergences import KnownDivergence, match_case
@@ -69,6 +72,7 @@ class Status(enum.Enum):
     SKIP = "skip"
     ERROR = "error"  # the backend broke: raised, returned the wrong type
     TIMEOUT = "timeout"  # a call took longer than the step timeout
+    CRASH = "crash"  # the backend's process died (a worker backend)
 
 
 @dataclass(frozen=True)
@@ -112,10 +116,13 @@ class CaseReport:
     xfails: dict[str, str] = field(default_factory=dict)
     #: Why the case stopped early (a backend broke, or a step named something unknown).
     aborted: str | None = None
+    #: The run can go on after ``aborted``: an isolated backend (a worker) crashed or
+    #: timed out, and its next reset starts a new worker.
+    recoverable: bool = False
 
     @property
     def passed(self) -> bool:
-        broken = {Status.FAIL, Status.ERROR, Status.TIMEOUT} & set(self.status.values())
+        broken = _BROKEN & set(self.status.values())
         return self.aborted is None and not broken
 
     def failures_of(self, backend: str) -> list[Failure]:
@@ -214,10 +221,10 @@ def run_case(
     try:
         _run_steps(case, active, ref, report, timeout=step_timeout, on_step=on_step)
     except BackendError as exc:
-        report.status[exc.backend] = (
-            Status.TIMEOUT if isinstance(exc, StepTimeoutError) else Status.ERROR
-        )
+        report.status[exc.backend] = _broken_status(exc)
         report.aborted = str(exc)
+        isolated = any(getattr(b, "isolated", False) for b in active if b.name == exc.backend)
+        report.recoverable = isolated and report.status[exc.backend] is not Status.ERROR
         return report
     except UnknownNameError as exc:
         report.aborted = f"{exc} (the case names something no earlier step made)"
@@ -228,6 +235,17 @@ def run_case(
             report, backend_id(backend), release, strict_divergences, divergences
         )
     return report
+
+
+#: Statuses that fail a case.
+_BROKEN = frozenset({Status.FAIL, Status.ERROR, Status.TIMEOUT, Status.CRASH})
+
+
+def _broken_status(exc: BackendError) -> Status:
+    """CRASH, TIMEOUT or ERROR for a backend that broke."""
+    if isinstance(exc, BackendCrashError):
+        return Status.CRASH
+    return Status.TIMEOUT if isinstance(exc, StepTimeoutError) else Status.ERROR
 
 
 def _run_steps(

@@ -1,0 +1,191 @@
+"""Isolated, cached environments that each hold one Drake release, for worker backends.
+
+A release needs a Python that its wheels support (``PYTHONS_FOR``, as pip
+serves them):
+
+==============  =====================
+Drake           Python
+==============  =====================
+1.12 - 1.21     3.11
+1.22 - 1.51     3.11, 3.12
+1.52 - 1.58     3.12, 3.13
+==============  =====================
+
+``find_python`` looks for such an interpreter on PATH (``python3.11`` ...)
+and in pyenv's versions, and checks each candidate by running it; a given
+``python`` overrides the search. ``ensure_environment`` builds
+``<cache>/drake-<version>-py<X.Y>`` once (``uv`` if it is on PATH, else
+``venv`` and ``pip``) and marks it complete; later runs reuse it. The cache
+is ``$DRAKE_FILTER_CONFORMANCE_CACHE``, else ``~/.cache/drake-filter-conformance``.
+
+The worker imports only this harness's pure-Python modules plus the
+release's pydrake: the harness reaches it through a folder that links to the
+``conformance`` package alone (``harness_path``), so nothing else of this
+environment (its own pydrake included) can leak in.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import conformance
+from conformance.policy.versions import version_in_range
+
+__all__ = [
+    "CACHE_VARIABLE",
+    "PYTHONS_FOR",
+    "DrakeEnvironment",
+    "DrakeEnvironmentError",
+    "cache_dir",
+    "ensure_environment",
+    "find_python",
+    "harness_path",
+]
+
+CACHE_VARIABLE = "DRAKE_FILTER_CONFORMANCE_CACHE"
+
+#: (since, until) Drake release → the Python versions its wheels support, preferred first.
+PYTHONS_FOR: tuple[tuple[str, str, tuple[str, ...]], ...] = (
+    ("1.12", "1.21", ("3.11",)),
+    ("1.22", "1.51", ("3.11", "3.12")),
+    ("1.52", "1.58", ("3.12", "3.13")),
+)
+
+#: Marks an environment whose install finished.
+_COMPLETE = ".complete"
+
+
+class DrakeEnvironmentError(RuntimeError):
+    """No usable interpreter, or the environment could not be built."""
+
+
+@dataclass(frozen=True)
+class DrakeEnvironment:
+    version: str
+    python: str  # "3.11"
+    path: Path
+
+    @property
+    def interpreter(self) -> Path:
+        return self.path / "bin" / "python"
+
+
+def cache_dir() -> Path:
+    """``$DRAKE_FILTER_CONFORMANCE_CACHE``, else ``~/.cache/drake-filter-conformance``."""
+    configured = os.environ.get(CACHE_VARIABLE)
+    if configured:
+        return Path(configured).expanduser()
+    return Path.home() / ".cache" / "drake-filter-conformance"
+
+
+def pythons_for(version: str) -> tuple[str, ...]:
+    """The Python versions Drake ``version``'s wheels support (empty if unknown)."""
+    for since, until, pythons in PYTHONS_FOR:
+        if version_in_range(version, since, until):
+            return pythons
+    return ()
+
+
+def _candidates(python: str) -> Iterator[str]:
+    """Interpreters that may be Python ``python``: on PATH, then pyenv's."""
+    found = shutil.which(f"python{python}")
+    if found:
+        yield found
+    roots = [os.environ.get("PYENV_ROOT"), str(Path.home() / ".pyenv")]
+    for root in filter(None, roots):
+        for version_dir in sorted(Path(root, "versions").glob(f"{python}.*"), reverse=True):
+            yield str(version_dir / "bin" / f"python{python}")
+
+
+def _is_python(executable: str, python: str) -> bool:
+    try:
+        done = subprocess.run(
+            [executable, "-c", "import sys; print('%d.%d' % sys.version_info[:2])"],
+            capture_output=True,
+            text=True,
+            timeout=30,
+            check=False,
+        )
+    except OSError:
+        return False
+    return done.returncode == 0 and done.stdout.strip() == python
+
+
+def find_python(version: str, *, override: str | None = None) -> tuple[str, str]:
+    """(Python version, interpreter) for Drake ``version``; see the module doc."""
+    pythons = pythons_for(version)
+    if not pythons:
+        raise DrakeEnvironmentError(f"drake=={version}: no known Python for this release")
+    if override is not None:
+        for python in pythons:
+            if _is_python(override, python):
+                return python, override
+        raise DrakeEnvironmentError(
+            f"drake=={version} needs Python {' or '.join(pythons)}; --python {override} is not"
+        )
+    for python in pythons:
+        for candidate in _candidates(python):
+            if _is_python(candidate, python):
+                return python, candidate
+    raise DrakeEnvironmentError(
+        f"drake=={version} needs Python {' or '.join(pythons)}; none found on PATH or in pyenv "
+        "(install one, or name it with --python)"
+    )
+
+
+def _run(argv: list[str], log: Callable[[str], None]) -> None:
+    log("  $ " + " ".join(argv))
+    done = subprocess.run(argv, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        tail = "\n".join((done.stderr or done.stdout).strip().splitlines()[-5:])
+        raise DrakeEnvironmentError(f"{argv[0]} failed ({done.returncode}):\n{tail}")
+
+
+def ensure_environment(
+    version: str,
+    *,
+    python: str | None = None,
+    cache: Path | None = None,
+    log: Callable[[str], None] = lambda line: None,
+) -> DrakeEnvironment:
+    """The cached environment for Drake ``version``, built first if needed."""
+    python_version, interpreter = find_python(version, override=python)
+    path = (cache or cache_dir()) / f"drake-{version}-py{python_version}"
+    environment = DrakeEnvironment(version, python_version, path)
+    if (path / _COMPLETE).exists():
+        return environment
+    log(f"building the environment for drake=={version} (Python {python_version}) in {path}")
+    shutil.rmtree(path, ignore_errors=True)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    uv = shutil.which("uv")
+    if uv:
+        _run([uv, "venv", "--python", interpreter, str(path)], log)
+        _run([uv, "pip", "install", "--python", str(environment.interpreter),
+              f"drake=={version}"], log)  # fmt: skip
+    else:
+        _run([interpreter, "-m", "venv", str(path)], log)
+        _run([str(environment.interpreter), "-m", "pip", "install", "--quiet",
+              "--disable-pip-version-check", f"drake=={version}"], log)  # fmt: skip
+    (path / _COMPLETE).write_text(f"drake=={version}\n")
+    return environment
+
+
+def harness_path(cache: Path | None = None) -> Path:
+    """A folder holding only a link to this harness's ``conformance`` package (for PYTHONPATH)."""
+    package = Path(conformance.__file__).resolve().parent
+    folder = (cache or cache_dir()) / "harness" / _slug(str(package))
+    link = folder / "conformance"
+    if not link.is_symlink() or link.resolve() != package:
+        folder.mkdir(parents=True, exist_ok=True)
+        link.unlink(missing_ok=True)
+        link.symlink_to(package, target_is_directory=True)
+    return folder
+
+
+def _slug(text: str) -> str:
+    return "".join(c if c.isalnum() else "-" for c in text).strip("-")[-80:]

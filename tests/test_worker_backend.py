@@ -1,0 +1,138 @@
+"""``drake==X``: a Drake release in a worker process, against real pydrake 1.58.0.
+
+These tests build (once; then cached) the Python 3.12 environment holding
+Drake 1.58.0, as ``--backend drake==1.58.0`` does.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+from collections.abc import Iterator
+
+import pytest
+
+from conformance.backends.calls import BackendCrashError, call
+from conformance.backends.environments import DrakeEnvironmentError, find_python, pythons_for
+from conformance.backends.loader import load_backend
+from conformance.backends.subprocess_backend import WorkerBackend
+from conformance.corpus.loader import default_corpus_root, load_corpus
+from conformance.protocol import Command
+from conformance.run.runner import Status, run_case
+
+RELEASE = "1.58.0"
+
+
+def _have_python_312() -> bool:
+    try:
+        find_python(RELEASE)
+    except DrakeEnvironmentError:
+        return False
+    return True
+
+
+needs_312 = pytest.mark.skipif(not _have_python_312(), reason="no Python 3.12+ for Drake 1.58")
+
+
+@pytest.fixture(scope="module")
+def worker() -> Iterator[WorkerBackend]:
+    backend = load_backend(f"drake=={RELEASE}")
+    assert isinstance(backend, WorkerBackend)
+    yield backend
+    backend.close()
+
+
+def test_releases_map_to_the_pythons_their_wheels_support() -> None:
+    assert pythons_for("1.12.0") == ("3.11",)
+    assert pythons_for("1.30.0") == ("3.11", "3.12")
+    assert pythons_for("1.51.1") == ("3.11", "3.12")
+    assert pythons_for("1.58.0") == ("3.12", "3.13")
+    assert pythons_for("1.11.0") == ()
+
+
+def test_a_python_that_the_release_does_not_support_is_refused() -> None:
+    with pytest.raises(DrakeEnvironmentError, match=r"drake==1\.58\.0 needs Python 3\.12 or 3\.13"):
+        find_python("1.58.0", override=sys.executable)  # this is 3.11
+
+
+@needs_312
+def test_the_worker_reports_its_release_and_features(worker: WorkerBackend) -> None:
+    assert worker.name == "drake==1.58.0"
+    assert worker.version() == "1.58.0"
+    assert "activation" in worker.features()
+    assert worker.environment.python in {"3.12", "3.13"}
+
+
+@needs_312
+def test_table_1_passes_on_the_worker_against_reimpl(worker: WorkerBackend) -> None:
+    table1 = next(f for f in load_corpus() if f.name == "transient/table1")
+    for case in table1.cases:
+        report = run_case(case, [load_backend("reimpl"), worker], reference=worker.name)
+        assert report.status == {"reimpl": Status.PASS, "drake==1.58.0": Status.PASS}
+
+
+@needs_312
+def test_a_killed_worker_is_a_crash_naming_the_signal_and_a_new_worker_takes_over(
+    worker: WorkerBackend,
+) -> None:
+    worker.reset()
+    assert worker._process is not None
+    os.kill(worker._process.pid, signal.SIGKILL)
+    with pytest.raises(
+        BackendCrashError, match=r"at step 1 \(register_frame\): the worker killed by SIGKILL"
+    ):
+        call(
+            worker,
+            "execute",
+            Command("register_frame", {"name": "f"}),
+            where="step 1 (register_frame)",
+            returns=object,
+        )
+    worker.reset()  # a new worker
+    assert (
+        call(
+            worker,
+            "execute",
+            Command("register_frame", {"name": "f"}),
+            where="step 1",
+            returns=object,
+        ).error
+        is None
+    )  # type: ignore[attr-defined]
+
+
+@needs_312
+def test_unguarded_deactivate_of_anchored_geometry_crashes_1_58_with_drakes_message(
+    worker: WorkerBackend,
+) -> None:
+    """Drake 1.55-1.58 end the process on it (known divergence deactivate-anchored-aborts)."""
+    worker.reset()
+    worker.arm_guards(frozenset())  # no guard: let the release crash
+    try:
+        register = Command(
+            "register_geometry", {"name": "A", "frame": "world", "roles": ["proximity"]}
+        )
+        assert worker.execute(register).error is None
+        with pytest.raises(BackendCrashError) as crash:
+            call(worker, "execute", Command("deactivate", {"set": {"frames": ["world"]}}),
+                 where="step 2 (deactivate)", returns=object)  # fmt: skip
+    finally:
+        worker.arm_guards(frozenset({"deactivate-anchored-aborts"}))
+    assert "at step 2 (deactivate): the worker exited with status" in str(crash.value)
+    assert "ApplyActiveStatusChange" in str(crash.value)  # the tail of its stderr
+    worker.reset()  # a new worker, with the guard armed again
+    assert worker.execute(register).error is None
+
+
+@needs_312
+def test_run_with_a_worker_backend_exits_zero_with_the_known_divergences_as_xfail() -> None:
+    corpus = default_corpus_root()
+    process = subprocess.run(
+        [sys.executable, "-m", "conformance", "run", str(corpus / "transient"),
+         str(corpus / "errors"), "--backend", "reimpl", "--backend", f"drake=={RELEASE}", "-q"],
+        capture_output=True, text=True, timeout=600, check=False,
+    )  # fmt: skip
+    assert process.returncode == 0, process.stdout + process.stderr
+    assert "drake==1.58.0 (1.58.0) [reference]" in process.stdout
