@@ -10,7 +10,7 @@ from conformance.corpus.loader import Step, load_corpus, load_file
 from conformance.policy.divergences import KnownDivergence, XfailMatcher
 from conformance.policy.guards import armed_guards
 from conformance.policy.versions import VersionRange
-from conformance.protocol import Command, Observation, Result
+from conformance.protocol import Command, ErrorInfo, ErrorKind, Observation, Result
 from conformance.run.runner import Status, _observed_steps, choose_reference, run_case
 
 MUTANT = "conformance.testing.mutants:allow_clears_invariants"
@@ -151,3 +151,40 @@ def test_on_step_reports_each_step_before_it_runs() -> None:
     )
     total = len(CASE.steps)
     assert calls == [(done, total) for done in range(total)]
+
+
+class _RefusesFirstGeometry(_CountingObserver):
+    """reimpl, but the first register_geometry fails (as a backend might)."""
+
+    def execute(self, command: Command) -> Result:
+        if command.op == "register_geometry" and command.args["name"] == "g0":
+            return Result(error=ErrorInfo(ErrorKind.REFUSED, "refused"))
+        return super().execute(command)
+
+
+def test_a_scene_registration_that_fails_fails_the_case_even_where_state_is_not_observed(
+    tmp_path: Path,
+) -> None:
+    scenario = {
+        "description": "scene error",
+        "cases": [
+            {
+                "description": "two geometries",
+                "scene": {
+                    "frames": [{"name": "f"}],
+                    "geometries": [
+                        {"name": f"g{i}", "frame": "f", "roles": ["proximity"]} for i in range(2)
+                    ],
+                },
+                "steps": [{"op": "check", "expect": {"candidates": []}}],
+            }
+        ],
+    }
+    path = tmp_path / "scene_error.json"
+    path.write_text(json.dumps(scenario))
+    (case,) = load_file(path, root=tmp_path).cases
+    backend = _RefusesFirstGeometry()
+    report = run_case(case, [backend])
+    assert report.status == {"counting": Status.FAIL}
+    assert [f.what for f in report.failures] == ["scene register_geometry g0"]
+    assert backend.observed == 2  # after the scene (g1, not g0), and after the check

@@ -132,7 +132,7 @@ class WorkerBackend:
         if process is None or (fresh and process.poll() is not None):
             process = self._start()
             if self._armed is not None and request["call"] != "arm_guards":
-                self._send(process, {"call": "arm_guards", "ids": self._armed})
+                self._request({"call": "arm_guards", "ids": self._armed})
         elif process.poll() is not None:
             raise self._crash(process, request["call"])
         assert process.stdin is not None
@@ -152,15 +152,6 @@ class WorkerBackend:
         if "raised" in response:
             raise RuntimeError(f"in the worker: {response['raised']}")
         return response["value"]
-
-    @staticmethod
-    def _send(process: subprocess.Popen[str], request: dict[str, Any]) -> None:
-        """A request whose answer only says it was done (for a new worker's set-up)."""
-        assert process.stdin is not None
-        assert process.stdout is not None
-        process.stdin.write(json.dumps(request) + "\n")
-        process.stdin.flush()
-        process.stdout.readline()
 
     def close(self) -> None:
         """Ends the worker and frees its pipes and files (also done at exit)."""

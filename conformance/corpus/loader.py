@@ -47,6 +47,7 @@ __all__ = [
     "ScenarioFile",
     "Step",
     "default_corpus_root",
+    "enclosing_corpus",
     "load_corpus",
     "load_file",
 ]
@@ -244,7 +245,7 @@ def load_file(path: Path, *, root: Path | None = None) -> ScenarioFile:
     return file
 
 
-def _enclosing_corpus(path: Path) -> Path | None:
+def enclosing_corpus(path: Path) -> Path | None:
     """The nearest directory above ``path`` holding the scenario schema, if any."""
     return next((p for p in path.parents if (p / SCENARIO_SCHEMA).is_file()), None)
 
@@ -252,7 +253,7 @@ def _enclosing_corpus(path: Path) -> Path | None:
 def _name_roots(path: Path) -> Iterator[Path]:
     """The roots a file's name is taken below, first match wins (all resolved)."""
     yield default_corpus_root().resolve()
-    corpus = _enclosing_corpus(path)
+    corpus = enclosing_corpus(path)
     if corpus is not None:
         yield corpus
     try:

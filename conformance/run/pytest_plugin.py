@@ -36,7 +36,13 @@ import pytest
 
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.corpus.documents import DOCUMENT_SUFFIXES, DocumentError, read_document
-from conformance.corpus.loader import SCENARIO_SCHEMA, Case, ScenarioError, load_file
+from conformance.corpus.loader import (
+    SCENARIO_SCHEMA,
+    Case,
+    ScenarioError,
+    enclosing_corpus,
+    load_file,
+)
 from conformance.grammar.schema import scenario_schema
 from conformance.protocol import Backend
 from conformance.run.report import failure_lines
@@ -86,13 +92,6 @@ def pytest_collection_modifyitems(config: pytest.Config, items: Sequence[pytest.
         _backends(config)
 
 
-def _corpus_root(path: Path) -> Path | None:
-    for parent in path.parents:
-        if (parent / SCENARIO_SCHEMA).exists():
-            return parent
-    return None
-
-
 def _listed_root(config: pytest.Config, path: Path) -> Path | None:
     """The ``conformance_paths`` folder holding ``path`` (its parent if a file is listed)."""
     resolved = path.resolve()
@@ -107,7 +106,7 @@ def _listed_root(config: pytest.Config, path: Path) -> Path | None:
 
 def _scenario_root(config: pytest.Config, path: Path) -> Path | None:
     """The folder a scenario's name is relative to: the corpus, else a listed folder."""
-    return _corpus_root(path) or _listed_root(config, path)
+    return enclosing_corpus(path) or _listed_root(config, path)
 
 
 def _other_data(path: Path) -> bool:

@@ -164,12 +164,16 @@ def _observed_steps(steps: Sequence[Step]) -> list[bool]:
 
 
 def _expectation_failures(
-    step: Step, backend: Backend, result: Result, observation: Observation
+    step: Step, backend: Backend, result: Result, observation: Observation | None
 ) -> Iterator[Failure]:
-    for expectation in step.expect:
-        if version_in_range(backend.version(), expectation.get("since"), expectation.get("until")):
-            for what, expected, actual in check(step, expectation, result, observation):
-                yield Failure(step.label, what, expected, actual, backend.name)
+    """The step's expectations (observed steps only: a step with any is observed), and a
+    scene registration that failed."""
+    if observation is not None:
+        for expectation in step.expect:
+            since, until = expectation.get("since"), expectation.get("until")
+            if version_in_range(backend.version(), since, until):
+                for what, expected, actual in check(step, expectation, result, observation):
+                    yield Failure(step.label, what, expected, actual, backend.name)
     if step.index == 0 and result.error is not None:
         what = f"scene {step.op} {step.args.get('name')}"
         yield Failure(step.label, what, None, result.error.to_json(), backend.name)
@@ -180,13 +184,17 @@ def _disagreements(
     reference: Backend,
     other: Backend,
     results: Mapping[str, Result],
-    observations: Mapping[str, Observation],
+    observations: Mapping[str, Observation] | None,
 ) -> Iterator[Failure]:
-    differences = diff(
-        (results[reference.name], observations[reference.name]),
-        (results[other.name], observations[other.name]),
-        op=step.op,
-    )
+    """``other``'s differences from ``reference``: Results, and states if observed."""
+    if observations is None:
+        differences = diff_results(results[reference.name], results[other.name], op=step.op)
+    else:
+        differences = diff(
+            (results[reference.name], observations[reference.name]),
+            (results[other.name], observations[other.name]),
+            op=step.op,
+        )
     for d in differences:
         yield Failure(step.label, d.what, d.reference, d.other, other.name, reference.name)
 
@@ -261,25 +269,16 @@ def _run_steps(
     for backend in active:
         call(backend, "reset", where="reset", returns=object, timeout=timeout)
     for done, (step, observed) in enumerate(
-        zip(case.steps, _observed_steps(case.steps), strict=True), start=1
+        zip(case.steps, _observed_steps(case.steps), strict=True)
     ):
         if on_step is not None:
-            on_step(done - 1, len(case.steps))
+            on_step(done, len(case.steps))
         results = {b.name: _execute(b, step, timeout) for b in active}
-        if not observed:
-            for other in active:
-                if ref is not None and other is not ref:
-                    report.failures.extend(
-                        Failure(step.label, d.what, d.reference, d.other, other.name, ref.name)
-                        for d in diff_results(results[ref.name], results[other.name], op=step.op)
-                    )
-            continue
-        observations = {b.name: _observe(b, step, timeout) for b in active}
+        observations = {b.name: _observe(b, step, timeout) for b in active} if observed else None
         for backend in active:
+            observation = None if observations is None else observations[backend.name]
             report.failures.extend(
-                _expectation_failures(
-                    step, backend, results[backend.name], observations[backend.name]
-                )
+                _expectation_failures(step, backend, results[backend.name], observation)
             )
         for other in active:
             if ref is not None and other is not ref:
