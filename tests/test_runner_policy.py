@@ -144,13 +144,12 @@ def test_state_is_observed_after_the_scene_and_after_every_later_step() -> None:
     assert _observed_steps([*steps, Step(1, "check", {}, ())]) == [False, True, True]
 
 
-def test_on_step_reports_each_step_before_it_runs() -> None:
+def test_on_step_counts_every_step_of_every_backend_as_it_finishes() -> None:
     calls: list[tuple[int, int]] = []
-    run_case(
-        CASE, [load_backend("reimpl")], on_step=lambda done, total: calls.append((done, total))
-    )
-    total = len(CASE.steps)
-    assert calls == [(done, total) for done in range(total)]
+    backends = [load_backend("reimpl"), load_backend("pydrake")]
+    run_case(CASE, backends, on_step=lambda done, total: calls.append((done, total)))
+    total = 2 * len(CASE.steps)
+    assert calls == [(done, total) for done in range(1, total + 1)]
 
 
 class _RefusesFirstGeometry(_CountingObserver):

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import signal
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any, TypeVar
 
@@ -39,6 +39,7 @@ __all__ = [
     "BackendError",
     "StepTimeoutError",
     "call",
+    "call_function",
     "deadline",
 ]
 
@@ -104,23 +105,47 @@ def call(
     timeout: float | None = None,
 ) -> T:
     """``backend.<method>(*args)``, checked as the module doc's table says."""
+    return call_function(
+        backend,
+        lambda: getattr(backend, method)(*args),
+        method,
+        where=where,
+        returns=returns,
+        timeout=timeout,
+    )
+
+
+def call_function(
+    backend: Backend,
+    function: Callable[[], Any],
+    method: str,
+    *,
+    where: str,
+    returns: type[T] | tuple[type, ...],
+    timeout: float | None = None,
+) -> T:
+    """``function()``, a call into ``backend`` named ``method``, checked like ``call``."""
     name = str(getattr(backend, "name", type(backend).__name__))
     try:
         with deadline(timeout, name, where):
-            value = getattr(backend, method)(*args)
-    except (*_PASS_THROUGH, StepTimeoutError):
+            value = function()
+    except _PASS_THROUGH:
         raise
+    except StepTimeoutError as exc:  # the deadline's, or a worker's own (naming its call)
+        raise StepTimeoutError(name, where, exc.message) from exc
     except BackendCrashError as exc:
         raise BackendCrashError(name, where, exc.message) from exc
     except BaseException as exc:
         raise BackendError(name, where, f"{method}() raised {_describe(exc)}") from exc
     if not isinstance(value, returns):
+        kinds = returns if isinstance(returns, tuple) else (returns,)
         raise BackendError(
             name,
             where,
-            f"{method}() returned {type(value).__name__}, not {returns.__name__}",
+            f"{method}() returned {type(value).__name__}, "
+            f"not {' or '.join(k.__name__ for k in kinds)}",
         )
-    return value
+    return value  # type: ignore[return-value]
 
 
 def _describe(exc: BaseException) -> str:

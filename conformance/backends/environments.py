@@ -29,7 +29,7 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -116,17 +116,24 @@ def _is_python(executable: str, python: str) -> bool:
     return done.returncode == 0 and done.stdout.strip() == python
 
 
-def find_python(version: str, *, override: str | None = None) -> tuple[str, str]:
-    """(Python version, interpreter) for Drake ``version``; see the module doc."""
+def find_python(version: str, *, override: str | Sequence[str] | None = None) -> tuple[str, str]:
+    """(Python version, interpreter) for Drake ``version``; see the module doc.
+
+    ``override``: the interpreter(s) given with ``--python``; the first that the
+    release supports is chosen, and if none is, that is an error (no search).
+    """
     pythons = pythons_for(version)
     if not pythons:
         raise DrakeEnvironmentError(f"drake=={version}: no known Python for this release")
-    if override is not None:
-        for python in pythons:
-            if _is_python(override, python):
-                return python, override
+    if override:
+        given = [override] if isinstance(override, str) else list(override)
+        for executable in given:
+            for python in pythons:
+                if _is_python(executable, python):
+                    return python, executable
         raise DrakeEnvironmentError(
-            f"drake=={version} needs Python {' or '.join(pythons)}; --python {override} is not"
+            f"drake=={version} needs Python {' or '.join(pythons)}; "
+            f"--python {' '.join(given)} {'is' if len(given) == 1 else 'are'} not"
         )
     for python in pythons:
         for candidate in _candidates(python):
@@ -149,7 +156,7 @@ def _run(argv: list[str], log: Callable[[str], None]) -> None:
 def ensure_environment(
     version: str,
     *,
-    python: str | None = None,
+    python: str | Sequence[str] | None = None,
     cache: Path | None = None,
     log: Callable[[str], None] = lambda line: None,
 ) -> DrakeEnvironment:

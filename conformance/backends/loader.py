@@ -5,7 +5,7 @@ from __future__ import annotations
 import importlib
 import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any, cast
 
 from conformance.backends.calls import BackendError
@@ -99,7 +99,9 @@ def _checked(spec: str, backend: Any) -> Backend:
     return cast(Backend, backend)
 
 
-def _worker(spec: str, release: str) -> Backend:
+def _worker(
+    spec: str, release: str, python: Sequence[str] | None, step_timeout: float | None
+) -> Backend:
     """A ``drake==X`` worker; building its environment is reported on stderr."""
     from conformance.backends.subprocess_backend import WorkerBackend  # noqa: PLC0415
 
@@ -108,14 +110,20 @@ def _worker(spec: str, release: str) -> Backend:
         sys.stderr.flush()
 
     try:
-        return WorkerBackend(release, log=log)
+        return WorkerBackend(release, python=python, step_timeout=step_timeout, log=log)
     except (DrakeEnvironmentError, BackendError) as exc:
         raise BackendLoadError(f"backend {spec!r}: {exc}") from None
 
 
-def load_backend(spec: str) -> Backend:
+def load_backend(
+    spec: str, *, python: Sequence[str] | None = None, step_timeout: float | None = None
+) -> Backend:
     """``reimpl``, ``pydrake``, ``drake==X`` (release X in a worker process), or
     ``package.module:attribute`` (a class or factory).
+
+    For ``drake==X``: ``python`` are the interpreters to choose from (``--python``;
+    default: discovered), and ``step_timeout`` the seconds the worker may take
+    for one answer (it times itself, in any thread).
 
     Anything that goes wrong (an import or a factory raising, a missing
     method, a ``version()`` that is not a string) is a ``BackendLoadError``
@@ -128,7 +136,7 @@ def load_backend(spec: str) -> Backend:
             raise BackendLoadError(f"backend {spec!r} is unavailable: {exc}") from None
     release = worker_spec_version(spec)
     if release is not None:
-        return _worker(spec, release)
+        return _worker(spec, release, python, step_timeout)
     if ":" not in spec:
         known = ", ".join(sorted(BUILTIN_BACKENDS))
         raise BackendLoadError(

@@ -8,23 +8,31 @@ as SIGABRT or SIGSEGV, or an exit) the call raises ``BackendCrashError``
 with the signal and the tail of the worker's stderr, and when a call times
 out the worker is killed; either way the next ``reset()`` starts a new
 worker, so a run records the crash and goes on.
+
+A worker times itself: every answer must come within ``step_timeout``
+seconds (``select`` on its pipe), so a hang is a ``StepTimeoutError`` in any
+thread, not only where a ``SIGALRM`` can interrupt. ``run_steps`` sends a
+whole case in one request and reads the answers as they come, one per step
+(a *batch*: one round trip per case instead of two per step).
 """
 
 from __future__ import annotations
 
 import json
 import os
+import select
 import signal
 import subprocess
 import tempfile
+import time
 import weakref
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import IO, Any
 
-from conformance.backends.calls import BackendCrashError
+from conformance.backends.calls import BackendCrashError, StepTimeoutError
 from conformance.backends.environments import DrakeEnvironment, ensure_environment, harness_path
-from conformance.protocol import Command, Observation, Result
+from conformance.protocol import Command, Observation, Result, UnknownNameError
 
 __all__ = ["SPEC_PREFIX", "WorkerBackend", "worker_spec_version"]
 
@@ -57,17 +65,21 @@ class WorkerBackend:
         self,
         version: str,
         *,
-        python: str | None = None,
+        python: str | Sequence[str] | None = None,
         cache: Path | None = None,
+        step_timeout: float | None = None,
         log: Callable[[str], None] = lambda line: None,
     ) -> None:
         self.name = f"{SPEC_PREFIX}{version}"
         self.environment: DrakeEnvironment = ensure_environment(
             version, python=python, cache=cache, log=log
         )
+        #: Seconds an answer may take (None or 0: no limit).
+        self.step_timeout = step_timeout
         self._pythonpath = str(harness_path(cache))
-        self._process: subprocess.Popen[str] | None = None
+        self._process: subprocess.Popen[bytes] | None = None
         self._stderr: IO[str] | None = None
+        self._pending = bytearray()  # read from the worker, not yet a whole line
         #: The guards the host armed (None: the worker's own default, its release's).
         self._armed: list[str] | None = None
         weakref.finalize(self, WorkerBackend.close, self)
@@ -76,11 +88,17 @@ class WorkerBackend:
         self._features = frozenset(hello["features"])
 
     # ------------------------------------------------------------- process
-    def _start(self) -> subprocess.Popen[str]:
+    @property
+    def pid(self) -> int | None:
+        """The running worker's process id (None if there is none)."""
+        return None if self._process is None else self._process.pid
+
+    def _start(self) -> subprocess.Popen[bytes]:
         # Kept open for the worker's life (read when it dies), closed by the next _start.
         if self._stderr is not None:
             self._stderr.close()
         self._stderr = tempfile.TemporaryFile(mode="w+", encoding="utf-8")  # noqa: SIM115
+        self._pending.clear()
         env = {**os.environ, "PYTHONPATH": self._pythonpath, "PYTHONUNBUFFERED": "1"}
         env.pop("PYTHONHOME", None)
         self._process = subprocess.Popen(
@@ -88,7 +106,7 @@ class WorkerBackend:
             stdin=subprocess.PIPE,
             stdout=subprocess.PIPE,
             stderr=self._stderr,
-            text=True,
+            bufsize=0,
             env=env,
         )
         return self._process
@@ -112,7 +130,7 @@ class WorkerBackend:
         lines = self._stderr.read().strip().splitlines()[-_STDERR_TAIL:]
         return "\n".join(lines)
 
-    def _crash(self, process: subprocess.Popen[str], call: str) -> BackendCrashError:
+    def _crash(self, process: subprocess.Popen[bytes], call: str) -> BackendCrashError:
         """The error for a worker that died; the worker is discarded."""
         code = process.wait()
         tail = self._stderr_tail()
@@ -122,12 +140,27 @@ class WorkerBackend:
             self.name, call, message + (f"; its stderr ends:\n{tail}" if tail else "")
         )
 
-    def _request(self, request: dict[str, Any], *, fresh: bool = False) -> Any:
-        """Sends ``request`` and returns its answer's value.
+    def _readline(self, process: subprocess.Popen[bytes], call: str) -> bytes:
+        """The worker's next line (b"" if it closed its output), within ``step_timeout``."""
+        assert process.stdout is not None
+        fd = process.stdout.fileno()
+        limit = None if not self.step_timeout else time.monotonic() + self.step_timeout
+        while (end := self._pending.find(b"\n")) < 0:
+            wait = None if limit is None else limit - time.monotonic()
+            if wait is not None and (wait <= 0 or not select.select([fd], [], [], wait)[0]):
+                raise StepTimeoutError(
+                    self.name, call, f"no answer within {self.step_timeout:g} s (--step-timeout)"
+                )
+            chunk = os.read(fd, 1 << 16)
+            if not chunk:
+                return b""
+            self._pending += chunk
+        line = bytes(self._pending[:end])
+        del self._pending[: end + 1]
+        return line
 
-        A worker is started if there is none, or (``fresh``: a reset) if the
-        last one died; a worker that died at any other time is a crash.
-        """
+    def _send(self, request: dict[str, Any], *, fresh: bool = False) -> subprocess.Popen[bytes]:
+        """Writes ``request`` to the worker; see ``_request`` for ``fresh``."""
         process = self._process
         if process is None or (fresh and process.poll() is not None):
             process = self._start()
@@ -136,22 +169,36 @@ class WorkerBackend:
         elif process.poll() is not None:
             raise self._crash(process, request["call"])
         assert process.stdin is not None
-        assert process.stdout is not None
         try:
-            process.stdin.write(json.dumps(request) + "\n")
-            process.stdin.flush()
-            line = process.stdout.readline()
+            process.stdin.write(json.dumps(request).encode() + b"\n")
         except BrokenPipeError:
-            line = ""
+            raise self._crash(process, request["call"]) from None
+        return process
+
+    def _answer(self, process: subprocess.Popen[bytes], call: str) -> Any:
+        """The value of the worker's next answer."""
+        try:
+            line = self._readline(process, call)
         except BaseException:  # a timeout (or Ctrl-C) mid-call: the worker cannot be trusted
             self._stop()
             raise
         if not line:
-            raise self._crash(process, request["call"])
+            raise self._crash(process, call)
         response = json.loads(line)
         if "raised" in response:
+            if "unknown" in response:
+                raise UnknownNameError(*response["unknown"])
             raise RuntimeError(f"in the worker: {response['raised']}")
         return response["value"]
+
+    def _request(self, request: dict[str, Any], *, fresh: bool = False) -> Any:
+        """Sends ``request`` and returns its answer's value.
+
+        A worker is started if there is none, or (``fresh``: a reset) if the
+        last one died; a worker that died at any other time is a crash.
+        """
+        process = self._send(request, fresh=fresh)
+        return self._answer(process, request["call"])
 
     def close(self) -> None:
         """Ends the worker and frees its pipes and files (also done at exit)."""
@@ -180,3 +227,21 @@ class WorkerBackend:
 
     def observe(self) -> Observation:
         return Observation.from_json(self._request({"call": "observe"}))
+
+    def run_steps(
+        self, steps: Sequence[tuple[Command | None, bool]]
+    ) -> Iterator[tuple[Result, Observation | None]]:
+        """Each step's Result (an empty one for ``None``) and, if asked, the Observation after
+        it: one request for the whole batch, answers read as they come."""
+        batch = [
+            {"command": None if c is None else c.to_json(), "observe": observe}
+            for c, observe in steps
+        ]
+        process = self._send({"call": "steps", "steps": batch})
+        for _ in steps:
+            value = self._answer(process, "steps")
+            observation = value["observation"]
+            yield (
+                Result.from_json(value["result"]),
+                None if observation is None else Observation.from_json(observation),
+            )

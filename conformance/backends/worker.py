@@ -12,8 +12,16 @@ request                                   response
 ``{"call": "arm_guards", "ids": [...]}``  ``{"value": null}``
 ``{"call": "execute", "command": C}``     ``{"value": Result.to_json()}``
 ``{"call": "observe"}``                   ``{"value": Observation.to_json()}``
-anything that raises                      ``{"raised": "Type: message"}``
+``{"call": "steps", "steps": [S, ...]}``  one line per step (a *batch*), each
+                                          ``{"value": {"result", "observation"}}``
+anything that raises                      ``{"raised": "Type: message", "type": "Type"}``
 ========================================  ==================================
+
+A batch step ``S`` is ``{"command": C or null, "observe": bool}``: a null
+command runs nothing (a ``check`` step) and answers an empty Result; the
+observation is null unless ``observe``. A batch answers step by step, so a
+worker that dies mid-case has already sent every earlier answer; a step that
+raises answers ``raised`` and ends the batch.
 
 It imports only the harness's pure-Python modules and pydrake (through
 ``pydrake_api``, the one module that imports it). The host decides which
@@ -30,7 +38,7 @@ from typing import Any, TextIO
 
 from conformance.backends.pydrake_api import pydrake_api
 from conformance.backends.scene_graph import SceneGraphBackend
-from conformance.protocol import Command
+from conformance.protocol import Command, Result, UnknownNameError
 
 __all__ = ["serve"]
 
@@ -45,17 +53,43 @@ def _handlers(backend: SceneGraphBackend) -> dict[str, Callable[[dict[str, Any]]
     }
 
 
+def _step(backend: SceneGraphBackend, step: dict[str, Any]) -> dict[str, Any]:
+    command = step["command"]
+    result = Result() if command is None else backend.execute(Command.from_json(command))
+    observation = backend.observe().to_json() if step["observe"] else None
+    return {"result": result.to_json(), "observation": observation}
+
+
+def _raised(exc: Exception) -> dict[str, Any]:
+    raised: dict[str, Any] = {"raised": f"{type(exc).__name__}: {exc}", "type": type(exc).__name__}
+    if isinstance(exc, UnknownNameError):  # the input's fault: the host raises it again
+        raised["unknown"] = [exc.kind, exc.name]
+    return raised
+
+
 def serve(requests: TextIO, responses: TextIO) -> None:
     """Answers requests until stdin closes."""
-    handlers = _handlers(SceneGraphBackend(pydrake_api()))
-    for line in requests:
-        request = json.loads(line)
-        try:
-            response = {"value": handlers[request["call"]](request)}
-        except Exception as exc:
-            response = {"raised": f"{type(exc).__name__}: {exc}"}
+    backend = SceneGraphBackend(pydrake_api())
+    handlers = _handlers(backend)
+
+    def send(response: dict[str, Any]) -> None:
         responses.write(json.dumps(response) + "\n")
         responses.flush()
+
+    for line in requests:
+        request = json.loads(line)
+        if request["call"] == "steps":
+            for step in request["steps"]:
+                try:
+                    send({"value": _step(backend, step)})
+                except Exception as exc:
+                    send(_raised(exc))
+                    break
+            continue
+        try:
+            send({"value": handlers[request["call"]](request)})
+        except Exception as exc:
+            send(_raised(exc))
 
 
 if __name__ == "__main__":

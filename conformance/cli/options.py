@@ -8,7 +8,7 @@ from typing import TextIO
 
 from conformance.backends.calls import DEFAULT_STEP_TIMEOUT
 
-__all__ = ["add_step_timeout", "refuse"]
+__all__ = ["add_python", "add_step_timeout", "refuse"]
 
 
 def _seconds(text: str) -> float:
@@ -31,6 +31,17 @@ def add_step_timeout(parser: argparse.ArgumentParser, *, what: str) -> None:
         metavar="SEC",
         help=f"a backend call taking longer {what}, exit 2 "
         f"(default {DEFAULT_STEP_TIMEOUT:g}; 0: none)",
+    )
+
+
+def add_python(parser: argparse.ArgumentParser) -> None:
+    """``--python PATH`` (repeatable): the interpreters ``drake==X`` environments are built on."""
+    parser.add_argument(
+        "--python",
+        action="append",
+        metavar="PATH",
+        help="an interpreter for drake==X environments (repeatable; the first that the "
+        "release supports is used; default: found on PATH or in pyenv)",
     )
 
 

@@ -17,7 +17,7 @@ from typing import TextIO
 
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
-from conformance.cli.options import add_step_timeout, refuse
+from conformance.cli.options import add_python, add_step_timeout, refuse
 from conformance.corpus.loader import Case, ScenarioError, load_corpus
 from conformance.protocol import Backend
 from conformance.run.outputs import unwritable, write_or_fall_back
@@ -56,15 +56,21 @@ def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignor
         help="report known divergences as failures, not xfail",
     )
     add_step_timeout(run, what="is a timeout")
+    add_python(run)
     run.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
     run.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
     run.add_argument("-q", "--quiet", action="store_true", help="no per-case progress lines")
 
 
-def load_backends(specs: Sequence[str] | None) -> list[Backend]:
+def load_backends(
+    specs: Sequence[str] | None,
+    *,
+    python: Sequence[str] | None = None,
+    step_timeout: float | None = None,
+) -> list[Backend]:
     """The backends of ``specs`` (default reimpl and pydrake); names must differ."""
     specs = list(specs or ("reimpl", "pydrake"))
-    backends = [load_backend(spec) for spec in specs]
+    backends = [load_backend(s, python=python, step_timeout=step_timeout) for s in specs]
     names = [b.name for b in backends]
     if len(set(names)) != len(names):
         raise BackendLoadError(f"backend names must differ, got {names}")
@@ -119,7 +125,9 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     if refuse(_output_problems(args), err):
         return EXIT_USAGE
     try:
-        backends = load_backends(args.backends)
+        backends = load_backends(
+            args.backends, python=args.python, step_timeout=args.step_timeout or None
+        )
         reference = choose_reference(backends, args.reference).name
         files = load_corpus(args.paths)
     except (BackendLoadError, ScenarioError, ValueError) as exc:

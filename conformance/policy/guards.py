@@ -10,6 +10,13 @@ comparable and the run survives.
 
 A backend takes part by having ``arm_guards(ids)``; ``SceneGraphBackend``
 does, and checks ``guard_armed(id)`` before the calls each guard covers.
+
+A worker backend (``isolated``: its own process, replaced when it dies)
+need not be protected: a crash there loses nothing. ``run`` and ``matrix``
+therefore let a worker's release crash and record it (``crash_isolated``):
+only the in-process backends' releases arm guards, and every backend, the
+workers too, refuses the calls those arm, so all stay comparable. The
+fuzzer, which needs every backend alive for the next step, arms them all.
 """
 
 from __future__ import annotations
@@ -60,10 +67,15 @@ def armed_guards(releases: Iterable[str]) -> frozenset[str]:
     )
 
 
-def arm_guards(backends: Iterable[Backend]) -> frozenset[str]:
-    """Arms, on every backend that takes part, the guards any backend's release needs."""
+def arm_guards(backends: Iterable[Backend], *, crash_isolated: bool = False) -> frozenset[str]:
+    """Arms, on every backend that takes part, the guards any backend's release needs.
+
+    ``crash_isolated``: the releases of isolated backends (workers) arm nothing.
+    """
     backends = tuple(backends)
-    ids = armed_guards(b.version() for b in backends)
+    ids = armed_guards(
+        b.version() for b in backends if not (crash_isolated and getattr(b, "isolated", False))
+    )
     for backend in backends:
         arm = getattr(backend, "arm_guards", None)
         if arm is not None:

@@ -1,10 +1,13 @@
-"""Runs one case on backends in lockstep: expectations per backend, agreement with a reference.
+"""Runs one case on backends: expectations per backend, agreement with a reference.
 
-After every step the runner (1) checks the step's expectations on each
-backend that supports the case's features and whose Drake release lies in
-the expectation's since/until range (``run.expectations``), and (2) compares
-every other backend with the *reference* (``conformance.compare``): the
-step's Result and the whole Observation.
+Each backend runs the whole case from a reset and leaves a ``Trace``: the
+Result of every step and the Observation after the observed ones. A worker
+(``run_steps``) answers the case in one batch; other backends are called
+step by step. The traces are then compared step by step: (1) each step's
+expectations on each backend whose Drake release lies in the expectation's
+since/until range (``run.expectations``), and (2) every other backend
+against the *reference* (``conformance.compare``): the step's Result and the
+whole Observation.
 
 The reference is the oracle of the run: the backend named by ``reference``,
 else the first real Drake (``pydrake``, or ``drake==X`` in its own
@@ -17,11 +20,15 @@ observation, not one per geometry (the scene's Results are still compared).
 
 A backend that breaks (raises, returns the wrong type, exceeds
 ``step_timeout``, or its worker process dies; see ``backends.calls``) ends
-the case: the report gets status ``error``, ``timeout`` or ``crash`` for
-that backend and ``aborted`` says why. After a crash or a timeout of an
-*isolated* backend (``isolated = True``: a worker, replaced at its next
-reset) the case is ``recoverable`` and a run may go on.
-A step naming something never made ends it too (an input error).
+its own trace there: the report gets status ``error``, ``timeout`` or
+``crash`` for it and ``aborted`` says why, while the other backends finish
+the case and are still checked and compared wherever both answered. After
+a crash or a timeout of an *isolated* backend (``isolated = True``: a
+worker, replaced at its next reset) the case is ``recoverable`` and a run
+goes on. Workers are not protected by release guards (``policy.guards``,
+``crash_isolated``): their release may crash, and a crash that a known
+divergence of kind ``drake_crash`` expects of that release is ``xfail``.
+A step naming something never made ends the case (an input error).
 
 A backend whose first failure in a case matches a known divergence
 (``policy.divergences``) for the reference's release gets ``xfail`` with
@@ -31,11 +38,17 @@ the divergence's id instead of ``fail``, unless ``strict_divergences``.
 from __future__ import annotations
 
 import enum
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from conformance.backends.calls import BackendCrashError, BackendError, StepTimeoutError, call
+from conformance.backends.calls import (
+    BackendCrashError,
+    BackendError,
+    StepTimeoutError,
+    call,
+    call_function,
+)
 from conformance.compare import diff, diff_results
 from conformance.corpus.loader import Case, Step
 from conformance.policy.divergences import KnownDivergence, match_case
@@ -57,8 +70,10 @@ __all__ = [
     "CaseReport",
     "Failure",
     "Status",
+    "Trace",
     "choose_reference",
     "run_case",
+    "trace_disagreements",
 ]
 
 #: Backend names that are real Drake: preferred as the reference.
@@ -119,11 +134,15 @@ class CaseReport:
     #: The run can go on after ``aborted``: an isolated backend (a worker) crashed or
     #: timed out, and its next reset starts a new worker.
     recoverable: bool = False
+    #: backend → how it broke (CRASH, TIMEOUT or ERROR), also when that is ``xfail``.
+    broken: dict[str, Status] = field(default_factory=dict)
+    #: backend → what it answered (``Trace``), for each backend that ran the case.
+    traces: dict[str, Trace] = field(default_factory=dict, repr=False)
 
     @property
     def passed(self) -> bool:
         broken = _BROKEN & set(self.status.values())
-        return self.aborted is None and not broken
+        return (self.aborted is None or self.recoverable) and not broken
 
     def failures_of(self, backend: str) -> list[Failure]:
         return [f for f in self.failures if f.backend == backend]
@@ -140,19 +159,6 @@ def choose_reference(backends: Sequence[Backend], name: str | None = None) -> Ba
         if backend.name.startswith(_DRAKE_NAMES):
             return backend
     return backends[0]
-
-
-def _execute(backend: Backend, step: Step, timeout: float | None) -> Result:
-    if step.op == "check":
-        return Result()
-    command = Command(step.op, step.args)
-    where = f"{step.label} ({step.op})"
-    return call(backend, "execute", command, where=where, returns=Result, timeout=timeout)
-
-
-def _observe(backend: Backend, step: Step, timeout: float | None) -> Observation:
-    where = f"{step.label} ({step.op}), observe"
-    return call(backend, "observe", where=where, returns=Observation, timeout=timeout)
 
 
 def _observed_steps(steps: Sequence[Step]) -> list[bool]:
@@ -180,23 +186,90 @@ def _expectation_failures(
 
 
 def _disagreements(
-    step: Step,
-    reference: Backend,
-    other: Backend,
-    results: Mapping[str, Result],
-    observations: Mapping[str, Observation] | None,
+    step: Step, reference: Trace, other: Trace, index: int, observed: bool
 ) -> Iterator[Failure]:
-    """``other``'s differences from ``reference``: Results, and states if observed."""
-    if observations is None:
-        differences = diff_results(results[reference.name], results[other.name], op=step.op)
+    """``other``'s differences from ``reference`` at step ``index``: Results, and states if
+    observed."""
+    ours, theirs = reference.results[index], other.results[index]
+    seen, seen_other = reference.observations[index], other.observations[index]
+    if observed and seen is not None and seen_other is not None:
+        differences = diff((ours, seen), (theirs, seen_other), op=step.op)
     else:
-        differences = diff(
-            (results[reference.name], observations[reference.name]),
-            (results[other.name], observations[other.name]),
-            op=step.op,
-        )
+        differences = diff_results(ours, theirs, op=step.op)
     for d in differences:
         yield Failure(step.label, d.what, d.reference, d.other, other.name, reference.name)
+
+
+@dataclass
+class Trace:
+    """One backend's answers to a case: a Result per step run, the Observation after each
+    observed step (None after the others), and the error that ended it early, if one did."""
+
+    backend: Backend
+    results: list[Result] = field(default_factory=list)
+    observations: list[Observation | None] = field(default_factory=list)
+    broken: BackendError | None = None
+
+    @property
+    def name(self) -> str:
+        return self.backend.name
+
+    def covers(self, index: int) -> bool:
+        return index < len(self.results)
+
+
+def _answers(
+    backend: Backend, steps: Sequence[Step], observed: Sequence[bool], timeout: float | None
+) -> Iterator[tuple[Result, Observation | None]]:
+    """The backend's Result and Observation (if ``observed``) per step, checked by
+    ``call``: one batch if the backend has ``run_steps`` (a worker), else call by call."""
+    where = [f"{step.label} ({step.op})" for step in steps]
+    if hasattr(backend, "run_steps"):
+        commands = [None if s.op == "check" else Command(s.op, s.args) for s in steps]
+        stream = iter(backend.run_steps(list(zip(commands, observed, strict=True))))
+        for label in where:
+            yield call_function(
+                backend,
+                lambda: next(stream),
+                "run_steps",
+                where=label,
+                returns=tuple,
+                timeout=timeout,
+            )
+        return
+    for step, label, look in zip(steps, where, observed, strict=True):
+        result = Result()
+        if step.op != "check":
+            command = Command(step.op, step.args)
+            result = call(backend, "execute", command, where=label, returns=Result, timeout=timeout)
+        observation = None
+        if look:
+            observation = call(
+                backend, "observe", where=f"{label}, observe", returns=Observation, timeout=timeout
+            )
+        yield result, observation
+
+
+def _trace(
+    backend: Backend,
+    steps: Sequence[Step],
+    observed: Sequence[bool],
+    timeout: float | None,
+    on_step: Callable[[], None],
+) -> Trace:
+    """``backend``'s Trace of the case, from a reset; a BackendError ends it early."""
+    trace = Trace(backend)
+    try:
+        call(backend, "reset", where="reset", returns=object, timeout=timeout)
+        for result, observation in _answers(backend, steps, observed, timeout):
+            if not isinstance(result, Result) or not isinstance(observation, Observation | None):
+                raise BackendError(backend.name, "run_steps", "answered the wrong types")
+            trace.results.append(result)
+            trace.observations.append(observation)
+            on_step()
+    except BackendError as exc:
+        trace.broken = exc
+    return trace
 
 
 def run_case(
@@ -211,7 +284,8 @@ def run_case(
 ) -> CaseReport:
     """Runs ``case`` on every backend whose features cover it (see the module doc).
 
-    ``on_step(done, total)`` is called after each step (for progress on long cases).
+    ``on_step(done, total)`` is called after each step of each backend (for progress
+    on long cases).
     """
     oracle = choose_reference(backends, reference)
     report = CaseReport(case)
@@ -223,26 +297,91 @@ def run_case(
             report.skip_reasons[backend.name] = f"needs feature(s) {', '.join(sorted(missing))}"
         else:
             active.append(backend)
-    arm_guards(active)
+    arm_guards(active, crash_isolated=True)
     ref = oracle if oracle in active else (active[0] if active else None)
     report.reference = ref.name if ref is not None and len(active) > 1 else None
+    observed = _observed_steps(case.steps)
+    total, done = len(case.steps) * len(active), 0
+
+    def step_done() -> None:
+        nonlocal done
+        done += 1
+        if on_step is not None:
+            on_step(done, total)
+
     try:
-        _run_steps(case, active, ref, report, timeout=step_timeout, on_step=on_step)
-    except BackendError as exc:
-        report.status[exc.backend] = _broken_status(exc)
-        report.aborted = str(exc)
-        isolated = any(getattr(b, "isolated", False) for b in active if b.name == exc.backend)
-        report.recoverable = isolated and report.status[exc.backend] is not Status.ERROR
-        return report
+        traces = [_trace(b, case.steps, observed, step_timeout, step_done) for b in active]
     except UnknownNameError as exc:
         report.aborted = f"{exc} (the case names something no earlier step made)"
         return report
+    report.traces = {t.name: t for t in traces}
+    _compare(case, traces, ref, observed, report)
     release = ref.version() if ref is not None else ""
-    for backend in active:
-        report.status[backend.name] = _status(
-            report, backend_id(backend), release, strict_divergences, divergences
-        )
+    for trace in traces:
+        if trace.broken is not None:
+            _broke(report, trace, strict_divergences, divergences)
+        else:
+            report.status[trace.name] = _status(
+                report, backend_id(trace.backend), release, strict_divergences, divergences
+            )
     return report
+
+
+def _compare(
+    case: Case,
+    traces: Sequence[Trace],
+    ref: Backend | None,
+    observed: Sequence[bool],
+    report: CaseReport,
+) -> None:
+    """Adds each step's expectation failures and disagreements with the reference (where
+    both answered) to ``report``."""
+    reference = next((t for t in traces if t.backend is ref), None)
+    for index, (step, look) in enumerate(zip(case.steps, observed, strict=True)):
+        for trace in traces:
+            if trace.covers(index):
+                report.failures.extend(
+                    _expectation_failures(
+                        step,
+                        trace.backend,
+                        trace.results[index],
+                        trace.observations[index] if look else None,
+                    )
+                )
+    if reference is not None:
+        for other in traces:
+            if other is not reference:
+                report.failures.extend(trace_disagreements(case, reference, other))
+
+
+def trace_disagreements(
+    case: Case, reference: Trace, other: Trace, *, ends: bool = False
+) -> list[Failure]:
+    """``other``'s differences from ``reference``, step by step, where both answered;
+    with ``ends``, a trace that ends earlier than the other (it broke) is one too."""
+    observed = _observed_steps(case.steps)
+    failures: list[Failure] = []
+    for index, (step, look) in enumerate(zip(case.steps, observed, strict=True)):
+        if reference.covers(index) and other.covers(index):
+            failures.extend(_disagreements(step, reference, other, index, look))
+    if ends and len(reference.results) != len(other.results):
+        failures.append(
+            Failure(
+                "end",
+                "steps answered",
+                _ended(reference, len(case.steps)),
+                _ended(other, len(case.steps)),
+                other.name,
+                reference.name,
+            )
+        )
+    return failures
+
+
+def _ended(trace: Trace, total: int) -> str:
+    if trace.broken is None:
+        return f"all {total}"
+    return f"{len(trace.results)} of {total}: {type(trace.broken).__name__} at {trace.broken.where}"
 
 
 #: Statuses that fail a case.
@@ -256,33 +395,31 @@ def _broken_status(exc: BackendError) -> Status:
     return Status.TIMEOUT if isinstance(exc, StepTimeoutError) else Status.ERROR
 
 
-def _run_steps(
-    case: Case,
-    active: Sequence[Backend],
-    ref: Backend | None,
+def _broke(
     report: CaseReport,
-    *,
-    timeout: float | None,
-    on_step: Callable[[int, int], None] | None = None,
+    trace: Trace,
+    strict: bool,
+    divergences: Sequence[KnownDivergence] | None,
 ) -> None:
-    """Runs the steps on ``active``, adding failures to ``report``."""
-    for backend in active:
-        call(backend, "reset", where="reset", returns=object, timeout=timeout)
-    for done, (step, observed) in enumerate(
-        zip(case.steps, _observed_steps(case.steps), strict=True)
-    ):
-        if on_step is not None:
-            on_step(done, len(case.steps))
-        results = {b.name: _execute(b, step, timeout) for b in active}
-        observations = {b.name: _observe(b, step, timeout) for b in active} if observed else None
-        for backend in active:
-            observation = None if observations is None else observations[backend.name]
-            report.failures.extend(
-                _expectation_failures(step, backend, results[backend.name], observation)
-            )
-        for other in active:
-            if ref is not None and other is not ref:
-                report.failures.extend(_disagreements(step, ref, other, results, observations))
+    """Records a backend that broke: its status, and why the case stopped early.
+
+    A crash or a timeout of an isolated backend is recoverable (a new worker
+    takes over); one that a known divergence expects of that backend's own
+    release is ``xfail``, unless ``strict``.
+    """
+    assert trace.broken is not None
+    status = _broken_status(trace.broken)
+    report.broken[trace.name] = status
+    isolated = bool(getattr(trace.backend, "isolated", False))
+    recoverable = isolated and status is not Status.ERROR
+    report.recoverable = (report.aborted is None or report.recoverable) and recoverable
+    report.aborted = "; ".join(filter(None, (report.aborted, str(trace.broken))))
+    me = backend_id(trace.backend)
+    known = None if strict else match_case(report.case.qualified_name, me, me.version, divergences)
+    if known is not None and recoverable:
+        report.xfails[trace.name] = known.id
+        status = Status.XFAIL
+    report.status[trace.name] = status
 
 
 def _status(
