@@ -23,8 +23,10 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any, TextIO
 
+from conformance.cli.bisect import add_bisect_parser, bisect_command
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
+from conformance.cli.matrix import add_matrix_parser, matrix_command
 from conformance.cli.options import add_step_timeout
 from conformance.cli.run import PROG, add_run_parser, run_command
 from conformance.fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
@@ -47,6 +49,8 @@ def _parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     add_run_parser(commands)
     _add_fuzz(commands)
+    add_matrix_parser(commands)
+    add_bisect_parser(commands)
     schema = commands.add_parser(
         "schema", help="print the scenario schema (its step rules come from the grammar)"
     )
@@ -134,6 +138,10 @@ def main(
         return run_command(args, out, err)
     if args.command == "fuzz":
         return fuzz_command(args, out, err)
+    if args.command == "matrix":
+        return matrix_command(args, out, err)
+    if args.command == "bisect":
+        return bisect_command(args, out, err)
     if args.command == "schema":
         return _schema(args, out)
     raise AssertionError(args.command)  # pragma: no cover

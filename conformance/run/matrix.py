@@ -1,0 +1,252 @@
+"""The release matrix: every case on every chosen Drake release, one outcome per cell.
+
+Each release runs alone, in a worker (``drake==X``), and is held to the
+cases' own expectations (those whose since/until range holds it). A cell is
+one ``Outcome``, derived from the case's report by one table
+(``outcome_of``):
+
+==================  ===========================================================
+outcome             when
+==================  ===========================================================
+``pass``            every expectation held
+``fail``            an expectation failed, and no known divergence says so
+``xfail``           it failed as a known divergence in range says it does
+``unsupported``     the release lacks a feature tag of the case (``activation``
+                    before 1.55, ``scope`` before 1.45), or lacks the Python
+                    binding a step calls (error kind ``binding``)
+``crash``           the worker died (a signal or an exit), expected or not
+``timeout``         a step took longer than the step timeout
+``error``           the backend broke otherwise
+==================  ===========================================================
+
+Releases run in parallel (``jobs`` threads, each driving its own worker
+processes); ``on_case`` reports progress as cases finish. A release whose
+environment cannot be built or whose worker cannot start gets no cells and
+an ``error`` in its ``ReleaseRun``; the other releases still run.
+"""
+
+from __future__ import annotations
+
+import enum
+import threading
+import time
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from typing import Any
+
+from conformance.backends.calls import BackendError
+from conformance.backends.environments import DrakeEnvironmentError
+from conformance.backends.subprocess_backend import WorkerBackend
+from conformance.corpus.loader import Case
+from conformance.protocol import UnknownNameError
+from conformance.run.runner import CaseReport, Status, run_case
+
+__all__ = [
+    "Cell",
+    "Matrix",
+    "Outcome",
+    "ReleaseRun",
+    "outcome_of",
+    "run_matrix",
+    "run_release",
+]
+
+
+class Outcome(enum.Enum):
+    PASS = "pass"
+    FAIL = "fail"
+    XFAIL = "xfail"
+    UNSUPPORTED = "unsupported"
+    CRASH = "crash"
+    TIMEOUT = "timeout"
+    ERROR = "error"
+
+
+#: Outcomes that make ``matrix`` exit 1 (a crash or timeout that a known
+#: divergence expects does not).
+FAILING = frozenset({Outcome.FAIL, Outcome.CRASH, Outcome.TIMEOUT, Outcome.ERROR})
+
+
+@dataclass(frozen=True)
+class Cell:
+    """One case on one release: its outcome, and why (a reason, a divergence id, an error)."""
+
+    outcome: Outcome
+    detail: str = ""
+    #: The id of the known divergence that expects it, if one does.
+    expected_by: str | None = None
+
+    @property
+    def failing(self) -> bool:
+        return self.outcome in FAILING and self.expected_by is None
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "outcome": self.outcome.value,
+            "detail": self.detail,
+            **({"expected_by": self.expected_by} if self.expected_by else {}),
+        }
+
+
+#: How a backend that broke is shown.
+_BROKEN_OUTCOMES = {
+    Status.CRASH: Outcome.CRASH,
+    Status.TIMEOUT: Outcome.TIMEOUT,
+    Status.ERROR: Outcome.ERROR,
+}
+
+
+def _binding_gap(report: CaseReport, backend: str) -> str | None:
+    """The message of the first error of kind ``binding`` the backend answered, if any."""
+    for failure in report.failures_of(backend):
+        actual = failure.actual
+        if isinstance(actual, dict) and actual.get("kind") == "binding":
+            return f"{failure.step}: {actual.get('message', '')}"
+    return None
+
+
+def _failed(report: CaseReport, backend: str) -> Cell:
+    gap = _binding_gap(report, backend)
+    if gap is not None:
+        return Cell(Outcome.UNSUPPORTED, f"no binding: {gap}")
+    first = report.failures_of(backend)[0]
+    return Cell(Outcome.FAIL, f"{first.step}: {first.what}")
+
+
+def _passed(report: CaseReport, backend: str) -> Cell:
+    if report.aborted is not None and not report.recoverable:  # e.g. an unknown name
+        return Cell(Outcome.ERROR, report.aborted)
+    return Cell(Outcome.PASS)
+
+
+#: The cell of a backend that finished the case, by its status.
+_BY_STATUS: dict[Status, Callable[[CaseReport, str], Cell]] = {
+    Status.PASS: _passed,
+    Status.FAIL: _failed,
+    Status.XFAIL: lambda r, b: Cell(Outcome.XFAIL, r.xfails[b], r.xfails[b]),
+    Status.SKIP: lambda r, b: Cell(Outcome.UNSUPPORTED, r.skip_reasons.get(b, "")),
+}
+
+
+def outcome_of(report: CaseReport, backend: str) -> Cell:
+    """The cell of ``backend`` in ``report`` (the module doc's table)."""
+    if backend in report.broken:
+        outcome = _BROKEN_OUTCOMES[report.broken[backend]]
+        return Cell(outcome, report.aborted or "", report.xfails.get(backend))
+    return _BY_STATUS[report.status.get(backend, Status.PASS)](report, backend)
+
+
+@dataclass
+class ReleaseRun:
+    """One release's column: a cell per case, or the error that kept it from running."""
+
+    version: str
+    python: str = ""
+    cells: dict[str, Cell] = field(default_factory=dict)
+    error: str | None = None
+    seconds: float = 0.0
+
+    def count(self, outcome: Outcome) -> int:
+        return sum(1 for c in self.cells.values() if c.outcome is outcome)
+
+
+@dataclass
+class Matrix:
+    """Every release's column, in the order the releases were given."""
+
+    versions: list[str]
+    cases: list[str]
+    runs: dict[str, ReleaseRun] = field(default_factory=dict)
+
+    def cell(self, case: str, version: str) -> Cell | None:
+        run = self.runs.get(version)
+        return None if run is None else run.cells.get(case)
+
+    @property
+    def failing(self) -> list[tuple[str, str]]:
+        """(case, version) of every failing cell."""
+        return [
+            (case, v)
+            for v in self.versions
+            for case in self.cases
+            if (cell := self.cell(case, v)) is not None and cell.failing
+        ]
+
+    @property
+    def broken_releases(self) -> list[str]:
+        return [v for v in self.versions if self.runs[v].error is not None]
+
+
+def run_release(
+    version: str,
+    cases: Sequence[Case],
+    *,
+    python: Sequence[str] | None = None,
+    step_timeout: float | None = None,
+    strict_divergences: bool = False,
+    on_case: Callable[[str, int, int], None] = lambda version, done, total: None,
+    log: Callable[[str], None] = lambda line: None,
+) -> ReleaseRun:
+    """Runs ``cases`` on Drake ``version`` alone, in a worker (see the module doc)."""
+    run = ReleaseRun(version)
+    start = time.perf_counter()
+    try:
+        worker = WorkerBackend(version, python=python, step_timeout=step_timeout, log=log)
+    except (DrakeEnvironmentError, BackendError, OSError) as exc:
+        run.error = f"drake=={version}: {exc}"
+        return run
+    run.python = worker.environment.python
+    try:
+        for done, case in enumerate(cases, 1):
+            try:
+                report = run_case(
+                    case,
+                    [worker],
+                    strict_divergences=strict_divergences,
+                    step_timeout=step_timeout,
+                )
+            except UnknownNameError as exc:  # pragma: no cover (run_case reports it)
+                report = CaseReport(case, aborted=str(exc))
+            run.cells[case.qualified_name] = outcome_of(report, worker.name)
+            on_case(version, done, len(cases))
+    finally:
+        worker.close()
+        run.seconds = time.perf_counter() - start
+    return run
+
+
+def run_matrix(
+    versions: Sequence[str],
+    cases: Sequence[Case],
+    *,
+    jobs: int = 1,
+    python: Sequence[str] | None = None,
+    step_timeout: float | None = None,
+    strict_divergences: bool = False,
+    on_case: Callable[[str, int, int], None] = lambda version, done, total: None,
+    on_release: Callable[[ReleaseRun], None] = lambda run: None,
+    log: Callable[[str], None] = lambda line: None,
+) -> Matrix:
+    """Every case on every release, ``jobs`` releases at a time."""
+    matrix = Matrix(list(versions), [c.qualified_name for c in cases])
+    lock = threading.Lock()
+
+    def one(version: str) -> ReleaseRun:
+        run = run_release(
+            version,
+            cases,
+            python=python,
+            step_timeout=step_timeout,
+            strict_divergences=strict_divergences,
+            on_case=on_case,
+            log=log,
+        )
+        with lock:
+            matrix.runs[version] = run
+            on_release(run)
+        return run
+
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        list(pool.map(one, versions))
+    return matrix
