@@ -14,7 +14,7 @@ from collections.abc import Iterator
 
 import pytest
 
-from conformance.backends.calls import BackendCrashError, call
+from conformance.backends.calls import BackendCrashError, StepTimeoutError, call
 from conformance.backends.environments import DrakeEnvironmentError, find_python, pythons_for
 from conformance.backends.loader import load_backend
 from conformance.backends.subprocess_backend import WorkerBackend
@@ -140,3 +140,45 @@ def test_run_with_a_worker_backend_exits_zero_with_the_known_divergences_as_xfai
     )  # fmt: skip
     assert process.returncode == 0, process.stdout + process.stderr
     assert "drake==1.58.0 (1.58.0) [reference]" in process.stdout
+
+
+@needs_312
+def test_a_hanging_worker_is_a_timeout_and_a_new_worker_takes_over() -> None:
+    """A stopped process (SIGSTOP) really hangs; the worker's own deadline ends the wait."""
+    backend = WorkerBackend(RELEASE, step_timeout=1.0)
+    try:
+        backend.reset()
+        assert backend.pid is not None
+        os.kill(backend.pid, signal.SIGSTOP)
+        with pytest.raises(
+            StepTimeoutError, match=r"at step 1 \(register_frame\): no answer within 1 s"
+        ):
+            call(backend, "execute", Command("register_frame", {"name": "f"}),
+                 where="step 1 (register_frame)", returns=object)  # fmt: skip
+        assert backend.pid is None  # the hung worker was killed
+        backend.reset()  # a new worker
+        assert backend.execute(Command("register_frame", {"name": "f"})).error is None
+    finally:
+        backend.close()
+
+
+@needs_312
+def test_a_hang_mid_case_is_a_recoverable_timeout_and_the_other_backend_finishes() -> None:
+    table1 = next(f for f in load_corpus() if f.name == "transient/table1")
+    case = table1.cases[0]
+    backend = WorkerBackend(RELEASE, step_timeout=1.0)
+    original = backend.run_steps
+
+    def stop_then_run(steps):  # type: ignore[no-untyped-def]
+        assert backend.pid is not None
+        os.kill(backend.pid, signal.SIGSTOP)  # the worker hangs from the first step on
+        return original(steps)
+
+    backend.run_steps = stop_then_run  # type: ignore[method-assign]
+    try:
+        report = run_case(case, [backend, load_backend("reimpl")], step_timeout=1.0)
+    finally:
+        backend.close()
+    assert report.status == {"drake==1.58.0": Status.TIMEOUT, "reimpl": Status.PASS}
+    assert report.recoverable
+    assert "no answer within 1 s" in (report.aborted or "")

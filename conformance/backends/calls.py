@@ -19,8 +19,9 @@ dies in its own process                     ``BackendCrashError``, naming the st
 
 The timeout is a ``SIGALRM`` timer, so it works in the main thread of a
 POSIX process, and it interrupts Python code only: a call stuck inside a C++
-extension (pydrake) is interrupted when it returns to Python. Backends in
-their own process (the release matrix's workers) can be timed out exactly.
+extension (pydrake) is interrupted when it returns to Python. A backend that
+``times_itself`` (a worker in its own process, which waits on its pipe with
+a deadline, in any thread) gets no timer here.
 """
 
 from __future__ import annotations
@@ -126,6 +127,8 @@ def call_function(
 ) -> T:
     """``function()``, a call into ``backend`` named ``method``, checked like ``call``."""
     name = str(getattr(backend, "name", type(backend).__name__))
+    if getattr(backend, "times_itself", False):  # a worker keeps its own deadline
+        timeout = None
     try:
         with deadline(timeout, name, where):
             value = function()

@@ -11,7 +11,8 @@ worker, so a run records the crash and goes on.
 
 A worker times itself: every answer must come within ``step_timeout``
 seconds (``select`` on its pipe), so a hang is a ``StepTimeoutError`` in any
-thread, not only where a ``SIGALRM`` can interrupt. ``run_steps`` sends a
+thread, not only where a ``SIGALRM`` can interrupt (a new worker's first
+answer, which waits for pydrake's import, may take ``STARTUP_SECONDS``). ``run_steps`` sends a
 whole case in one request and reads the answers as they come, one per step
 (a *batch*: one round trip per case instead of two per step).
 """
@@ -34,11 +35,13 @@ from conformance.backends.calls import BackendCrashError, StepTimeoutError
 from conformance.backends.environments import DrakeEnvironment, ensure_environment, harness_path
 from conformance.protocol import Command, Observation, Result, UnknownNameError
 
-__all__ = ["SPEC_PREFIX", "WorkerBackend", "worker_spec_version"]
+__all__ = ["SPEC_PREFIX", "STARTUP_SECONDS", "WorkerBackend", "worker_spec_version"]
 
 SPEC_PREFIX = "drake=="
 #: Lines of the worker's stderr quoted when it dies.
 _STDERR_TAIL = 8
+#: Seconds a new worker may take for its first answer (it imports pydrake first).
+STARTUP_SECONDS = 120.0
 
 
 def worker_spec_version(spec: str) -> str | None:
@@ -60,6 +63,8 @@ class WorkerBackend:
 
     #: A crash or a timeout does not spoil later cases: the worker is replaced.
     isolated = True
+    #: It keeps its own deadline (``step_timeout``), so ``calls.call`` sets no timer.
+    times_itself = True
 
     def __init__(
         self,
@@ -80,6 +85,7 @@ class WorkerBackend:
         self._process: subprocess.Popen[bytes] | None = None
         self._stderr: IO[str] | None = None
         self._pending = bytearray()  # read from the worker, not yet a whole line
+        self._starting = False  # no answer yet from the running worker
         #: The guards the host armed (None: the worker's own default, its release's).
         self._armed: list[str] | None = None
         weakref.finalize(self, WorkerBackend.close, self)
@@ -99,6 +105,7 @@ class WorkerBackend:
             self._stderr.close()
         self._stderr = tempfile.TemporaryFile(mode="w+", encoding="utf-8")  # noqa: SIM115
         self._pending.clear()
+        self._starting = True
         env = {**os.environ, "PYTHONPATH": self._pythonpath, "PYTHONUNBUFFERED": "1"}
         env.pop("PYTHONHOME", None)
         self._process = subprocess.Popen(
@@ -144,7 +151,10 @@ class WorkerBackend:
         """The worker's next line (b"" if it closed its output), within ``step_timeout``."""
         assert process.stdout is not None
         fd = process.stdout.fileno()
-        limit = None if not self.step_timeout else time.monotonic() + self.step_timeout
+        seconds = self.step_timeout
+        if seconds and self._starting:
+            seconds = max(seconds, STARTUP_SECONDS)
+        limit = None if not seconds else time.monotonic() + seconds
         while (end := self._pending.find(b"\n")) < 0:
             wait = None if limit is None else limit - time.monotonic()
             if wait is not None and (wait <= 0 or not select.select([fd], [], [], wait)[0]):
@@ -157,6 +167,7 @@ class WorkerBackend:
             self._pending += chunk
         line = bytes(self._pending[:end])
         del self._pending[: end + 1]
+        self._starting = False
         return line
 
     def _send(self, request: dict[str, Any], *, fresh: bool = False) -> subprocess.Popen[bytes]:
