@@ -14,7 +14,8 @@ seconds (``select`` on its pipe), so a hang is a ``StepTimeoutError`` in any
 thread, not only where a ``SIGALRM`` can interrupt (a new worker's first
 answer, which waits for pydrake's import, may take ``STARTUP_SECONDS``). ``run_steps`` sends a
 whole case in one request and reads the answers as they come, one per step
-(a *batch*: one round trip per case instead of two per step).
+(a *batch*: one round trip per case instead of two per step); ``reset``
+travels with the next request, so a case costs one round trip.
 """
 
 from __future__ import annotations
@@ -86,6 +87,7 @@ class WorkerBackend:
         self._stderr: IO[str] | None = None
         self._pending = bytearray()  # read from the worker, not yet a whole line
         self._starting = False  # no answer yet from the running worker
+        self._reset_pending = False  # reset() was called: the next request resets first
         #: The guards the host armed (None: the worker's own default, its release's).
         self._armed: list[str] | None = None
         weakref.finalize(self, WorkerBackend.close, self)
@@ -171,7 +173,12 @@ class WorkerBackend:
         return line
 
     def _send(self, request: dict[str, Any], *, fresh: bool = False) -> subprocess.Popen[bytes]:
-        """Writes ``request`` to the worker; see ``_request`` for ``fresh``."""
+        """Writes ``request`` to the worker; see ``_request`` for ``fresh``.
+
+        A pending reset travels with it (``"reset": true``), and allows a new worker.
+        """
+        if self._reset_pending and request["call"] != "arm_guards":
+            request, fresh, self._reset_pending = {**request, "reset": True}, True, False
         process = self._process
         if process is None or (fresh and process.poll() is not None):
             process = self._start()
@@ -226,10 +233,14 @@ class WorkerBackend:
         return self._features
 
     def reset(self) -> None:
-        self._request({"call": "reset"}, fresh=True)
+        """Resets with the next request (no round trip of its own); a dead worker is
+        replaced then."""
+        self._reset_pending = True
 
     def arm_guards(self, ids: frozenset[str]) -> None:
         """Arms release guards in the worker (and in every worker that replaces it)."""
+        if sorted(ids) == self._armed and self._process is not None:
+            return  # already armed in the running worker
         self._armed = sorted(ids)
         self._request({"call": "arm_guards", "ids": self._armed})
 

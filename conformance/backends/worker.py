@@ -17,6 +17,9 @@ request                                   response
 anything that raises                      ``{"raised": "Type: message", "type": "Type"}``
 ========================================  ==================================
 
+Any request may carry ``"reset": true``: the backend is reset before it is
+answered (the host's ``reset()`` costs no round trip of its own).
+
 A batch step ``S`` is ``{"command": C or null, "observe": bool}``: a null
 command runs nothing (a ``check`` step) and answers an empty Result; the
 observation is null unless ``observe``. A batch answers step by step, so a
@@ -78,6 +81,8 @@ def serve(requests: TextIO, responses: TextIO) -> None:
 
     for line in requests:
         request = json.loads(line)
+        if request.get("reset"):
+            backend.reset()
         if request["call"] == "steps":
             for step in request["steps"]:
                 try:
