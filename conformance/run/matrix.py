@@ -98,12 +98,25 @@ _BROKEN_OUTCOMES = {
 
 
 def _binding_gap(report: CaseReport, backend: str) -> str | None:
-    """The message of the first error of kind ``binding`` the backend answered, if any."""
-    for failure in report.failures_of(backend):
-        actual = failure.actual
-        if isinstance(actual, dict) and actual.get("kind") == "binding":
-            return f"{failure.step}: {actual.get('message', '')}"
+    """The first step the release answered with an error of kind ``binding`` (its Python
+    bindings lack the call, or the keywords, the step uses), if any."""
+    trace = report.traces.get(backend)
+    if trace is None:
+        return None
+    for step, result in zip(report.case.steps, trace.results, strict=False):
+        if result.error is not None and result.error.kind.value == "binding":
+            return f"{step.label} ({step.op}): {result.error.message}"
     return None
+
+
+def _broke(report: CaseReport, backend: str) -> str:
+    """Where the backend broke, and the last line of what it said (a worker's stderr)."""
+    trace = report.traces.get(backend)
+    if trace is None or trace.broken is None:
+        return report.aborted or ""
+    lines = trace.broken.message.strip().splitlines()
+    last = f" … {lines[-1].strip()}" if len(lines) > 1 else ""
+    return f"{trace.broken.where}: {lines[0] if lines else ''}{last}"
 
 
 def _failed(report: CaseReport, backend: str) -> Cell:
@@ -133,7 +146,7 @@ def outcome_of(report: CaseReport, backend: str) -> Cell:
     """The cell of ``backend`` in ``report`` (the module doc's table)."""
     if backend in report.broken:
         outcome = _BROKEN_OUTCOMES[report.broken[backend]]
-        return Cell(outcome, report.aborted or "", report.xfails.get(backend))
+        return Cell(outcome, _broke(report, backend), report.xfails.get(backend))
     return _BY_STATUS[report.status.get(backend, Status.PASS)](report, backend)
 
 
