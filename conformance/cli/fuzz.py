@@ -25,12 +25,19 @@ from conformance.cli.run import PROG
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
 from conformance.fuzz.lockstep import FuzzStats, HarnessError
-from conformance.fuzz.regression import write_regression, write_reproducer
-from conformance.protocol import Backend
+from conformance.fuzz.regression import drake_release, write_regression, write_reproducer
+from conformance.protocol import Backend, backend_id
 from conformance.run.outputs import unwritable_dir
 from conformance.run.runner import run_case
 
-__all__ = ["FALLBACK_FINDINGS", "Progress", "fuzz_command", "replays"]
+__all__ = [
+    "FALLBACK_FINDINGS",
+    "Progress",
+    "cross_release",
+    "fuzz_command",
+    "passes_alone",
+    "replays",
+]
 
 #: Where findings go when ``--out`` cannot be written after all.
 FALLBACK_FINDINGS = Path(tempfile.gettempdir()) / "drake-filter-conformance-findings"
@@ -92,6 +99,22 @@ def replays(path: Path, backends: list[Backend]) -> bool:
     return any(not run_case(case, backends, reference=reference).passed for case in scenario.cases)
 
 
+def passes_alone(path: Path, backend: Backend) -> bool:
+    """True iff ``backend`` alone meets every expectation of the scenario file for its release."""
+    scenario = load_file(path, root=path.parent)
+    return all(run_case(case, [backend]).passed for case in scenario.cases)
+
+
+def cross_release(backend: Backend, reference: Backend) -> str | None:
+    """The backend's Drake release if both backends are different Drake releases, else None.
+
+    Then a finding records both releases' answers (``since``/``until``), not
+    the reference's alone (``conformance.fuzz.regression``).
+    """
+    mine, theirs = drake_release(backend_id(backend)), drake_release(backend_id(reference))
+    return mine if mine is not None and theirs is not None and mine != theirs else None
+
+
 def _report(
     outcome: BatchResult,
     args: argparse.Namespace,
@@ -103,6 +126,7 @@ def _report(
     if divergence is None:
         return
     backend, reference = backends
+    release = cross_release(backend, reference)
     path = _write_finding(
         lambda folder: write_regression(
             divergence,
@@ -111,6 +135,7 @@ def _report(
             reference=args.against,
             reference_version=reference.version(),
             seed=args.seed,
+            backend_version=release,
         ),
         args.out,
         out,
@@ -128,6 +153,13 @@ def _report(
         f"  replay:  {PROG} run {path} --backend {args.backend} --backend {args.against}"
         f"  ({'reproduces' if reproduced else 'does NOT reproduce: a flaky backend?'})\n"
     )
+    if release is not None:
+        alone = [b.name for b in backends if not passes_alone(path, b)]
+        out.write(
+            "  each release alone meets its own (since/until) expectations\n"
+            if not alone
+            else f"  NOT met alone by {', '.join(alone)}: see `{PROG} run {path} --backend NAME`\n"
+        )
 
 
 def _write_finding(write: Callable[[Path], Path | None], folder: Path, out: TextIO) -> Path | None:

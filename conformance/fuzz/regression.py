@@ -10,6 +10,17 @@ So ``python -m conformance run FILE --backend A --backend B`` reproduces the
 disagreement pair by pair. The same file run on A alone fails on A's wrong
 answer. Once A is fixed, the file passes and stays as a regression case.
 
+**Two Drake releases** (``fuzz --backend drake==1.51.1 --against
+drake==1.58.0``): neither answer is wrong, the releases differ. When the
+caller passes ``backend_version`` (the backend is itself a Drake release,
+``drake_release``) and it differs from ``reference_version``, every step
+where the two answered differently gets both answers: the earlier release's
+bounded by ``until: <earlier>``, the later one's by ``since: <later>``
+(a step where they agree keeps one unbounded expectation). The file then
+passes on each release alone, and the pair still disagrees under ``run``.
+Releases strictly between the two are left unclaimed: run the file on them
+to narrow the range.
+
 The file name is a hash of the steps, so writing the same finding twice
 gives the same file.
 """
@@ -22,13 +33,16 @@ import re
 from pathlib import Path
 from typing import Any
 
+from conformance.backends.subprocess_backend import SPEC_PREFIX
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.lockstep import Divergence, HarnessError
 from conformance.grammar import GRAMMAR
-from conformance.protocol import Command, Observation, Result
+from conformance.policy.versions import parse_version
+from conformance.protocol import BackendId, Command, Observation, Result
 
 __all__ = [
     "DEFAULT_REGRESSIONS",
+    "drake_release",
     "regression_scenario",
     "reproducer_scenario",
     "write_regression",
@@ -65,6 +79,74 @@ def _slug(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()
 
 
+def drake_release(backend: BackendId) -> str | None:
+    """The Drake release ``backend`` *is*, or None for an implementation that only claims one.
+
+    Real Drake is the in-process ``pydrake`` and a ``drake==X`` worker. reimpl,
+    the mutants and third-party backends claim a release (their ``version()``
+    selects expectations) but their answers are not that release's: a finding
+    against them keeps the single-reference format.
+    """
+    real = backend.name == "pydrake" or backend.name.startswith(SPEC_PREFIX)
+    return backend.version if real and parse_version(backend.version) else None
+
+
+def _step_expectations(result: Result, state: Observation | None) -> list[dict[str, Any]]:
+    """One side's expectations for a step: its result, then (last step) its whole state.
+
+    An expectation without ``error`` says the step succeeded, so when the
+    step raised, each location's expectation repeats the error.
+    """
+    expectations = [_result_expectation(result)]
+    if state is not None:
+        error = {"error": result.error.to_json()} if result.error is not None else {}
+        located = [{**error, **where} for where in _state_expectations(state)]
+        expectations = [{**expectations[0], **located[0]}, *located[1:]]
+    return [e for e in expectations if e]
+
+
+def _expect(
+    reference: list[dict[str, Any]],
+    backend: list[dict[str, Any]],
+    releases: tuple[str, str] | None,
+) -> list[dict[str, Any]]:
+    """The step's expectations: the reference's, or both releases' where they differ.
+
+    ``releases`` is (reference's, backend's) release when the two are
+    different Drake releases. What both answered stays unbounded; what only
+    the earlier release answered gets ``until`` it, what only the later one
+    answered ``since`` it (each keeps its ``at``).
+    """
+    if releases is None or reference == backend:
+        return reference
+    ordered = sorted(zip(releases, (reference, backend), strict=True), key=_release_key)
+    (early, early_side), (late, late_side) = ordered
+    if len(early_side) != len(late_side) or any(
+        old.get("at") != new.get("at") for old, new in zip(early_side, late_side, strict=True)
+    ):  # different locations (e.g. a context only one side has): each side whole
+        return [{"until": early, **e} for e in early_side] + [
+            {"since": late, **e} for e in late_side
+        ]
+    shared: list[dict[str, Any]] = []
+    earlier: list[dict[str, Any]] = []
+    later: list[dict[str, Any]] = []
+    for old, new in zip(early_side, late_side, strict=True):
+        common = {k: v for k, v in old.items() if k in new and new[k] == v}
+        where = {"at": old["at"]} if "at" in old else {}
+        if set(common) - {"at"}:
+            shared.append(common)
+        for side, bound, into in ((old, {"until": early}, earlier), (new, {"since": late}, later)):
+            own = {k: v for k, v in side.items() if k not in common}
+            if own:  # without its error it would say the step succeeded there
+                error = {"error": side["error"]} if "error" in side else {}
+                into.append({**bound, **where, **error, **own})
+    return shared + earlier + later
+
+
+def _release_key(side: tuple[str, list[dict[str, Any]]]) -> tuple[int, ...]:
+    return parse_version(side[0])
+
+
 def regression_scenario(
     divergence: Divergence,
     *,
@@ -72,31 +154,67 @@ def regression_scenario(
     reference: str,
     reference_version: str,
     seed: int | None = None,
+    backend_version: str | None = None,
 ) -> dict[str, Any]:
-    """The scenario file (a JSON-able dict) for ``divergence``."""
+    """The scenario file (a JSON-able dict) for ``divergence``.
+
+    ``backend_version``: the Drake release the backend *is* (``drake_release``;
+    None for reimpl and other implementations). When it differs from
+    ``reference_version``, each release's answers carry ``since``/``until``
+    (see the module doc).
+    """
+    releases = (
+        (reference_version, backend_version)
+        if backend_version is not None
+        and parse_version(backend_version)
+        and parse_version(reference_version)
+        and parse_version(backend_version) != parse_version(reference_version)
+        else None
+    )
     steps: list[dict[str, Any]] = []
     for index, item in enumerate(divergence.trace, 1):
         step = item.command.to_json()
-        expectations = [_result_expectation(item.reference)]
-        if index == len(divergence.trace):
-            state = _state_expectations(divergence.reference_state)
-            expectations = [{**expectations[0], **state[0]}, *state[1:]]
-        expectations = [e for e in expectations if e]
+        last = index == len(divergence.trace)
+        expectations = _expect(
+            _step_expectations(item.reference, divergence.reference_state if last else None),
+            _step_expectations(item.backend, divergence.backend_state if last else None),
+            releases,
+        )
         if expectations:
             step["expect"] = expectations[0] if len(expectations) == 1 else expectations
         steps.append(step)
     features = _features([item.command for item in divergence.trace])
-    if any(item.reference.error is not None for item in divergence.trace):
+    sides = [item.reference for item in divergence.trace]
+    if releases is not None:
+        sides += [item.backend for item in divergence.trace]
+    if any(result.error is not None for result in sides):
         features.append("errors")
     seeded = f" --seed {seed}" if seed is not None else ""
-    description = f"{backend} diverges from {reference}: {divergence.what} after step {len(steps)}"
+    found = (
+        f"Found by `python -m conformance fuzz --backend {backend} --against {reference}"
+        f"{seeded}` and shrunk by Hypothesis."
+    )
+    if releases is None:
+        description = (
+            f"{backend} diverges from {reference}: {divergence.what} after step {len(steps)}"
+        )
+        comment = (
+            f"{found} Expectations are what {reference} {reference_version} did. "
+            f"The disagreement: {divergence.detail}"
+        )
+    else:
+        early, late = sorted(releases, key=parse_version)
+        description = f"Drake {early} and {late} differ: {divergence.what} after step {len(steps)}"
+        comment = (
+            f"{found} Where the two releases answered differently, the expectations bounded "
+            f"`until: {early}` are what Drake {early} did and those bounded `since: {late}` "
+            f"what Drake {late} did, so the file passes on each release alone; releases in "
+            f"between are not claimed (run the file on them to narrow the range). The "
+            f"disagreement ({reference} {reference_version} as reference): {divergence.detail}"
+        )
     return {
         "description": f"Fuzz finding: {backend} vs {reference}"[:150],
-        "comment": (
-            f"Found by `python -m conformance fuzz --backend {backend} --against {reference}"
-            f"{seeded}` and shrunk by Hypothesis. Expectations are what {reference} "
-            f"{reference_version} did. The disagreement: {divergence.detail}"
-        ),
+        "comment": comment,
         "features": sorted(set(features)),
         "cases": [{"description": description[:150], "steps": steps}],
     }
@@ -133,6 +251,7 @@ def write_regression(
     reference: str,
     reference_version: str,
     seed: int | None = None,
+    backend_version: str | None = None,
 ) -> Path:
     """Writes the scenario for ``divergence`` into ``out_dir``; returns its path."""
     scenario = regression_scenario(
@@ -141,6 +260,7 @@ def write_regression(
         reference=reference,
         reference_version=reference_version,
         seed=seed,
+        backend_version=backend_version,
     )
     return _write_checked(scenario, out_dir, f"{_slug(backend)}-vs-{_slug(reference)}")
 
