@@ -38,7 +38,8 @@ def test_divergence_names_existing_evidence(entry: KnownDivergence) -> None:
 def test_an_xfail_matcher_names_existing_cases_and_a_diverging_step(entry: KnownDivergence) -> None:
     assert entry.xfail is not None
     assert entry.xfail.cases
-    assert entry.xfail.steps
+    # A crash is expected of a case only: the fuzzer keeps its release guards armed.
+    assert bool(entry.xfail.steps) is (entry.kind != "drake_crash")
     for pattern in entry.xfail.cases:
         assert fnmatch.filter(CASES, pattern), f"{entry.id}: no case matches {pattern!r}"
 

@@ -209,7 +209,9 @@ def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
 
 
 def _load_pair(args: argparse.Namespace) -> tuple[Backend, Backend]:
-    backend, reference = load_backend(args.backend), load_backend(args.against)
+    options = {"python": args.python, "step_timeout": args.step_timeout or None}
+    backend = load_backend(args.backend, **options)
+    reference = load_backend(args.against, **options)
     if backend.name == reference.name:
         raise BackendLoadError(f"--backend and --against are both named {backend.name!r}")
     return backend, reference
