@@ -189,3 +189,26 @@ def test_bisect_finds_that_1_57_stopped_a_failed_apply_writing_the_persistent_ba
     assert "first release that differs by behaviour: 1.57.0 (last that agrees: 1.56.0)" in (
         out.getvalue()
     )
+
+
+@pytest.mark.skipif(
+    not (_cached("1.51.1") and _cached("1.52.0")), reason="needs cached Drake 1.51.1 and 1.52.0"
+)
+def test_the_report_lists_the_1_52_filter_store_change_as_a_behaviour_change() -> None:
+    name = (
+        "errors/errors > a failing apply keeps its earlier statement's effect in C up to "
+        "Drake 1.51 and changes nothing since 1.52"
+    )
+    matrix = run_matrix(["1.51.1", "1.52.0"], [_case(name)], jobs=2)
+    assert matrix.cell(name, "1.51.1") == matrix.cell(name, "1.52.0") == Cell(Outcome.PASS)
+    change = matrix_json(matrix)["changes"][0]["behaviour"]
+    assert change == [
+        {
+            "case": name,
+            "step": "step 1",
+            "what": "candidates at model (only in one side)",
+            "from": [],
+            "to": ["g0-g1"],
+            "differences": 3,
+        }
+    ]

@@ -40,7 +40,7 @@ from conformance.backends.environments import DrakeEnvironmentError
 from conformance.backends.subprocess_backend import WorkerBackend
 from conformance.corpus.loader import Case
 from conformance.protocol import UnknownNameError
-from conformance.run.runner import CaseReport, Status, run_case
+from conformance.run.runner import CaseReport, Failure, Status, Trace, run_case, trace_disagreements
 
 __all__ = [
     "Cell",
@@ -159,6 +159,8 @@ class ReleaseRun:
     cells: dict[str, Cell] = field(default_factory=dict)
     error: str | None = None
     seconds: float = 0.0
+    #: What the release answered, per case (for behaviour changes; not written out).
+    traces: dict[str, Trace] = field(default_factory=dict, repr=False)
 
     def count(self, outcome: Outcome) -> int:
         return sum(1 for c in self.cells.values() if c.outcome is outcome)
@@ -171,6 +173,16 @@ class Matrix:
     versions: list[str]
     cases: list[str]
     runs: dict[str, ReleaseRun] = field(default_factory=dict)
+    #: The cases themselves, by qualified name (to compare traces step by step).
+    sources: dict[str, Case] = field(default_factory=dict, repr=False)
+
+    def behaviour_change(self, case: str, older: str, newer: str) -> list[Failure]:
+        """How ``newer`` answered ``case`` differently from ``older`` (the one comparison,
+        step by step); [] if alike or if either did not run it."""
+        before, after = self.runs[older].traces.get(case), self.runs[newer].traces.get(case)
+        if before is None or after is None or case not in self.sources:
+            return []
+        return trace_disagreements(self.sources[case], before, after, ends=True)
 
     def cell(self, case: str, version: str) -> Cell | None:
         run = self.runs.get(version)
@@ -222,6 +234,8 @@ def run_release(
             except UnknownNameError as exc:  # pragma: no cover (run_case reports it)
                 report = CaseReport(case, aborted=str(exc))
             run.cells[case.qualified_name] = outcome_of(report, worker.name)
+            if (trace := report.traces.get(worker.name)) is not None:
+                run.traces[case.qualified_name] = trace
             on_case(version, done, len(cases))
     finally:
         worker.close()
@@ -242,7 +256,11 @@ def run_matrix(
     log: Callable[[str], None] = lambda line: None,
 ) -> Matrix:
     """Every case on every release, ``jobs`` releases at a time."""
-    matrix = Matrix(list(versions), [c.qualified_name for c in cases])
+    matrix = Matrix(
+        list(versions),
+        [c.qualified_name for c in cases],
+        sources={c.qualified_name: c for c in cases},
+    )
     lock = threading.Lock()
 
     def one(version: str) -> ReleaseRun:

@@ -23,8 +23,17 @@ from pathlib import Path
 from typing import Any
 
 from conformance.run.matrix import Cell, Matrix, Outcome
+from conformance.run.runner import Failure
 
-__all__ = ["COLOURS", "changes", "matrix_json", "matrix_markdown", "write_heatmap", "write_report"]
+__all__ = [
+    "COLOURS",
+    "behaviour_changes",
+    "changes",
+    "matrix_json",
+    "matrix_markdown",
+    "write_heatmap",
+    "write_report",
+]
 
 #: One colour per outcome (the heatmap and its legend).
 COLOURS: dict[Outcome, str] = {
@@ -55,6 +64,31 @@ def changes(matrix: Matrix) -> Iterator[tuple[str, str, list[str]]]:
         yield older, newer, changed
 
 
+def behaviour_changes(matrix: Matrix, older: str, newer: str) -> list[tuple[str, list[Failure]]]:
+    """(case, differences) for each case whose outcome stayed but whose answers changed
+    between ``older`` and ``newer`` (step by step, the one comparison)."""
+    found = []
+    for case in matrix.cases:
+        if _outcome(matrix.cell(case, older)) != _outcome(matrix.cell(case, newer)):
+            continue  # an outcome change, listed as such
+        differences = matrix.behaviour_change(case, older, newer)
+        if differences:
+            found.append((case, differences))
+    return found
+
+
+def _difference_json(case: str, differences: list[Failure]) -> dict[str, Any]:
+    first = differences[0]
+    return {
+        "case": case,
+        "step": first.step,
+        "what": first.what,
+        "from": first.expected,
+        "to": first.actual,
+        "differences": len(differences),
+    }
+
+
 def matrix_json(matrix: Matrix) -> dict[str, Any]:
     """The ``report.json`` document (see the module doc)."""
     cases = {
@@ -80,7 +114,15 @@ def matrix_json(matrix: Matrix) -> dict[str, Any]:
         "details": details,
         "releases": releases,
         "changes": [
-            {"from": older, "to": newer, "cases": changed}
+            {
+                "from": older,
+                "to": newer,
+                "cases": changed,
+                "behaviour": [
+                    _difference_json(case, found)
+                    for case, found in behaviour_changes(matrix, older, newer)
+                ],
+            }
             for older, newer, changed in changes(matrix)
         ],
     }
@@ -112,19 +154,45 @@ def matrix_markdown(matrix: Matrix, *, title: str = "Release matrix") -> str:
         counts = " | ".join(str(run.count(o)) for o in shown)
         lines.append(f"| {v} | {run.python} | {counts} |")
     lines += ["", "## What changed between consecutive releases", ""]
+    lines += [
+        "An *outcome* change is a cell that changed; a *behaviour* change is a case whose",
+        "outcome stayed but whose answers differ step by step (the case's since/until",
+        "expectations already allow for it). Only the first difference of a case is shown.",
+        "",
+    ]
+    quiet = []
     for older, newer, changed in changes(matrix):
-        lines.append(f"### {older} → {newer}: {len(changed)} case(s)")
-        lines.append("")
-        if not changed:
-            lines += ["No outcome changed.", ""]
+        behaviour = behaviour_changes(matrix, older, newer)
+        if not changed and not behaviour:
+            quiet.append(f"{older} → {newer}")
             continue
-        lines.append(f"| case | {older} | {newer} |")
-        lines.append("|---|---|---|")
-        for case in changed:
-            before, after = matrix.cell(case, older), matrix.cell(case, newer)
-            lines.append(f"| {_escape(case)} | {_why(before)} | {_why(after)} |")
+        lines.append(
+            f"### {older} → {newer}: {len(changed)} outcome, {len(behaviour)} behaviour change(s)"
+        )
         lines.append("")
+        if changed:
+            lines += [f"| case | {older} | {newer} |", "|---|---|---|"]
+            for case in changed:
+                before, after = matrix.cell(case, older), matrix.cell(case, newer)
+                lines.append(f"| {_escape(case)} | {_why(before)} | {_why(after)} |")
+            lines.append("")
+        if behaviour:
+            lines += ["| case | first difference | " + f"{older} | {newer} |", "|---|---|---|---|"]
+            for case, found in behaviour:
+                first = found[0]
+                lines.append(
+                    f"| {_escape(case)} | {_escape(first.step)}: {_escape(first.what)} | "
+                    f"{_short(first.expected)} | {_short(first.actual)} |"
+                )
+            lines.append("")
+    if quiet:
+        lines += ["No change between: " + ", ".join(quiet) + ".", ""]
     return "\n".join(lines)
+
+
+def _short(value: Any) -> str:
+    text = json.dumps(value, ensure_ascii=False) if not isinstance(value, str) else value
+    return _escape(text if len(text) <= 120 else text[:119] + "…")
 
 
 def write_heatmap(matrix: Matrix, path: Path) -> Path:
@@ -133,7 +201,9 @@ def write_heatmap(matrix: Matrix, path: Path) -> Path:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt  # noqa: PLC0415
+    from matplotlib.artist import Artist  # noqa: PLC0415
     from matplotlib.colors import ListedColormap  # noqa: PLC0415
+    from matplotlib.lines import Line2D  # noqa: PLC0415
     from matplotlib.patches import Patch  # noqa: PLC0415
 
     order = list(Outcome)
@@ -147,21 +217,39 @@ def write_heatmap(matrix: Matrix, path: Path) -> Path:
     ]
     colours = ListedColormap([COLOURS[o] for o in order] + [_MISSING])
     height = max(4.0, 0.16 * len(matrix.cases) + 1.8)
-    width = max(7.0, 4.5 + 0.9 * len(matrix.versions))
+    column = max(0.22, min(0.9, 12.0 / max(1, len(matrix.versions))))
+    width = max(7.0, 5.5 + column * len(matrix.versions))
     figure, axes = plt.subplots(figsize=(width, height), dpi=110)
     axes.imshow(
         grid, aspect="auto", cmap=colours, vmin=-0.5, vmax=len(order) + 0.5, interpolation="nearest"
     )
-    axes.set_xticks(range(len(matrix.versions)), matrix.versions, fontsize=8)
+    rotation = 90 if len(matrix.versions) > 8 else 0
+    axes.set_xticks(range(len(matrix.versions)), matrix.versions, fontsize=7, rotation=rotation)
     axes.xaxis.tick_top()
     labels = [c if len(c) <= 70 else c[:69] + "…" for c in matrix.cases]
     axes.set_yticks(range(len(matrix.cases)), labels, fontsize=4.5)
     axes.set_xticks([x - 0.5 for x in range(1, len(matrix.versions))], minor=True)
     axes.grid(which="minor", axis="x", color="white", linewidth=1.5)
     axes.tick_params(which="minor", length=0)
+    changed = _behaviour_marks(matrix)
+    if changed:
+        axes.scatter([x for x, _ in changed], [y for _, y in changed], s=6, c="black", marker="o")
     present = {c.outcome for run in matrix.runs.values() for c in run.cells.values()}
+    handles: list[Artist] = [Patch(color=COLOURS[o], label=o.value) for o in order if o in present]
+    if changed:
+        handles.append(
+            Line2D(
+                [],
+                [],
+                color="black",
+                marker="o",
+                markersize=3,
+                linestyle="None",
+                label="answers differ from the\nrelease before",
+            )
+        )
     axes.legend(
-        handles=[Patch(color=COLOURS[o], label=o.value) for o in order if o in present],
+        handles=handles,
         loc="upper left",
         bbox_to_anchor=(1.01, 1.0),
         fontsize=8,
@@ -172,6 +260,18 @@ def write_heatmap(matrix: Matrix, path: Path) -> Path:
     figure.savefig(path, metadata={"Software": None})
     plt.close(figure)
     return path
+
+
+def _behaviour_marks(matrix: Matrix) -> list[tuple[int, int]]:
+    """(column, row) of each cell whose outcome stayed but whose answers differ from the
+    previous release's."""
+    row = {case: i for i, case in enumerate(matrix.cases)}
+    column = {v: i for i, v in enumerate(matrix.versions)}
+    return [
+        (column[newer], row[case])
+        for older, newer, _ in changes(matrix)
+        for case, _ in behaviour_changes(matrix, older, newer)
+    ]
 
 
 def write_report(matrix: Matrix, folder: Path) -> list[Path]:
