@@ -90,3 +90,13 @@ def test_the_partial_apply_step_pattern_needs_both_sides_to_raise_an_unknown_id_
     # A backend that does not raise where Drake refuses is a real bug, not this divergence.
     assert not entry.xfail.matches_step(apply, unknown, Result(), reimpl, "1.58.0")
     assert not entry.xfail.matches_step(apply, history, history, reimpl, "1.58.0")
+
+
+def test_a_backends_pattern_names_every_drake_worker_but_not_reimpl() -> None:
+    entry = next(e for e in ENTRIES if e.id == "failed-apply-leaves-c-unchanged-since-1.52")
+    assert entry.xfail is not None
+    case = entry.xfail.cases[0]
+    for blamed in (BackendId("drake==1.30.0", "1.30.0"), BackendId("pydrake", "1.51.1")):
+        assert entry.xfail.matches_case(case, blamed, "1.58.0")
+    assert not entry.xfail.matches_case(case, BackendId("reimpl", "1.51.1"), "1.58.0")
+    assert not entry.xfail.matches_case(case, BackendId("drake==1.52.0", "1.52.0"), "1.58.0")

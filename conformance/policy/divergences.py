@@ -4,7 +4,8 @@ Each entry records one finding: what Drake documents, what it does, the
 releases it holds for, and the scenarios or tests that show it. An entry may
 also say when a failure is *expected* (its ``xfail`` object):
 
-- ``backends``: the backends that may fail this way (the one blamed; empty: any);
+- ``backends``: ``fnmatch`` patterns of the backends that may fail this way (the one
+  blamed; empty: any), e.g. ``drake==*`` for every release in a worker;
 - ``backend_drake``: the releases the blamed backend must claim (its
   ``version()``), e.g. ``{"until": "1.51.1"}`` for any backend that follows
   1.51.1, reimpl and the mutants built on it alike;
@@ -84,7 +85,9 @@ class XfailMatcher:
         return (
             release in self.releases
             and blamed.version in self.backend_releases
-            and (not self.backends or blamed.name in self.backends)
+            and (
+                not self.backends or any(fnmatch.fnmatchcase(blamed.name, b) for b in self.backends)
+            )
         )
 
     def matches_case(self, qualified_name: str, blamed: BackendId, release: str) -> bool:
