@@ -22,8 +22,8 @@ from conformance.backends.environments import DrakeEnvironmentError
 from conformance.backends.releases import ReleaseSpecError, drake_releases, releases_between
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_python, add_step_timeout
-from conformance.cli.run import select_cases
-from conformance.corpus.loader import ScenarioError, load_corpus
+from conformance.cli.run import NoCaseError, corpus_cases
+from conformance.corpus.loader import ScenarioError
 from conformance.policy.versions import parse_version
 from conformance.run.bisect import Bisection, By, Probe, bisect_case, run_probe
 
@@ -84,11 +84,10 @@ def bisect_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Runs ``bisect``; returns the exit code."""
     try:
         releases = _releases(args.good, args.bad)
-        files = load_corpus(args.paths)
-    except (ReleaseSpecError, ScenarioError) as exc:
+        cases = corpus_cases(args.paths, args.case)
+    except (ReleaseSpecError, ScenarioError, NoCaseError) as exc:
         err.write(f"error: {exc}\n")
         return EXIT_USAGE
-    cases = select_cases([c for f in files for c in f.cases], args.case)
     if len(cases) != 1:
         names = "".join(f"\n  {c.qualified_name}" for c in cases[:10])
         err.write(f"error: {args.case!r} names {len(cases)} cases, not one{names}\n")

@@ -27,7 +27,7 @@ from conformance.cli.bisect import add_bisect_parser, bisect_command
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
 from conformance.cli.matrix import add_matrix_parser, matrix_command
-from conformance.cli.options import add_python, add_step_timeout
+from conformance.cli.options import add_backend_options
 from conformance.cli.run import PROG, add_run_parser, run_command
 from conformance.fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
 from conformance.fuzz.regression import DEFAULT_REGRESSIONS
@@ -119,14 +119,12 @@ def _add_fuzz(commands: Any) -> None:
     fuzz.add_argument(
         "--keep-going", action="store_true", help="with --time-budget, go on after a finding"
     )
-    fuzz.add_argument(
-        "--strict-divergences",
-        action="store_true",
-        help="report known divergences as findings (default: set aside and counted)",
+    add_backend_options(
+        fuzz,
+        strict="report known divergences as findings (default: set aside and counted)",
+        timeout="breaks the run",
+        quiet="no progress lines",
     )
-    add_step_timeout(fuzz, what="breaks the run")
-    add_python(fuzz)
-    fuzz.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
 
 
 def main(

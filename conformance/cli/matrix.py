@@ -21,9 +21,9 @@ from typing import TextIO
 
 from conformance.backends.releases import ReleaseSpecError, expand
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
-from conformance.cli.options import add_python, add_step_timeout, refuse
-from conformance.cli.run import select_cases
-from conformance.corpus.loader import ScenarioError, load_corpus
+from conformance.cli.options import add_backend_options, refuse
+from conformance.cli.run import NoCaseError, corpus_cases
+from conformance.corpus.loader import ScenarioError
 from conformance.run.matrix import Matrix, ReleaseRun, run_matrix
 from conformance.run.matrix_report import matrix_markdown, write_report
 from conformance.run.outputs import unwritable
@@ -50,14 +50,12 @@ def add_matrix_parser(commands: argparse._SubParsersAction) -> None:  # type: ig
         "--jobs", type=int, default=2, metavar="J", help="releases run at a time (2)"
     )
     matrix.add_argument("--case", metavar="NAME", help="only cases matching NAME (as in run)")
-    matrix.add_argument(
-        "--strict-divergences",
-        action="store_true",
-        help="known divergences are failures, not xfail",
+    add_backend_options(
+        matrix,
+        strict="known divergences are failures, not xfail",
+        timeout="is a timeout",
+        quiet="no progress lines",
     )
-    add_step_timeout(matrix, what="is a timeout")
-    add_python(matrix)
-    matrix.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
 
 
 class _Progress:
@@ -113,13 +111,9 @@ def matrix_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         return EXIT_USAGE
     try:
         versions = expand(args.drake)
-        files = load_corpus(args.paths)
-    except (ReleaseSpecError, ScenarioError) as exc:
+        cases = corpus_cases(args.paths, args.case)
+    except (ReleaseSpecError, ScenarioError, NoCaseError) as exc:
         err.write(f"error: {exc}\n")
-        return EXIT_USAGE
-    cases = select_cases([c for f in files for c in f.cases], args.case)
-    if not cases:
-        err.write(f"error: no case is described or named {args.case!r}\n")
         return EXIT_USAGE
     progress = _Progress(err, quiet=args.quiet)
     progress.write(

@@ -8,7 +8,7 @@ from typing import TextIO
 
 from conformance.backends.calls import DEFAULT_STEP_TIMEOUT
 
-__all__ = ["add_python", "add_step_timeout", "refuse"]
+__all__ = ["add_backend_options", "add_python", "add_step_timeout", "refuse"]
 
 
 def _seconds(text: str) -> float:
@@ -43,6 +43,17 @@ def add_python(parser: argparse.ArgumentParser) -> None:
         help="an interpreter for drake==X environments (repeatable; the first that the "
         "release supports is used; default: found on PATH or in pyenv)",
     )
+
+
+def add_backend_options(
+    parser: argparse.ArgumentParser, *, strict: str, timeout: str, quiet: str
+) -> None:
+    """What every command that drives backends takes: ``--strict-divergences``,
+    ``--step-timeout``, ``--python`` and ``-q``; the texts say what each does there."""
+    parser.add_argument("--strict-divergences", action="store_true", help=strict)
+    add_step_timeout(parser, what=timeout)
+    add_python(parser)
+    parser.add_argument("-q", "--quiet", action="store_true", help=quiet)
 
 
 def refuse(problems: Sequence[str], err: TextIO) -> bool:

@@ -17,14 +17,22 @@ from typing import TextIO
 
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
-from conformance.cli.options import add_python, add_step_timeout, refuse
+from conformance.cli.options import add_backend_options, refuse
 from conformance.corpus.loader import Case, ScenarioError, load_corpus
 from conformance.protocol import Backend
 from conformance.run.outputs import unwritable, write_or_fall_back
 from conformance.run.report import RunReport, write_json, write_junit
 from conformance.run.runner import Status, choose_reference, run_case
 
-__all__ = ["PROG", "add_run_parser", "load_backends", "run_command", "select_cases"]
+__all__ = [
+    "PROG",
+    "NoCaseError",
+    "add_run_parser",
+    "corpus_cases",
+    "load_backends",
+    "run_command",
+    "select_cases",
+]
 
 PROG = "python -m conformance"
 
@@ -50,16 +58,14 @@ def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignor
         help="run only cases whose description or qualified name ('file > description') "
         "is NAME or matches it as a glob",
     )
-    run.add_argument(
-        "--strict-divergences",
-        action="store_true",
-        help="report known divergences as failures, not xfail",
-    )
-    add_step_timeout(run, what="is a timeout")
-    add_python(run)
     run.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
     run.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
-    run.add_argument("-q", "--quiet", action="store_true", help="no per-case progress lines")
+    add_backend_options(
+        run,
+        strict="report known divergences as failures, not xfail",
+        timeout="is a timeout",
+        quiet="no per-case progress lines",
+    )
 
 
 def load_backends(
@@ -75,6 +81,19 @@ def load_backends(
     if len(set(names)) != len(names):
         raise BackendLoadError(f"backend names must differ, got {names}")
     return backends
+
+
+class NoCaseError(ValueError):
+    """``--case`` (or bisect's CASE) matches no case of the corpus."""
+
+
+def corpus_cases(paths: Sequence[Path], pattern: str | None) -> list[Case]:
+    """The cases of the corpus at ``paths`` (default: the embedded one) that ``pattern``
+    selects; ScenarioError for a bad file, NoCaseError if none is selected."""
+    cases = select_cases([c for f in load_corpus(paths) for c in f.cases], pattern)
+    if not cases:
+        raise NoCaseError(f"no case is described or named {pattern!r}")
+    return cases
 
 
 def select_cases(cases: Sequence[Case], pattern: str | None) -> list[Case]:
@@ -129,13 +148,9 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
             args.backends, python=args.python, step_timeout=args.step_timeout or None
         )
         reference = choose_reference(backends, args.reference).name
-        files = load_corpus(args.paths)
+        cases = corpus_cases(args.paths, args.case)
     except (BackendLoadError, ScenarioError, ValueError) as exc:
         err.write(f"error: {exc}\n")
-        return EXIT_USAGE
-    cases = select_cases([c for f in files for c in f.cases], args.case)
-    if not cases:
-        err.write(f"error: no case is described or named {args.case!r}\n")
         return EXIT_USAGE
     report = RunReport(
         backends,
