@@ -24,7 +24,7 @@ from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_backend_options, refuse
 from conformance.cli.run import NoCaseError, corpus_cases
 from conformance.corpus.loader import ScenarioError
-from conformance.run.matrix import Matrix, ReleaseRun, run_matrix
+from conformance.run.matrix import Matrix, Outcome, ReleaseRun, run_matrix
 from conformance.run.matrix_report import matrix_markdown, write_report
 from conformance.run.outputs import unwritable
 
@@ -84,16 +84,11 @@ class _Progress:
             self.write(f"  drake=={run.version}: could not run: {run.error}")
             return
         counts = ", ".join(
-            f"{n} {o}" for o, n in sorted(_counts(run).items(), key=lambda kv: -kv[1])
+            f"{n} {o.value}"
+            for n, o in sorted(((run.count(o), o) for o in Outcome), key=lambda no: -no[0])
+            if n
         )
         self.write(f"  drake=={run.version} (Python {run.python}): {counts} [{run.seconds:.1f} s]")
-
-
-def _counts(run: ReleaseRun) -> dict[str, int]:
-    out: dict[str, int] = {}
-    for cell in run.cells.values():
-        out[cell.outcome.value] = out.get(cell.outcome.value, 0) + 1
-    return out
 
 
 def _problems(args: argparse.Namespace) -> list[str]:

@@ -111,32 +111,22 @@ def bisect_case(
     run = probe or (lambda version: run_probe(case, version))
     result = Bisection(case.qualified_name, by, list(releases))
 
-    def look(version: str) -> tuple[Probe, list[Failure]]:
+    def agrees(version: str) -> bool:
         answer = run(version)
         result.probes.append(answer)
-        differences = (
-            [] if not result.probes[1:] else _differences(case, by, result.probes[0], answer)
-        )
-        on_probe(answer, not differences)
-        return answer, differences
+        same = len(result.probes) == 1 or not _differences(case, by, result.probes[0], answer)
+        on_probe(answer, same)
+        return same
 
-    look(releases[0])
-    _, differences = look(releases[-1])
-    if not differences:
+    agrees(releases[0])
+    if agrees(releases[-1]):
         return result
     low, high = 0, len(releases) - 1
     while high - low > 1:
         middle = (low + high) // 2
-        _, found = look(releases[middle])
-        if found:
-            high, differences = middle, found
-        else:
-            low = middle
+        low, high = (middle, high) if agrees(releases[middle]) else (low, middle)
     result.last_good, result.first_bad = releases[low], releases[high]
-    if low > 0:  # compare the change itself: last good against first bad
-        result.differences = _differences(
-            case, by, result.probe(releases[low]), result.probe(releases[high])
-        )
-    else:
-        result.differences = differences
+    result.differences = _differences(
+        case, by, result.probe(result.last_good), result.probe(result.first_bad)
+    )
     return result

@@ -39,7 +39,6 @@ from conformance.backends.calls import BackendError
 from conformance.backends.environments import DrakeEnvironmentError
 from conformance.backends.subprocess_backend import WorkerBackend
 from conformance.corpus.loader import Case
-from conformance.protocol import UnknownNameError
 from conformance.run.runner import CaseReport, Failure, Status, Trace, run_case, trace_disagreements
 
 __all__ = [
@@ -175,14 +174,22 @@ class Matrix:
     runs: dict[str, ReleaseRun] = field(default_factory=dict)
     #: The cases themselves, by qualified name (to compare traces step by step).
     sources: dict[str, Case] = field(default_factory=dict, repr=False)
+    _changes: dict[tuple[str, str, str], list[Failure]] = field(
+        default_factory=dict, repr=False, compare=False
+    )
 
     def behaviour_change(self, case: str, older: str, newer: str) -> list[Failure]:
         """How ``newer`` answered ``case`` differently from ``older`` (the one comparison,
         step by step); [] if alike or if either did not run it."""
-        before, after = self.runs[older].traces.get(case), self.runs[newer].traces.get(case)
-        if before is None or after is None or case not in self.sources:
-            return []
-        return trace_disagreements(self.sources[case], before, after, ends=True)
+        key = (case, older, newer)
+        if key not in self._changes:  # the report's three files all ask
+            before = self.runs[older].traces.get(case)
+            after = self.runs[newer].traces.get(case)
+            found = []
+            if before is not None and after is not None and case in self.sources:
+                found = trace_disagreements(self.sources[case], before, after, ends=True)
+            self._changes[key] = found
+        return self._changes[key]
 
     def cell(self, case: str, version: str) -> Cell | None:
         run = self.runs.get(version)
@@ -224,15 +231,9 @@ def run_release(
     run.python = worker.environment.python
     try:
         for done, case in enumerate(cases, 1):
-            try:
-                report = run_case(
-                    case,
-                    [worker],
-                    strict_divergences=strict_divergences,
-                    step_timeout=step_timeout,
-                )
-            except UnknownNameError as exc:  # pragma: no cover (run_case reports it)
-                report = CaseReport(case, aborted=str(exc))
+            report = run_case(
+                case, [worker], strict_divergences=strict_divergences, step_timeout=step_timeout
+            )
             run.cells[case.qualified_name] = outcome_of(report, worker.name)
             if (trace := report.traces.get(worker.name)) is not None:
                 run.traces[case.qualified_name] = trace
