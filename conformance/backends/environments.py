@@ -11,6 +11,11 @@ Drake           Python
 1.52 - 1.58     3.12, 3.13
 ==============  =====================
 
+Releases up to 1.23 also need ``numpy<2`` (``EXTRA_REQUIREMENTS``): their
+wheels ask for any numpy, and under numpy 2 ``pydrake.multibody`` fails to
+import ("initialization failed": ``ndarray.itemset`` is gone), while
+``pydrake.geometry`` still works.
+
 ``find_python`` looks for such an interpreter on PATH (``python3.11`` ...)
 and in pyenv's versions, and checks each candidate by running it; a given
 ``python`` overrides the search. ``ensure_environment`` builds
@@ -38,6 +43,7 @@ from conformance.policy.versions import version_in_range
 
 __all__ = [
     "CACHE_VARIABLE",
+    "EXTRA_REQUIREMENTS",
     "PYTHONS_FOR",
     "DrakeEnvironment",
     "DrakeEnvironmentError",
@@ -45,6 +51,7 @@ __all__ = [
     "ensure_environment",
     "find_python",
     "harness_path",
+    "requirements_for",
 ]
 
 CACHE_VARIABLE = "DRAKE_FILTER_CONFORMANCE_CACHE"
@@ -56,7 +63,10 @@ PYTHONS_FOR: tuple[tuple[str, str, tuple[str, ...]], ...] = (
     ("1.52", "1.58", ("3.12", "3.13")),
 )
 
-#: Marks an environment whose install finished.
+#: (since, until) Drake release → what pip must install besides ``drake==X`` (see the module doc).
+EXTRA_REQUIREMENTS: tuple[tuple[str, str, tuple[str, ...]], ...] = (("1.12", "1.23", ("numpy<2",)),)
+
+#: Marks an environment whose install finished; it holds the requirements installed.
 _COMPLETE = ".complete"
 
 
@@ -89,6 +99,17 @@ def pythons_for(version: str) -> tuple[str, ...]:
         if version_in_range(version, since, until):
             return pythons
     return ()
+
+
+def requirements_for(version: str) -> tuple[str, ...]:
+    """What an environment for Drake ``version`` installs: ``drake==X`` and its extras."""
+    extras = (
+        r
+        for since, until, rs in EXTRA_REQUIREMENTS
+        if version_in_range(version, since, until)
+        for r in rs
+    )
+    return (f"drake=={version}", *extras)
 
 
 def _candidates(python: str) -> Iterator[str]:
@@ -164,7 +185,14 @@ def ensure_environment(
     python_version, interpreter = find_python(version, override=python)
     path = (cache or cache_dir()) / f"drake-{version}-py{python_version}"
     environment = DrakeEnvironment(version, python_version, path)
-    if (path / _COMPLETE).exists():
+    requirements = requirements_for(version)
+    marker = path / _COMPLETE
+    if marker.exists():
+        missing = [r for r in requirements if r not in marker.read_text().split()]
+        if missing:  # built before its extras were known: add them once
+            log(f"adding {' '.join(missing)} to the environment for drake=={version}")
+            _install(environment, missing, log)
+            marker.write_text("\n".join(requirements) + "\n")
         return environment
     log(f"building the environment for drake=={version} (Python {python_version}) in {path}")
     shutil.rmtree(path, ignore_errors=True)
@@ -172,14 +200,23 @@ def ensure_environment(
     uv = shutil.which("uv")
     if uv:
         _run([uv, "venv", "--python", interpreter, str(path)], log)
-        _run([uv, "pip", "install", "--python", str(environment.interpreter),
-              f"drake=={version}"], log)  # fmt: skip
     else:
         _run([interpreter, "-m", "venv", str(path)], log)
-        _run([str(environment.interpreter), "-m", "pip", "install", "--quiet",
-              "--disable-pip-version-check", f"drake=={version}"], log)  # fmt: skip
-    (path / _COMPLETE).write_text(f"drake=={version}\n")
+    _install(environment, requirements, log)
+    marker.write_text("\n".join(requirements) + "\n")
     return environment
+
+
+def _install(
+    environment: DrakeEnvironment, requirements: Sequence[str], log: Callable[[str], None]
+) -> None:
+    """pip-installs ``requirements`` into ``environment`` (with ``uv`` if it is on PATH)."""
+    uv = shutil.which("uv")
+    if uv:
+        _run([uv, "pip", "install", "--python", str(environment.interpreter), *requirements], log)
+    else:
+        _run([str(environment.interpreter), "-m", "pip", "install", "--quiet",
+              "--disable-pip-version-check", *requirements], log)  # fmt: skip
 
 
 def harness_path(cache: Path | None = None) -> Path:
