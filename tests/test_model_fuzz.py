@@ -1,0 +1,208 @@
+"""conformance.fuzz.models draws kinematic trees that pydrake parses as drawn; ``fuzz --models``."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Iterator
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import seed as hypothesis_seed
+from pydrake.geometry import GeometryId, SceneGraph
+from pydrake.multibody.parsing import Parser
+from pydrake.multibody.plant import MultibodyPlant
+
+from conformance.fuzz import models as fm
+from conformance.fuzz.models import Body, Geometry, Group, Joint, Model
+
+SETTINGS = settings(
+    max_examples=60, deadline=None, database=None, suppress_health_check=list(HealthCheck)
+)
+
+
+@pytest.fixture(autouse=True)
+def _quiet_drake() -> Iterator[None]:
+    """Drake warns about URDF floating joints and renamed geometry; the tests need no log."""
+    logger = logging.getLogger("drake")
+    level = logger.level
+    logger.setLevel(logging.ERROR)
+    yield
+    logger.setLevel(level)
+
+
+def candidates(text: str, fmt: str, *, adjacent: bool = True) -> set[tuple[str, str]]:
+    """pydrake's candidate pairs after parsing ``text`` and Finalize, as ``body/geometry``."""
+    scene_graph = SceneGraph()
+    plant = MultibodyPlant(time_step=0.0)
+    plant.RegisterAsSourceForSceneGraph(scene_graph)
+    plant.set_adjacent_bodies_collision_filters(adjacent)
+    Parser(plant).AddModelsFromString(text, fmt)
+    plant.Finalize()
+    inspector = scene_graph.model_inspector()
+
+    def name(geometry_id: GeometryId) -> str:
+        body = plant.GetBodyFromFrameId(inspector.GetFrameId(geometry_id))
+        return f"{body.name()}/{inspector.GetName(geometry_id).split('::')[-1]}"
+
+    return {
+        tuple(sorted((name(a), name(b))))  # type: ignore[misc]
+        for a, b in inspector.GetCollisionCandidates()
+    }
+
+
+#: l0 welded to the world, l1 revolute on it, l2 prismatic on l1, l3 free with l4 on a
+#: universal joint; g0 = {l2} + member group g1 = {l3} ignores g1 (a forward reference).
+FIXED = Model(
+    "m",
+    (
+        Body("l0", (Geometry("sphere"), Geometry("box", "c0"))),
+        Body("l1", (Geometry("sphere", "c1"), Geometry("box", collision=False))),
+        Body("l2", (Geometry("cylinder", "c2"),)),
+        Body("l3", (Geometry("sphere", "c0"),)),
+        Body("l4", (Geometry("box", "c0"),)),
+        Body("l5", (Geometry("sphere", "v", collision=False),)),
+    ),
+    (
+        Joint("j0", "fixed", fm.WORLD, "l0"),
+        Joint("j1", "revolute", "l0", "l1"),
+        Joint("j2", "prismatic", "l1", "l2"),
+        Joint("j3", "universal", "l3", "l4"),
+        Joint("j4", "ball", "l4", "l5"),
+    ),
+    (Group("g0", ("l2",), ("g1",), ("g1",)), Group("g1", ("l3",))),
+)
+#: Adjacent pairs (l0-l1, l1-l2, l3-l4) and the group pair (l2-l3) are filtered.
+FIXED_URDF_PAIRS = {
+    ("l0/Sphere", "l2/c2"),
+    ("l0/c0", "l2/c2"),
+    ("l0/Sphere", "l3/c0"),
+    ("l0/c0", "l3/c0"),
+    ("l0/Sphere", "l4/c0"),
+    ("l0/c0", "l4/c0"),
+    ("l1/c1", "l3/c0"),
+    ("l1/c1", "l4/c0"),
+    ("l2/c2", "l4/c0"),
+}
+
+
+def test_a_fixed_model_renders_to_urdf_that_pydrake_filters_as_drawn() -> None:
+    text = fm.to_urdf(FIXED)
+    assert 'xmlns:drake="http://drake.mit.edu"' in text
+    assert '<drake:member_group name="g1" />' in text
+    assert candidates(text, "urdf") == FIXED_URDF_PAIRS
+
+
+def test_a_fixed_model_renders_to_sdf_with_text_members_and_named_collisions() -> None:
+    text = fm.to_sdf(FIXED)
+    assert "<drake:member>l2</drake:member>" in text
+    assert '<collision name="collision0">' in text  # l0's unnamed sphere
+    renamed = {
+        tuple(p.replace("l0/Sphere", "l0/collision0") for p in pair) for pair in FIXED_URDF_PAIRS
+    }
+    assert candidates(text, "sdf") == renamed
+
+
+def test_without_adjacency_filters_only_welds_and_groups_filter() -> None:
+    pairs = candidates(fm.to_urdf(FIXED), "urdf", adjacent=False)
+    assert pairs - FIXED_URDF_PAIRS == {
+        ("l0/Sphere", "l1/c1"),
+        ("l0/c0", "l1/c1"),
+        ("l1/c1", "l2/c2"),
+        ("l3/c0", "l4/c0"),
+    }
+    assert pairs >= FIXED_URDF_PAIRS
+
+
+def test_ignore_1_drops_a_group_in_sdformat_but_not_in_urdf() -> None:
+    group = Group("g0", ("l0", "l1"), ignored=("g0",), ignore="1")
+    model = Model(
+        "m", (Body("l0", (Geometry("sphere", "c"),)), Body("l1", (Geometry("box", "c"),)))
+    )
+    model = Model(model.name, model.bodies, groups=(group,))
+    assert (fm.drops(group, "urdf"), fm.drops(group, "sdf")) == (False, True)
+    assert candidates(fm.to_urdf(model), "urdf") == set()
+    assert candidates(fm.to_sdf(model), "sdf") == {("l0/c", "l1/c")}
+
+
+def test_geometry_names_lists_only_names_drake_does_not_choose() -> None:
+    assert fm.geometry_names(FIXED, "urdf") == [
+        "m::l0/c0",
+        "m::l1/c1",
+        "m::l2/c2",
+        "m::l3/c0",
+        "m::l4/c0",
+    ]
+    assert fm.geometry_names(FIXED, "sdf")[:2] == ["m::l0/collision0", "m::l0/c0"]
+    assert "m::l5/v" in fm.geometry_names(FIXED, "urdf", visual=True)
+
+
+@pytest.mark.parametrize("formats", [("urdf", "sdf"), ("urdf",), ("sdf",)])
+def test_every_drawn_valid_tree_parses_and_finalizes_on_pydrake(formats: tuple[str, ...]) -> None:
+    @SETTINGS
+    @given(fm.kinematic_trees(formats=formats))
+    def parses(model: Model) -> None:
+        for fmt in formats:
+            candidates(fm.render(model, fmt), fmt)
+
+    parses()
+
+
+@pytest.mark.parametrize("fmt", fm.FORMATS)
+def test_every_drawn_invalid_tree_is_refused_by_pydrake(fmt: str) -> None:
+    @SETTINGS
+    @given(fm.kinematic_trees(formats=(fmt,), invalid=True))
+    def refused(model: Model) -> None:
+        with pytest.raises(RuntimeError):
+            candidates(fm.render(model, fmt), fmt)
+
+    refused()
+
+
+def _drawn(seed: int) -> list[Model]:
+    out: list[Model] = []
+
+    @hypothesis_seed(seed)
+    @SETTINGS
+    @given(fm.kinematic_trees())
+    def draw(model: Model) -> None:
+        out.append(model)
+
+    draw()
+    return out
+
+
+def test_trees_are_deterministic_for_a_seed() -> None:
+    first = _drawn(7)
+    assert first == _drawn(7)
+    assert first != _drawn(8)
+
+
+def test_trees_reach_every_joint_kind_both_world_attachments_and_group_cycles() -> None:
+    models = _drawn(1) + _drawn(2)
+    joints = [j for m in models for j in m.joints]
+    assert {j.kind for j in joints} == set(fm.JOINT_KINDS) - {"floating", "planar"}
+    assert any(j.parent == fm.WORLD for j in joints)
+    assert any(g.name in g.ignored for m in models for g in m.groups)
+    assert any(
+        a.name in b.member_groups and b.name in a.member_groups
+        for m in models
+        for a in m.groups
+        for b in m.groups
+        if a != b
+    )
+    urdf = [j for seed in (1, 2) for m in _urdf_trees(seed) for j in m.joints]
+    assert {j.kind for j in urdf} == set(fm.JOINT_KINDS)
+    assert any(j.child == fm.WORLD for j in urdf)
+
+
+def _urdf_trees(seed: int) -> list[Model]:
+    out: list[Model] = []
+
+    @hypothesis_seed(seed)
+    @SETTINGS
+    @given(fm.kinematic_trees(formats=("urdf",)))
+    def draw(model: Model) -> None:
+        out.append(model)
+
+    draw()
+    return out
