@@ -1,0 +1,903 @@
+"""MultibodyPlant: model instances, bodies, joints, their geometry, and Finalize.
+
+Drake counterpart: drake/multibody/plant/multibody_plant.h, as bound in
+``pydrake.multibody.plant``. reimpl keeps what collision filtering and naming
+need:
+
+- Model instances 0 (``WorldModelInstance``) and 1 (``DefaultModelInstance``)
+  always exist; the world body is body 0 and its frame is frame 0.
+- Registered as a SceneGraph source (``RegisterAsSourceForSceneGraph``, or
+  ``AddMultibodyPlantSceneGraph``), the plant gives every body but the world a
+  SceneGraph frame named ``scoped(B)`` with frame group = B's instance index;
+  the world body's frame is the world frame. A body's geometry goes on its
+  frame (the world body's is anchored), named ``scoped(name)``.
+- ``scoped(x)`` is ``instance::x`` for instances ≥ 2 and plain ``x`` in the
+  world and default instances.
+- ``Finalize()`` gives every tree not connected to the world a
+  QuaternionFloatingJoint named after its base body (see _link_joint_graph),
+  then declares the default collision filters (see _default_filters).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any, TypeVar
+
+import numpy as np
+
+from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.common.value import register_value_type
+from reimpl.geometry.collision_filter_declaration import (
+    CollisionFilterDeclaration,
+    CollisionFilterScope,
+)
+from reimpl.geometry.geometry_instance import GeometryFrame, GeometryInstance
+from reimpl.geometry.geometry_roles import (
+    IllustrationProperties,
+    PerceptionProperties,
+    ProximityProperties,
+)
+from reimpl.geometry.geometry_set import GeometrySet
+from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
+from reimpl.geometry.scene_graph import SceneGraph
+from reimpl.geometry.shape import Shape
+from reimpl.math import RigidTransform
+from reimpl.multibody import _link_joint_graph as graph
+from reimpl.multibody._default_filters import default_collision_filters
+from reimpl.multibody.tree import (
+    BodyIndex,
+    Frame,
+    FrameIndex,
+    Joint,
+    JointIndex,
+    ModelInstanceIndex,
+    QuaternionFloatingJoint,
+    RigidBody,
+    SpatialInertia,
+    WeldJoint,
+    default_model_instance,
+    world_model_instance,
+)
+from reimpl.systems.framework import Context, DiagramBuilder, LeafContext, LeafSystem
+
+__all__ = [
+    "AddMultibodyPlantSceneGraph",
+    "CoulombFriction",
+    "MultibodyPlant",
+]
+
+_OWNER = "reimpl.multibody.plant.MultibodyPlant"
+
+_WORLD_INSTANCE_NAME = "WorldModelInstance"
+_DEFAULT_INSTANCE_NAME = "DefaultModelInstance"
+_WORLD_BODY_NAME = "world"
+#: Instances below this index do not scope names (world and default).
+_FIRST_SCOPED_INSTANCE = 2
+
+_E = TypeVar("_E", RigidBody, Frame, Joint)
+
+
+class CoulombFriction:
+    """Static and dynamic friction coefficients (stored only)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        self._static, self._dynamic = 0.0, 0.0
+
+        def set_coefficients(static_friction: float, dynamic_friction: float) -> None:
+            if dynamic_friction > static_friction:
+                raise RuntimeError(
+                    f"The given dynamic friction ({dynamic_friction:g}) is greater than the "
+                    f"given static friction ({static_friction:g}); dynamic friction must be "
+                    "less than or equal to static friction."
+                )
+            self._static, self._dynamic = float(static_friction), float(dynamic_friction)
+
+        number = instance_of(int, float)
+        dispatch(
+            "reimpl.multibody.plant.CoulombFriction",
+            "__init__",
+            (
+                Overload((), lambda: None),
+                Overload(
+                    (Param("static_friction", number), Param("dynamic_friction", number)),
+                    set_coefficients,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def static_friction(self) -> float:
+        return self._static
+
+    def dynamic_friction(self) -> float:
+        return self._dynamic
+
+
+register_value_type(CoulombFriction, "drake::multibody::CoulombFriction<double>")
+
+
+def _post_finalize_error(method: str) -> RuntimeError:
+    return RuntimeError(
+        f"Post-finalize calls to '{method}()' are not allowed; calls to this method must "
+        "happen before Finalize()."
+    )
+
+
+def _demand_failed(method: str, condition: str) -> RuntimeError:
+    """What reimpl raises where Drake's DRAKE_DEMAND aborts the process.
+
+    N.B. Divergence by necessity: pydrake 1.51.1 prints this text and aborts.
+    """
+    return RuntimeError(f"Failure in {method}(): condition '{condition}' failed.")
+
+
+class MultibodyPlant(LeafSystem):
+    """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
+
+    Finalize filters collisions, when the plant is a SceneGraph source, by
+    ``C ← C − {(g,h) : frame(g)=F(child), frame(h)=F(parent)}`` for adjacent
+    bodies and ``C ← C − {(g,h) : frame(g), frame(h) ∈ F(S)}`` for each welded
+    set S (see reimpl.multibody._default_filters).
+    """
+
+    _cpp_type = "drake::multibody::MultibodyPlant<double>"
+
+    def __init__(self, time_step: float) -> None:
+        super().__init__()
+        if time_step < 0:
+            raise _demand_failed("MultibodyPlant", "time_step >= 0")
+        self._time_step = float(time_step)
+        self._instance_names = [_WORLD_INSTANCE_NAME, _DEFAULT_INSTANCE_NAME]
+        self._bodies: list[RigidBody] = []
+        self._frames: list[Frame] = []
+        self._joints: list[Joint] = []
+        self._scene_graph: SceneGraph | None = None
+        self._source_id: SourceId | None = None
+        self._body_frame_ids: dict[int, FrameId] = {}
+        self._collision_geometries: dict[int, list[GeometryId]] = {}
+        self._visual_geometries: dict[int, list[GeometryId]] = {}
+        self._adjacent_bodies_collision_filters = True
+        self._finalized = False
+        world = RigidBody(_WORLD_BODY_NAME, world_model_instance())
+        self._add_body(world)
+
+    # ---------------------------------------------------------------- state
+    def time_step(self) -> float:
+        return self._time_step
+
+    def is_finalized(self) -> bool:
+        return self._finalized
+
+    def _check_not_finalized(self, method: str) -> None:
+        if self._finalized:
+            raise _post_finalize_error(method)
+
+    def _new_context(self) -> Context:
+        if not self._finalized:
+            raise RuntimeError(
+                "MultibodyPlant cannot SetDefaultParameters or CreateDefaultContext until "
+                "after MultibodyPlant::Finalize() has been called."
+            )
+        return LeafContext._for(self)
+
+    # --------------------------------------------------------- SceneGraph
+    def RegisterAsSourceForSceneGraph(self, scene_graph: SceneGraph) -> SourceId:
+        """Registers this plant (by its name) as a source; every body so far gets a frame."""
+        if self._finalized:
+            raise RuntimeError(
+                "This MultibodyPlant is finalized already; RegisterAsSourceForSceneGraph() "
+                "must be called before Finalize()."
+            )
+        if self._source_id is not None:
+            raise _demand_failed(
+                "RegisterAsSourceForSceneGraph", "!geometry_source_is_registered()"
+            )
+        self._source_id = scene_graph.RegisterSource(name=self.get_name())
+        self._scene_graph = scene_graph
+        for body in self._bodies:
+            self._register_body_frame(body)
+        return self._source_id
+
+    def geometry_source_is_registered(self) -> bool:
+        return self._source_id is not None
+
+    def get_source_id(self) -> SourceId | None:
+        return self._source_id
+
+    def _registered_scene_graph(self, method: str) -> tuple[SceneGraph, SourceId]:
+        if self._scene_graph is None or self._source_id is None:
+            raise _demand_failed(method, "geometry_source_is_registered()")
+        return self._scene_graph, self._source_id
+
+    def _register_body_frame(self, body: RigidBody) -> None:
+        index = int(body.index())
+        if self._scene_graph is None or self._source_id is None:
+            return
+        if index == graph.WORLD:
+            self._body_frame_ids[index] = self._scene_graph.world_frame_id()
+            return
+        frame = GeometryFrame(
+            frame_name=self._scoped(body.model_instance(), body.name()),
+            frame_group_id=int(body.model_instance()),
+        )
+        self._body_frame_ids[index] = self._scene_graph.RegisterFrame(
+            source_id=self._source_id, frame=frame
+        )
+
+    def _scoped(self, model_instance: ModelInstanceIndex, name: str) -> str:
+        """``instance::name`` for instances ≥ 2; ``name`` in the world and default ones."""
+        if int(model_instance) < _FIRST_SCOPED_INSTANCE:
+            return name
+        return f"{self._instance_names[int(model_instance)]}::{name}"
+
+    # ----------------------------------------------------- model instances
+    def AddModelInstance(self, name: str) -> ModelInstanceIndex:
+        if self._finalized:
+            raise RuntimeError(
+                "This MultibodyTree is finalized already. Therefore adding more model "
+                "instances is not allowed. See documentation for Finalize() for details."
+            )
+        self._check_new_instance_name(name)
+        self._instance_names.append(name)
+        return ModelInstanceIndex(len(self._instance_names) - 1)
+
+    def _check_new_instance_name(self, name: str) -> None:
+        if name in self._instance_names:
+            raise RuntimeError(
+                f"This model already contains a model instance named '{name}'. Model instance "
+                "names must be unique within a given model."
+            )
+
+    def num_model_instances(self) -> int:
+        return len(self._instance_names)
+
+    def HasModelInstanceNamed(self, name: str) -> bool:
+        return name in self._instance_names
+
+    def GetModelInstanceByName(self, name: str) -> ModelInstanceIndex:
+        if name not in self._instance_names:
+            known = ", ".join(f"'{n}'" for n in sorted(self._instance_names))
+            raise RuntimeError(
+                f"GetModelInstanceByName(): There is no model instance named '{name}'. The "
+                f"current model instances are {known}."
+            )
+        return ModelInstanceIndex(self._instance_names.index(name))
+
+    def GetModelInstanceName(self, model_instance: ModelInstanceIndex) -> str:
+        return self._instance_names[self._instance(model_instance)]
+
+    def _instance(self, model_instance: ModelInstanceIndex) -> int:
+        index = int(model_instance)
+        if not 0 <= index < len(self._instance_names):
+            raise RuntimeError(f"There is no model instance id {index} in the model.")
+        return index
+
+    def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
+        """Renames the instance, and the scoped names of its SceneGraph frames and geometries.
+
+        A geometry named ``old::x`` becomes ``new::x``. N.B. pydrake 1.51.1 aborts
+        (DRAKE_DEMAND) when called after Finalize; reimpl raises.
+        """
+        if self._finalized:
+            raise _demand_failed("RenameModelInstance", "!is_finalized()")
+        index = self._instance(model_instance)
+        old = self._instance_names[index]
+        if name == old:
+            return
+        self._check_new_instance_name(name)
+        self._instance_names[index] = name
+        if self._scene_graph is None or index < _FIRST_SCOPED_INSTANCE:
+            return
+        inspector = self._scene_graph.model_inspector()
+        for body in self._bodies:
+            if int(body.model_instance()) != index:
+                continue
+            b = int(body.index())
+            self._scene_graph.RenameFrame(
+                frame_id=self._body_frame_ids[b], name=self._scoped(model_instance, body.name())
+            )
+            for geometry_id in self._collision_geometries[b] + self._visual_geometries[b]:
+                geometry_name = inspector.GetName(geometry_id)
+                if geometry_name.startswith(f"{old}::"):
+                    self._scene_graph.RenameGeometry(
+                        geometry_id=geometry_id, name=f"{name}::{geometry_name[len(old) + 2 :]}"
+                    )
+
+    # ---------------------------------------------------------------- bodies
+    def AddRigidBody(self, *args: Any, **kwargs: Any) -> RigidBody:
+        """Adds a body (and its frame) to a model instance; returns it."""
+        inertia = Param("M_BBo_B", instance_of(SpatialInertia), SpatialInertia.Zero())
+        name = Param("name", instance_of(str))
+        instance = Param("model_instance", instance_of(ModelInstanceIndex))
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "AddRigidBody",
+            (
+                Overload((name, inertia), self._add_rigid_body_to_default),
+                Overload((name, instance, inertia), self._add_rigid_body),
+            ),
+            args,
+            kwargs,
+        )
+
+    def _add_rigid_body_to_default(self, name: str, M_BBo_B: SpatialInertia) -> RigidBody:
+        self._check_not_finalized("AddRigidBody")
+        if len(self._instance_names) > _FIRST_SCOPED_INSTANCE:
+            raise RuntimeError(
+                "This model has more model instances than the default.  Please call "
+                "AddRigidBody with an explicit model instance."
+            )
+        return self._add_rigid_body(name, default_model_instance(), M_BBo_B)
+
+    def _add_rigid_body(
+        self, name: str, model_instance: ModelInstanceIndex, M_BBo_B: SpatialInertia
+    ) -> RigidBody:
+        self._check_not_finalized("AddRigidBody")
+        index = int(model_instance)
+        if index == int(world_model_instance()):
+            raise RuntimeError(
+                "AddLink(): Model instance index 0 is reserved for the World link.  World is "
+                "always predefined and is named 'world'."
+            )
+        if not 0 <= index < len(self._instance_names):
+            raise RuntimeError("Invalid model instance specified.")
+        # N.B. Measured: a body may share its name with a FixedOffsetFrame.
+        self._check_unique("body", self._bodies, name, model_instance)
+        return self._add_body(RigidBody(name, model_instance, M_BBo_B))
+
+    def _add_body(self, body: RigidBody) -> RigidBody:
+        body._adopt(self, len(self._bodies))
+        self._bodies.append(body)
+        frame = body.body_frame()
+        frame._adopt(self, len(self._frames))
+        self._frames.append(frame)
+        index = int(body.index())
+        self._collision_geometries[index] = []
+        self._visual_geometries[index] = []
+        self._register_body_frame(body)
+        return body
+
+    def _check_unique(
+        self, kind: str, elements: Sequence[_E], name: str, model_instance: ModelInstanceIndex
+    ) -> None:
+        if any(e.name() == name and e.model_instance() == model_instance for e in elements):
+            raise RuntimeError(
+                f"Model instance '{self.GetModelInstanceName(model_instance)}' already contains "
+                f"a {kind} named '{name}'. {kind.capitalize()} names must be unique within a "
+                "given model."
+            )
+
+    def num_bodies(self) -> int:
+        return len(self._bodies)
+
+    def world_body(self) -> RigidBody:
+        return self._bodies[graph.WORLD]
+
+    def world_frame(self) -> Frame:
+        return self._frames[0]
+
+    def get_body(self, body_index: BodyIndex) -> RigidBody:
+        return self._bodies[self._in_range("RigidBodyIndex", body_index, self._bodies)]
+
+    def GetBodyIndices(self, model_instance: ModelInstanceIndex) -> list[BodyIndex]:
+        index = self._instance(model_instance)
+        return [b.index() for b in self._bodies if int(b.model_instance()) == index]
+
+    def _in_range(self, kind: str, index: Any, elements: Sequence[object]) -> int:
+        value = int(index)
+        if not 0 <= value < len(elements):
+            raise RuntimeError(
+                f"The given {kind}({value}) is out of bounds (must be less than {len(elements)})"
+            )
+        return value
+
+    # ---------------------------------------------------------------- frames
+    def AddFrame(self, frame: Frame) -> Frame:
+        if self._finalized:
+            raise RuntimeError(
+                "This MultibodyTree is finalized already. Therefore adding more frames is not "
+                "allowed. See documentation for Finalize() for details."
+            )
+        if frame.body()._plant is not self:
+            raise RuntimeError(
+                f"AddFrame(): frame '{frame.name()}' is attached to a body of another plant."
+            )
+        self._check_unique("frame", self._frames, frame.name(), frame.model_instance())
+        frame._adopt(self, len(self._frames))
+        self._frames.append(frame)
+        return frame
+
+    def num_frames(self) -> int:
+        return len(self._frames)
+
+    def get_frame(self, frame_index: FrameIndex) -> Frame:
+        return self._frames[self._in_range("FrameIndex", frame_index, self._frames)]
+
+    def GetFrameIndices(self, model_instance: ModelInstanceIndex) -> list[FrameIndex]:
+        index = self._instance(model_instance)
+        return [f.index() for f in self._frames if int(f.model_instance()) == index]
+
+    # ---------------------------------------------------------------- joints
+    def AddJoint(self, joint: Joint) -> Joint:
+        """Adds a joint between two bodies of this plant; returns it."""
+        self._check_not_finalized("AddJoint")
+        parent, child = joint.parent_body(), joint.child_body()
+        if parent._plant is not self or child._plant is not self:
+            raise RuntimeError(
+                f"AddJoint(): can't add joint {joint.name()} because bodies {parent.name()} "
+                f"and {child.name()} are from different MultibodyPlants."
+            )
+        if parent is child:
+            raise RuntimeError(
+                f"AddJoint(): joint {joint.name()} would connect body {parent.name()} to itself."
+            )
+        self._check_unique("joint", self._joints, joint.name(), joint.model_instance())
+        for other in self._joints:
+            if {other.parent_body(), other.child_body()} == {parent, child}:
+                raise RuntimeError(
+                    f"AddJoint(): This LinkJointGraph already has joint '{other.name()}' (model "
+                    f"instance {int(other.model_instance())}) connecting link "
+                    f"'{other.parent_body().name()}' to link '{other.child_body().name()}'. "
+                    f"Therefore adding joint '{joint.name()}' (model instance "
+                    f"{int(joint.model_instance())}) connecting link '{parent.name()}' to link "
+                    f"'{child.name()}' is not allowed."
+                )
+        joint._adopt(self, len(self._joints))
+        self._joints.append(joint)
+        return joint
+
+    def WeldFrames(
+        self,
+        frame_on_parent_F: Frame,
+        frame_on_child_M: Frame,
+        X_FM: RigidTransform | None = None,
+    ) -> WeldJoint:
+        """Adds the WeldJoint ``F_welds_to_M`` (F and M being the frames' names)."""
+        name = f"{frame_on_parent_F.name()}_welds_to_{frame_on_child_M.name()}"
+        weld = WeldJoint(name, frame_on_parent_F, frame_on_child_M, X_FM or RigidTransform())
+        self.AddJoint(weld)
+        return weld
+
+    def num_joints(self) -> int:
+        return len(self._joints)
+
+    def get_joint(self, joint_index: JointIndex) -> Joint:
+        return self._joints[self._in_range("JointIndex", joint_index, self._joints)]
+
+    def GetJointIndices(self, *args: Any, **kwargs: Any) -> list[JointIndex]:
+        def of(model_instance: ModelInstanceIndex | None = None) -> list[JointIndex]:
+            if model_instance is None:
+                return [j.index() for j in self._joints]
+            index = self._instance(model_instance)
+            return [j.index() for j in self._joints if int(j.model_instance()) == index]
+
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "GetJointIndices",
+            (
+                Overload((), of),
+                Overload((Param("model_instance", instance_of(ModelInstanceIndex)),), of),
+            ),
+            args,
+            kwargs,
+        )
+
+    def num_positions(self, model_instance: ModelInstanceIndex | None = None) -> int:
+        return sum(j.num_positions() for j in self._joints_of(model_instance))
+
+    def num_velocities(self, model_instance: ModelInstanceIndex | None = None) -> int:
+        return sum(j.num_velocities() for j in self._joints_of(model_instance))
+
+    def _joints_of(self, model_instance: ModelInstanceIndex | None) -> list[Joint]:
+        if model_instance is None:
+            return list(self._joints)
+        index = self._instance(model_instance)
+        return [j for j in self._joints if int(j.model_instance()) == index]
+
+    # ------------------------------------------------------- lookup by name
+    def HasBodyNamed(self, name: str, model_instance: ModelInstanceIndex | None = None) -> bool:
+        return bool(self._named(self._bodies, name, model_instance))
+
+    def HasFrameNamed(self, name: str, model_instance: ModelInstanceIndex | None = None) -> bool:
+        return bool(self._named(self._frames, name, model_instance))
+
+    def HasJointNamed(self, name: str, model_instance: ModelInstanceIndex | None = None) -> bool:
+        return bool(self._named(self._joints, name, model_instance))
+
+    def GetBodyByName(
+        self, name: str, model_instance: ModelInstanceIndex | None = None
+    ) -> RigidBody:
+        return self._get_by_name(
+            "GetRigidBodyByName", "RigidBody", self._bodies, name, model_instance
+        )
+
+    def GetRigidBodyByName(
+        self, name: str, model_instance: ModelInstanceIndex | None = None
+    ) -> RigidBody:
+        return self.GetBodyByName(name, model_instance)
+
+    def GetFrameByName(self, name: str, model_instance: ModelInstanceIndex | None = None) -> Frame:
+        return self._get_by_name("GetFrameByName", "Frame", self._frames, name, model_instance)
+
+    def GetJointByName(self, name: str, model_instance: ModelInstanceIndex | None = None) -> Joint:
+        return self._get_by_name("GetJointByName", "Joint", self._joints, name, model_instance)
+
+    def _named(
+        self, elements: Sequence[_E], name: str, model_instance: ModelInstanceIndex | None
+    ) -> list[_E]:
+        if model_instance is not None:
+            self._instance(model_instance)
+        return [
+            e
+            for e in elements
+            if e.name() == name and (model_instance is None or e.model_instance() == model_instance)
+        ]
+
+    def _get_by_name(
+        self,
+        method: str,
+        kind: str,
+        elements: Sequence[_E],
+        name: str,
+        model_instance: ModelInstanceIndex | None,
+    ) -> _E:
+        """The one element named ``name`` (in ``model_instance``), or Drake's error.
+
+        The error lists, per instance holding any, the valid names (sorted).
+        """
+        found = self._named(elements, name, model_instance)
+        if found:
+            if len(found) > 1:
+                instances = ", ".join(self.GetModelInstanceName(e.model_instance()) for e in found)
+                raise RuntimeError(
+                    f"{method}(): A {kind} named '{name}' appears in multiple model instances "
+                    f"({instances}); you must provide a model_instance argument to disambiguate."
+                )
+            return found[0]
+        elsewhere = self._named(elements, name, None)
+        if elsewhere and model_instance is not None:
+            instances = ", ".join(self.GetModelInstanceName(e.model_instance()) for e in elsewhere)
+            raise RuntimeError(
+                f"{method}(): There is no {kind} named '{name}' in the model instance named "
+                f"'{self.GetModelInstanceName(model_instance)}', but one does exist in other "
+                f"model instances ({instances})."
+            )
+        if not elements:
+            raise RuntimeError(f"{method}(): There are no {kind}s defined in the model")
+        valid = []
+        for index, instance_name in enumerate(self._instance_names):
+            names = sorted(e.name() for e in elements if int(e.model_instance()) == index)
+            if names:
+                valid.append(
+                    f"valid names in model instance '{instance_name}' are: {', '.join(names)}"
+                )
+        raise RuntimeError(
+            f"{method}(): There is no {kind} named '{name}' anywhere in the model "
+            f"({'; '.join(valid)})"
+        )
+
+    # -------------------------------------------------------------- geometry
+    def RegisterCollisionGeometry(self, *args: Any, **kwargs: Any) -> GeometryId:
+        """Registers ``shape`` on ``body``'s frame with the proximity role.
+
+        N.B. As in Drake, a duplicate name fails at the role assignment, after
+        the geometry was registered: it stays in SceneGraph with no role, and
+        is not listed by GetCollisionGeometriesForBody.
+        """
+
+        def with_properties(
+            body: RigidBody,
+            X_BG: RigidTransform,
+            shape: Shape,
+            name: str,
+            properties: ProximityProperties,
+        ) -> GeometryId:
+            return self._register_collision(
+                body, X_BG, shape, name, ProximityProperties(properties)
+            )
+
+        def with_friction(
+            body: RigidBody,
+            X_BG: RigidTransform,
+            shape: Shape,
+            name: str,
+            coulomb_friction: CoulombFriction,
+        ) -> GeometryId:
+            properties = ProximityProperties()
+            properties.AddProperty("material", "coulomb_friction", coulomb_friction)
+            return self._register_collision(body, X_BG, shape, name, properties)
+
+        placement = (
+            Param("body", instance_of(RigidBody)),
+            Param("X_BG", instance_of(RigidTransform)),
+            Param("shape", instance_of(Shape)),
+            Param("name", instance_of(str)),
+        )
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "RegisterCollisionGeometry",
+            (
+                Overload(
+                    (*placement, Param("properties", instance_of(ProximityProperties))),
+                    with_properties,
+                ),
+                Overload(
+                    (*placement, Param("coulomb_friction", instance_of(CoulombFriction))),
+                    with_friction,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def _register_collision(
+        self,
+        body: RigidBody,
+        X_BG: RigidTransform,
+        shape: Shape,
+        name: str,
+        properties: ProximityProperties,
+    ) -> GeometryId:
+        self._check_not_finalized("RegisterCollisionGeometry")
+        scene_graph, source_id = self._registered_scene_graph("RegisterCollisionGeometry")
+        instance = GeometryInstance(X_PG=X_BG, shape=shape, name=name)
+        geometry_id = self._register_geometry(body, instance)
+        scene_graph.AssignRole(source_id=source_id, geometry_id=geometry_id, properties=properties)
+        self._collision_geometries[int(body.index())].append(geometry_id)
+        return geometry_id
+
+    def RegisterVisualGeometry(self, *args: Any, **kwargs: Any) -> GeometryId:
+        """Registers geometry on ``body``'s frame with the illustration and perception roles."""
+
+        def with_color(
+            body: RigidBody, X_BG: RigidTransform, shape: Shape, name: str, diffuse_color: Any
+        ) -> GeometryId:
+            illustration, perception = IllustrationProperties(), PerceptionProperties()
+            for properties in (illustration, perception):
+                properties.AddProperty("phong", "diffuse", np.asarray(diffuse_color, dtype=float))
+            instance = GeometryInstance(X_PG=X_BG, shape=shape, name=name)
+            return self._register_visual(body, instance, illustration, perception)
+
+        def with_instance(body: RigidBody, geometry_instance: GeometryInstance) -> GeometryId:
+            illustration = geometry_instance.illustration_properties()
+            perception = geometry_instance.perception_properties()
+            if illustration is None and perception is None:
+                illustration, perception = IllustrationProperties(), PerceptionProperties()
+            instance = GeometryInstance(
+                X_PG=geometry_instance.pose(),
+                shape=geometry_instance.shape(),
+                name=geometry_instance.name(),
+            )
+            return self._register_visual(body, instance, illustration, perception)
+
+        body = Param("body", instance_of(RigidBody))
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "RegisterVisualGeometry",
+            (
+                Overload(
+                    (
+                        body,
+                        Param("X_BG", instance_of(RigidTransform)),
+                        Param("shape", instance_of(Shape)),
+                        Param("name", instance_of(str)),
+                        Param("diffuse_color", _is_rgba),
+                    ),
+                    with_color,
+                ),
+                Overload(
+                    (body, Param("geometry_instance", instance_of(GeometryInstance))),
+                    with_instance,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def _register_visual(
+        self,
+        body: RigidBody,
+        instance: GeometryInstance,
+        illustration: IllustrationProperties | None,
+        perception: PerceptionProperties | None,
+    ) -> GeometryId:
+        """Registers, then assigns illustration before perception (a failure leaves no role)."""
+        self._check_not_finalized("RegisterVisualGeometry")
+        scene_graph, source_id = self._registered_scene_graph("RegisterVisualGeometry")
+        geometry_id = self._register_geometry(body, instance)
+        for properties in (illustration, perception):
+            if properties is not None:
+                scene_graph.AssignRole(
+                    source_id=source_id, geometry_id=geometry_id, properties=properties
+                )
+        self._visual_geometries[int(body.index())].append(geometry_id)
+        return geometry_id
+
+    def _register_geometry(self, body: RigidBody, instance: GeometryInstance) -> GeometryId:
+        """Registers ``instance`` (renamed to its scoped name) on F(body); no role yet."""
+        scene_graph, source_id = self._registered_scene_graph("RegisterGeometry")
+        if body._plant is not self:
+            raise RuntimeError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
+        instance.set_name(self._scoped(body.model_instance(), instance.name()))
+        index = int(body.index())
+        if index == graph.WORLD:
+            return scene_graph.RegisterAnchoredGeometry(source_id=source_id, geometry=instance)
+        return scene_graph.RegisterGeometry(
+            source_id=source_id, frame_id=self._body_frame_ids[index], geometry=instance
+        )
+
+    def GetCollisionGeometriesForBody(self, body: RigidBody) -> list[GeometryId]:
+        return list(self._collision_geometries[int(body.index())])
+
+    def GetVisualGeometriesForBody(self, body: RigidBody) -> list[GeometryId]:
+        return list(self._visual_geometries[int(body.index())])
+
+    def GetBodyFromFrameId(self, frame_id: FrameId) -> RigidBody | None:
+        """The body whose SceneGraph frame is ``frame_id``, else None."""
+        for index, body_frame_id in self._body_frame_ids.items():
+            if body_frame_id == frame_id:
+                return self._bodies[index]
+        return None
+
+    def GetBodyFrameIdIfExists(self, body_index: BodyIndex) -> FrameId | None:
+        return self._body_frame_ids.get(int(body_index))
+
+    def GetBodyFrameIdOrThrow(self, body_index: BodyIndex) -> FrameId:
+        body = self.get_body(body_index)
+        frame_id = self._body_frame_ids.get(int(body_index))
+        if frame_id is None:
+            raise RuntimeError(f"Body '{body.name()}' does not have geometry registered with it.")
+        return frame_id
+
+    def CollectRegisteredGeometries(self, bodies: Sequence[RigidBody]) -> GeometrySet:
+        """GeometrySet({F(B) : B ∈ bodies}); F(world) is the world frame.
+
+        It holds frames, not geometries, so it resolves when a declaration is
+        applied: F(world) then means every anchored proximity geometry.
+        """
+        self._registered_scene_graph("CollectRegisteredGeometries")
+        return self._collect([int(body.index()) for body in bodies])
+
+    def _collect(self, bodies: Sequence[int]) -> GeometrySet:
+        return GeometrySet(frame_ids=[self._body_frame_ids[b] for b in bodies])
+
+    # --------------------------------------------------------------- welds
+    def _edges(self) -> list[graph.Edge]:
+        return [
+            graph.Edge(
+                int(j.parent_body().index()),
+                int(j.child_body().index()),
+                is_weld=j.type_name() == WeldJoint.kTypeName,
+            )
+            for j in self._joints
+        ]
+
+    def GetBodiesWeldedTo(self, body: RigidBody) -> list[RigidBody]:
+        """The bodies of ``body``'s welded subgraph (itself included), by index."""
+        index = int(body.index())
+        for bodies in graph.welded_subgraphs(len(self._bodies), self._edges()):
+            if index in bodies:
+                return [self._bodies[b] for b in bodies]
+        raise RuntimeError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
+
+    # -------------------------------------------------------------- filters
+    def set_adjacent_bodies_collision_filters(self, value: bool) -> None:
+        """Whether Finalize filters adjacent bodies (rule (a)); welds are filtered anyway."""
+        self._check_not_finalized("set_adjacent_bodies_collision_filters")
+        self._adjacent_bodies_collision_filters = bool(value)
+
+    def get_adjacent_bodies_collision_filters(self) -> bool:
+        return self._adjacent_bodies_collision_filters
+
+    def _exclude_collision_geometries_with_collision_filter_group_pair(
+        self, group_a: tuple[str, GeometrySet], group_b: tuple[str, GeometrySet]
+    ) -> None:
+        """A collision filter group pair, for the parser (C++ only; pydrake binds none).
+
+        Same name: C ← C − {(g, h) : g, h ∈ set_A, g ≠ h} (ExcludeWithin);
+        else C ← C − {(g, h) : g ∈ set_A, h ∈ set_B} (ExcludeBetween). Scope
+        kAll, applied to the SceneGraph model; allowed only before Finalize
+        and with a registered SceneGraph (Drake demands both).
+        """
+        method = "ExcludeCollisionGeometriesWithCollisionFilterGroupPair"
+        if self._finalized:
+            raise _demand_failed(method, "!is_finalized()")
+        scene_graph, _ = self._registered_scene_graph(method)
+        (name_a, set_A), (name_b, set_B) = group_a, group_b
+        declaration = CollisionFilterDeclaration(CollisionFilterScope.kAll)
+        if name_a == name_b:
+            declaration.ExcludeWithin(set_A)
+        else:
+            declaration.ExcludeBetween(set_A, set_B)
+        scene_graph.collision_filter_manager().Apply(declaration=declaration)
+
+    # ------------------------------------------------------------ Finalize
+    def Finalize(self) -> None:
+        """Adds the floating joints, then the default collision filters; seals the model."""
+        if self._finalized:
+            raise RuntimeError("MultibodyTreeSystem::Finalize(): repeated calls not allowed.")
+        n = len(self._bodies)
+        if graph.has_loop(n, self._edges()):
+            raise RuntimeError(
+                "The bodies and joints of this system form one or more loops in the system "
+                "graph. Drake currently does not support automatic modeling of such systems; "
+                "however, they can be modeled with some input changes. See "
+                "https://drake.mit.edu/troubleshooting.html#mbp-loops-in-graph for advice on how "
+                "to model systems with loops."
+            )
+        for base in graph.floating_bases(n, self._edges()):
+            self._add_floating_joint(self._bodies[base])
+        if self._scene_graph is not None:
+            declaration = default_collision_filters(
+                self._joints,
+                graph.welded_subgraphs(n, self._edges()),
+                self._collect,
+                adjacent=self._adjacent_bodies_collision_filters,
+            )
+            self._scene_graph.collision_filter_manager().Apply(declaration=declaration)
+        self._finalized = True
+
+    def _add_floating_joint(self, body: RigidBody) -> None:
+        """A QuaternionFloatingJoint world → body, named after the body.
+
+        The name gets leading underscores until no joint of the body's
+        instance has it (measured: ``X`` taken, ``_X`` taken → ``__X``).
+        """
+        name = body.name()
+        while self._named(self._joints, name, body.model_instance()):
+            name = f"_{name}"
+        joint = QuaternionFloatingJoint(name, self.world_frame(), body.body_frame())
+        joint._ephemeral = True
+        self.AddJoint(joint)
+
+
+def _is_rgba(value: object) -> bool:
+    try:
+        return np.asarray(value, dtype=float).shape in {(4,), (4, 1)}
+    except (TypeError, ValueError):
+        return False
+
+
+_is_rgba.__name__ = "numpy.ndarray[numpy.float64[4, 1]]"
+
+
+def AddMultibodyPlantSceneGraph(*args: Any, **kwargs: Any) -> tuple[MultibodyPlant, SceneGraph]:
+    """Adds a plant (given, or made with ``time_step``) and a SceneGraph to ``builder``.
+
+    The plant is named ``plant``, the SceneGraph ``scene_graph``, and the
+    plant is registered as its source. Returns ``(plant, scene_graph)``.
+    """
+
+    def add(
+        builder: DiagramBuilder, plant: MultibodyPlant, scene_graph: SceneGraph | None
+    ) -> tuple[MultibodyPlant, SceneGraph]:
+        if scene_graph is None:
+            scene_graph = SceneGraph()
+            scene_graph.set_name("scene_graph")
+        # N.B. Measured: a given plant is renamed; a given SceneGraph keeps its name.
+        plant.set_name("plant")
+        builder.AddSystem(plant)
+        builder.AddSystem(scene_graph)
+        plant.RegisterAsSourceForSceneGraph(scene_graph)
+        return plant, scene_graph
+
+    def with_time_step(
+        builder: DiagramBuilder, time_step: float, scene_graph: SceneGraph | None
+    ) -> tuple[MultibodyPlant, SceneGraph]:
+        return add(builder, MultibodyPlant(time_step), scene_graph)
+
+    builder = Param("builder", instance_of(DiagramBuilder))
+    scene_graph = Param("scene_graph", instance_of(SceneGraph), None)
+    return dispatch(  # type: ignore[no-any-return]
+        "reimpl.multibody.plant",
+        "AddMultibodyPlantSceneGraph",
+        (
+            Overload((builder, Param("plant", instance_of(MultibodyPlant)), scene_graph), add),
+            Overload(
+                (builder, Param("time_step", instance_of(int, float)), scene_graph), with_time_step
+            ),
+        ),
+        args,
+        kwargs,
+    )
