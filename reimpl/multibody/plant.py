@@ -76,6 +76,9 @@ _FIRST_SCOPED_INSTANCE = 2
 
 _E = TypeVar("_E", RigidBody, Frame, Joint)
 
+#: Joint types a tree may model from child to parent (measured, from Finalize's message).
+_REVERSIBLE_JOINT_TYPES = frozenset({"prismatic", "revolute", "weld"})
+
 
 class CoulombFriction:
     """Static and dynamic friction coefficients (stored only)."""
@@ -546,7 +549,7 @@ class MultibodyPlant(LeafSystem):
 
         The error lists, per instance holding any, the valid names (sorted).
         """
-        found = self._named(elements, name, model_instance)
+        found = sorted(self._named(elements, name, model_instance), key=_instance_order)
         if found:
             if len(found) > 1:
                 instances = ", ".join(self.GetModelInstanceName(e.model_instance()) for e in found)
@@ -555,7 +558,7 @@ class MultibodyPlant(LeafSystem):
                     f"({instances}); you must provide a model_instance argument to disambiguate."
                 )
             return found[0]
-        elsewhere = self._named(elements, name, None)
+        elsewhere = sorted(self._named(elements, name, None), key=_instance_order)
         if elsewhere and model_instance is not None:
             instances = ", ".join(self.GetModelInstanceName(e.model_instance()) for e in elsewhere)
             raise RuntimeError(
@@ -733,8 +736,11 @@ class MultibodyPlant(LeafSystem):
     def GetVisualGeometriesForBody(self, body: RigidBody) -> list[GeometryId]:
         return list(self._visual_geometries[int(body.index())])
 
-    def GetBodyFromFrameId(self, frame_id: FrameId) -> RigidBody | None:
-        """The body whose SceneGraph frame is ``frame_id``, else None."""
+    def GetBodyFromFrameId(self, frame_id: FrameId, /) -> RigidBody | None:
+        """The body whose SceneGraph frame is ``frame_id``, else None.
+
+        N.B. pydrake binds the parameter without a name: it is positional only.
+        """
         for index, body_frame_id in self._body_frame_ids.items():
             if body_frame_id == frame_id:
                 return self._bodies[index]
@@ -826,7 +832,10 @@ class MultibodyPlant(LeafSystem):
                 "https://drake.mit.edu/troubleshooting.html#mbp-loops-in-graph for advice on how "
                 "to model systems with loops."
             )
-        for base in graph.floating_bases(n, self._edges()):
+        bases = graph.floating_bases(n, self._edges())
+        for index in graph.reversed_joints(n, self._edges(), bases):
+            self._check_reversible(self._joints[index])
+        for base in bases:
             self._add_floating_joint(self._bodies[base])
         if self._scene_graph is not None:
             declaration = default_collision_filters(
@@ -837,6 +846,20 @@ class MultibodyPlant(LeafSystem):
             )
             self._scene_graph.collision_filter_manager().Apply(declaration=declaration)
         self._finalized = True
+
+    def _check_reversible(self, joint: Joint) -> None:
+        """Raises Drake's error unless a tree may model ``joint`` from child to parent."""
+        if joint.type_name() in _REVERSIBLE_JOINT_TYPES:
+            return
+        kind = joint.type_name()
+        raise RuntimeError(
+            f"MultibodyPlant::Finalize(): parent/child ordering for {kind} joint "
+            f"{joint.name()} in model instance {self.GetModelInstanceName(joint.model_instance())} "
+            "would have to be reversed to make a tree-structured model for this system. "
+            f"Currently Drake does not support reversed {kind} joints. The joints that can be "
+            f"reversed are: {', '.join(sorted(_REVERSIBLE_JOINT_TYPES))}. Reverse the ordering in "
+            "your joint definition so that its parent body is closer to World in the tree."
+        )
 
     def _add_floating_joint(self, body: RigidBody) -> None:
         """A QuaternionFloatingJoint world → body, named after the body.
@@ -850,6 +873,10 @@ class MultibodyPlant(LeafSystem):
         joint = QuaternionFloatingJoint(name, self.world_frame(), body.body_frame())
         joint._ephemeral = True
         self.AddJoint(joint)
+
+
+def _instance_order(element: RigidBody | Frame | Joint) -> int:
+    return int(element.model_instance())
 
 
 def _is_rgba(value: object) -> bool:
