@@ -20,6 +20,7 @@ need:
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Sequence
 from typing import Any, TypeVar
 
@@ -663,16 +664,18 @@ class MultibodyPlant(LeafSystem):
             return self._register_visual(body, instance, illustration, perception)
 
         def with_instance(body: RigidBody, geometry_instance: GeometryInstance) -> GeometryId:
-            illustration = geometry_instance.illustration_properties()
-            perception = geometry_instance.perception_properties()
-            if illustration is None and perception is None:
-                illustration, perception = IllustrationProperties(), PerceptionProperties()
-            instance = GeometryInstance(
-                X_PG=geometry_instance.pose(),
-                shape=geometry_instance.shape(),
-                name=geometry_instance.name(),
-            )
-            return self._register_visual(body, instance, illustration, perception)
+            """Registers a copy of the instance (same id) with the roles it carries.
+
+            Without any visual role it gets both, with default properties. As in
+            pydrake (which copies the instance), the caller's instance is unchanged.
+            """
+            instance = copy.copy(geometry_instance)
+            if instance.illustration_properties() is None and (
+                instance.perception_properties() is None
+            ):
+                instance.set_illustration_properties(IllustrationProperties())
+                instance.set_perception_properties(PerceptionProperties())
+            return self._register_visual(body, instance, None, None)
 
         body = Param("body", instance_of(RigidBody))
         return dispatch(  # type: ignore[no-any-return]
@@ -705,7 +708,11 @@ class MultibodyPlant(LeafSystem):
         illustration: IllustrationProperties | None,
         perception: PerceptionProperties | None,
     ) -> GeometryId:
-        """Registers, then assigns illustration before perception (a failure leaves no role)."""
+        """Registers ``instance`` with its roles, then ``illustration``, then ``perception``.
+
+        N.B. Measured: a duplicate name fails on the illustration role and leaves
+        the geometry registered with no role.
+        """
         self._check_not_finalized("RegisterVisualGeometry")
         scene_graph, source_id = self._registered_scene_graph("RegisterVisualGeometry")
         geometry_id = self._register_geometry(body, instance)
