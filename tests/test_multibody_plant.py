@@ -547,6 +547,26 @@ def test_finalize_refuses_a_ball_joint_it_would_have_to_reverse(mb: Modules) -> 
     )
 
 
+def test_finalize_with_transient_history_is_finalized_but_unfiltered(mb: Modules) -> None:
+    """The plant is sealed before Finalize applies its filters, and that Apply raises."""
+    model = Model(mb)
+    model.body("A")
+    model.body("B")
+    model.weld("A", "B")
+    manager = model.scene_graph.collision_filter_manager()
+    manager.ApplyTransient(declaration=mb.geometry.CollisionFilterDeclaration())
+    with pytest.raises(RuntimeError) as raised:
+        model.finalize()
+    assert str(raised.value) == (
+        "You cannot attempt to modify the persistent collision filter configuration when there "
+        "are active, transient filter declarations"
+    )
+    assert model.plant.is_finalized() is True
+    assert model.C() == {"A/c|B/c"}
+    with pytest.raises(RuntimeError, match="repeated calls not allowed"):
+        model.finalize()
+
+
 @pytest.mark.parametrize(
     ("method", "call"),
     [
@@ -618,6 +638,22 @@ def test_add_multibody_plant_scene_graph_uses_a_given_scene_graph_and_keeps_its_
     assert plant is given
     assert returned is scene_graph
     assert (plant.get_name(), returned.get_name()) == ("plant", "mine")
+
+
+def test_add_multibody_plant_applies_a_config(mb: Modules) -> None:
+    config = mb.plant.MultibodyPlantConfig(time_step=0.0, adjacent_bodies_collision_filters=False)
+    plant, scene_graph = mb.plant.AddMultibodyPlant(
+        config=config, builder=mb.framework.DiagramBuilder()
+    )
+    assert (plant.time_step(), plant.get_adjacent_bodies_collision_filters()) == (0.0, False)
+    assert (plant.get_name(), scene_graph.get_name()) == ("plant", "scene_graph")
+    assert repr(mb.plant.MultibodyPlantConfig()) == (
+        "MultibodyPlantConfig(time_step=0.001, use_sampled_output_ports=True, "
+        "penetration_allowance=0.001, stiction_tolerance=0.0001, "
+        "contact_model='hydroelastic_with_fallback', discrete_contact_approximation='lagged', "
+        "sap_near_rigid_threshold=1.0, contact_surface_representation='polygon', "
+        "adjacent_bodies_collision_filters=True)"
+    )
 
 
 def test_a_new_plant_has_the_world_body_and_two_model_instances(mb: Modules) -> None:

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any, TypeVar
 
 import numpy as np
@@ -62,9 +63,12 @@ from reimpl.multibody.tree import (
 from reimpl.systems.framework import Context, DiagramBuilder, LeafContext, LeafSystem
 
 __all__ = [
+    "AddMultibodyPlant",
     "AddMultibodyPlantSceneGraph",
+    "ApplyMultibodyPlantConfig",
     "CoulombFriction",
     "MultibodyPlant",
+    "MultibodyPlantConfig",
 ]
 
 _OWNER = "reimpl.multibody.plant.MultibodyPlant"
@@ -844,6 +848,10 @@ class MultibodyPlant(LeafSystem):
             self._check_reversible(self._joints[index])
         for base in bases:
             self._add_floating_joint(self._bodies[base])
+        # N.B. Measured: the plant is finalized before its filters are applied, so
+        # an Apply that raises (transient history active) leaves it finalized,
+        # unfiltered, and refusing a second Finalize.
+        self._finalized = True
         if self._scene_graph is not None:
             declaration = default_collision_filters(
                 self._joints,
@@ -852,7 +860,6 @@ class MultibodyPlant(LeafSystem):
                 adjacent=self._adjacent_bodies_collision_filters,
             )
             self._scene_graph.collision_filter_manager().Apply(declaration=declaration)
-        self._finalized = True
 
     def _check_reversible(self, joint: Joint) -> None:
         """Raises Drake's error unless a tree may model ``joint`` from child to parent."""
@@ -935,3 +942,32 @@ def AddMultibodyPlantSceneGraph(*args: Any, **kwargs: Any) -> tuple[MultibodyPla
         args,
         kwargs,
     )
+
+
+@dataclass(kw_only=True)
+class MultibodyPlantConfig:
+    """Plant settings with pydrake's defaults; reimpl reads ``time_step`` and the flag only."""
+
+    time_step: float = 0.001
+    use_sampled_output_ports: bool = True
+    penetration_allowance: float = 0.001
+    stiction_tolerance: float = 0.0001
+    contact_model: str = "hydroelastic_with_fallback"
+    discrete_contact_approximation: str = "lagged"
+    sap_near_rigid_threshold: float = 1.0
+    contact_surface_representation: str = "polygon"
+    adjacent_bodies_collision_filters: bool = True
+
+
+def ApplyMultibodyPlantConfig(config: MultibodyPlantConfig, plant: MultibodyPlant) -> None:
+    """Applies every setting but ``time_step`` (which only construction sets)."""
+    plant.set_adjacent_bodies_collision_filters(config.adjacent_bodies_collision_filters)
+
+
+def AddMultibodyPlant(
+    config: MultibodyPlantConfig, builder: DiagramBuilder
+) -> tuple[MultibodyPlant, SceneGraph]:
+    """AddMultibodyPlantSceneGraph with ``config.time_step``, then the rest of ``config``."""
+    plant, scene_graph = AddMultibodyPlantSceneGraph(builder=builder, time_step=config.time_step)
+    ApplyMultibodyPlantConfig(config, plant)
+    return plant, scene_graph
