@@ -20,6 +20,9 @@ from typing import Any
 
 import pytest
 
+from reimpl.geometry import CollisionFilterScope, GeometrySet
+from reimpl.multibody import tree
+from reimpl.multibody._default_filters import ADJACENCY_RULE, default_collision_filters
 from tests.conftest import IMPLEMENTATIONS
 
 
@@ -136,17 +139,16 @@ class Model:
         return [(j.name(), j.type_name()) for j in joints]
 
 
-def _z(mb: Modules) -> Any:
-    return [0.0, 0.0, 1.0]
+Z_AXIS = [0.0, 0.0, 1.0]
 
 
 #: Joint constructors, called with pydrake's keyword names.
 JOINTS: dict[str, Any] = {
     "revolute": lambda mb, n, p, c: mb.tree.RevoluteJoint(
-        name=n, frame_on_parent=p, frame_on_child=c, axis=_z(mb)
+        name=n, frame_on_parent=p, frame_on_child=c, axis=Z_AXIS
     ),
     "prismatic": lambda mb, n, p, c: mb.tree.PrismaticJoint(
-        name=n, frame_on_parent=p, frame_on_child=c, axis=_z(mb)
+        name=n, frame_on_parent=p, frame_on_child=c, axis=Z_AXIS
     ),
     "weld": lambda mb, n, p, c: mb.tree.WeldJoint(
         name=n, frame_on_parent_F=p, frame_on_child_M=c, X_FM=mb.math.RigidTransform()
@@ -993,7 +995,7 @@ def test_bodies_welded_to_a_body_include_itself_in_index_order(mb: Modules) -> N
 
 
 @pytest.mark.parametrize(
-    ("method", "call", "message"),
+    ("case", "call", "message"),
     [
         (
             "no body anywhere",
@@ -1038,17 +1040,17 @@ def test_bodies_welded_to_a_body_include_itself_in_index_order(mb: Modules) -> N
         ),
         (
             "no such model instance index",
-            lambda p, m: p.GetModelInstanceName(model_instance=m.__class__(7)),
+            lambda p, m: p.GetModelInstanceName(model_instance=type(m)(7)),
             "There is no model instance id 7 in the model.",
         ),
         (
             "body index out of range",
-            lambda p, m: p.get_body(body_index=p.world_body().index().__class__(9)),
+            lambda p, m: p.get_body(body_index=type(p.world_body().index())(9)),
             "The given RigidBodyIndex(9) is out of bounds (must be less than 5)",
         ),
     ],
 )
-def test_lookup_errors_are_drakes(mb: Modules, method: str, call: Any, message: str) -> None:
+def test_lookup_errors_are_drakes(mb: Modules, case: str, call: Any, message: str) -> None:
     plant = mb.plant.MultibodyPlant(time_step=0.0)
     plant.AddRigidBody(name="B")
     m = plant.AddModelInstance(name="m")
@@ -1125,7 +1127,7 @@ def test_indices_compare_as_integers(mb: Modules) -> None:
     )
 
 
-# ------------------------------------- the parser's group pair (reimpl only)
+# ------------------ reimpl only: the parser's group pair, the filters' scope and table
 
 
 @pytest.fixture
@@ -1169,3 +1171,17 @@ def test_a_group_pair_is_refused_after_finalize_or_without_a_scene_graph(
     plant = modules("reimpl").plant.MultibodyPlant(time_step=0.0)
     with pytest.raises(RuntimeError, match="geometry_source_is_registered"):
         plant._exclude_collision_geometries_with_collision_filter_group_pair(g, g)
+
+
+def test_the_default_filters_have_scope_omit_deformable() -> None:
+    declaration = default_collision_filters([], [], lambda bodies: GeometrySet(), adjacent=True)
+    assert declaration.scope() is CollisionFilterScope.kOmitDeformable
+
+
+def test_the_adjacency_rule_names_every_joint_type() -> None:
+    kinds = {
+        cls.kTypeName
+        for cls in vars(tree).values()
+        if isinstance(cls, type) and issubclass(cls, tree.Joint) and cls is not tree.Joint
+    }
+    assert kinds == set(ADJACENCY_RULE)

@@ -446,7 +446,7 @@ class Frame(_Element):
 
 
 class RigidBodyFrame(Frame):
-    """The frame of a rigid body: same name, same instance, same index as its body."""
+    """The frame of a rigid body: same name and model instance as its body."""
 
     @classmethod
     def _of(cls, body: RigidBody) -> RigidBodyFrame:
