@@ -6,7 +6,9 @@ same ``Api`` shape that reimpl provides, so one backend class drives both.
 
 from __future__ import annotations
 
+import importlib
 import importlib.metadata
+from types import ModuleType
 
 from conformance.backends.scene_graph import Api
 
@@ -31,4 +33,16 @@ def pydrake_api() -> Api:
         version=importlib.metadata.version("drake"),
         geometry=pydrake.geometry,
         math=pydrake.math,
+        plant=_optional("pydrake.multibody.plant"),
+        tree=_optional("pydrake.multibody.tree"),
+        parsing=_optional("pydrake.multibody.parsing"),
     )
+
+
+def _optional(name: str) -> ModuleType | None:
+    """The module ``name``, or None where it cannot be imported (its feature tags are then
+    missing: Drake 1.12-1.23 under numpy 2 cannot import ``pydrake.multibody``)."""
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        return None

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import importlib
+from types import ModuleType
+
 import reimpl.geometry
 import reimpl.math
 from conformance.backends.scene_graph import Api
@@ -18,4 +21,17 @@ def reimpl_api() -> Api:
         version=REIMPL_DRAKE_VERSION,
         geometry=reimpl.geometry,
         math=reimpl.math,
+        plant=_optional("reimpl.multibody.plant"),
+        tree=_optional("reimpl.multibody.tree"),
+        parsing=_optional("reimpl.multibody.parsing"),
     )
+
+
+def _optional(name: str) -> ModuleType | None:
+    """reimpl's module ``name``, or None while it does not exist (its features are missing)."""
+    try:
+        return importlib.import_module(name)
+    except ModuleNotFoundError as exc:
+        if exc.name is not None and name.startswith(exc.name):
+            return None
+        raise

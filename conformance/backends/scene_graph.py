@@ -8,7 +8,8 @@ drift between Drake releases.
 Names in commands resolve as follows: ``world`` is the world frame;
 ``@unknown`` is an id this SceneGraph never issued; ``@foreign`` is an id
 issued by another SceneGraph; a removed geometry's name still resolves to its
-(now stale) id.
+(now stale) id. The model ops (a MultibodyPlant and its parsers) and their
+names are ``backends.multibody``'s.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from dataclasses import dataclass
 from types import ModuleType
 from typing import Any
 
+from conformance.backends.multibody import MultibodyCommands, model_features
 from conformance.grammar import GRAMMAR
 from conformance.policy.guards import GUARDS, armed_guards
 from conformance.protocol import (
@@ -60,13 +62,21 @@ class RefusedCallError(Exception):
 
 @dataclass(frozen=True)
 class Api:
-    """The modules of a pydrake-compatible implementation."""
+    """The modules of a pydrake-compatible implementation.
+
+    The multibody modules (``pydrake.multibody.plant``, ``.tree``,
+    ``.parsing``) are optional: without them the model feature tags are
+    missing and model cases are skipped.
+    """
 
     name: str
     #: The Drake release whose behaviour this implementation has (for since/until).
     version: str
     geometry: ModuleType
     math: ModuleType
+    plant: ModuleType | None = None
+    tree: ModuleType | None = None
+    parsing: ModuleType | None = None
 
 
 @dataclass
@@ -75,8 +85,9 @@ class _Label:
     location: str
 
 
-class SceneGraphBackend:
-    """Executes scenario commands on ``api.geometry.SceneGraph``."""
+class SceneGraphBackend(MultibodyCommands):
+    """Executes scenario commands on ``api.geometry.SceneGraph`` (and the model commands on a
+    MultibodyPlant registered with it: ``MultibodyCommands``)."""
 
     def __init__(self, api: Api) -> None:
         self.api = api
@@ -100,7 +111,7 @@ class SceneGraphBackend:
             features.add("activation")
         if hasattr(g, "CollisionFilterScope"):
             features.add("scope")
-        return frozenset(features)
+        return frozenset(features) | model_features(self.api)
 
     def reset(self) -> None:
         g = self.api.geometry
@@ -113,6 +124,7 @@ class SceneGraphBackend:
         self.labels: dict[str, _Label] = {}
         self._unknown: dict[str, Any] = {}
         self._foreign: dict[str, Any] = {}
+        self._reset_models()
 
     def execute(self, command: Command) -> Result:
         op = GRAMMAR.get(command.op)

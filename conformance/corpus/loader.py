@@ -4,9 +4,14 @@ A scenario file is JSON (``.json``) or YAML (``.yaml``, ``.yml``); both are read
 by ``conformance.corpus.documents`` into the same data. Loading validates each
 file against the scenario schema (with the ``jsonschema`` library; its step
 rules come from ``conformance.grammar``) and then checks names statically:
-every source, frame, geometry, context and declaration label a step refers to
-must have been declared earlier in the same case, and an expectation's pair
-names two different geometries. Any problem raises ``ScenarioError`` naming
+every source, frame, geometry, body, context and declaration label a step
+refers to must have been declared earlier in the same case, and an
+expectation's pair names two different geometries. After a step that parses
+models (``add_models``), model-scoped names (with ``::``: ``m::l1``,
+``m::l1/Sphere``) of frames, geometries and bodies are accepted: the model
+text holds them, and a backend raises ``UnknownNameError`` for one that does
+not exist. A case needs the feature tags of its file, its own, and those of
+its ops (from the grammar). Any problem raises ``ScenarioError`` naming
 the file, the case and the field, so the CLI can report it and exit 2; input
 echoed in a message is cut to about 200 characters.
 
@@ -36,7 +41,7 @@ from conformance.corpus.documents import (
     clip,
     read_document,
 )
-from conformance.grammar import declared_names, referenced_names
+from conformance.grammar import declared_names, features_of, referenced_names, spec
 from conformance.grammar.schema import SCHEMA_FILE as SCENARIO_SCHEMA
 from conformance.grammar.schema import scenario_schema
 
@@ -53,6 +58,9 @@ __all__ = [
 ]
 
 _SPECIAL_REFS = frozenset({"@unknown", "@foreign"})
+#: The separator of model-scoped names, and the kinds of name a model scopes.
+_SCOPE = "::"
+_SCOPED_KINDS = frozenset({"frame", "geometry", "body"})
 _NON_ARGS = frozenset({"op", "comment", "expect"})
 #: Expectation keys whose value is a list of geometry-name pairs.
 _PAIR_KEYS = ("candidates", "filtered", "unfiltered")
@@ -233,7 +241,9 @@ def load_file(path: Path, *, root: Path | None = None) -> ScenarioFile:
         case = Case(
             file=file,
             description=description,
-            features=file_features | frozenset(raw.get("features", ())),
+            features=file_features
+            | frozenset(raw.get("features", ()))
+            | features_of(step.op for step in steps),
             steps=steps,
             comment=raw.get("comment"),
             drake_refs=tuple(raw.get("drake_refs", ())),
@@ -341,7 +351,9 @@ def _check_names(path: str, case: Case) -> None:
         "geometry": set(),
         "context": {"model"},
         "label": set(),
+        "body": {"world"},
     }
+    scoped = False  # an earlier step parsed models: their scoped names may be used
     for step in case.steps:
         refs = list(_refs(step))
         for kind, name in _declares(step):
@@ -353,10 +365,13 @@ def _check_names(path: str, case: Case) -> None:
                     where=f"{step.label}, field name",
                 )
         # A step's arguments see earlier declarations; its expectations see its own too.
-        _require(path, case, step, declared, [r for r in refs if not r[2].startswith("expect")])
+        arguments = [r for r in refs if not r[2].startswith("expect")]
+        _require(path, case, step, declared, arguments, scoped=scoped)
         for kind, name in _declares(step):
             declared[kind].add(name)
-        _require(path, case, step, declared, [r for r in refs if r[2].startswith("expect")])
+        scoped = scoped or spec(step.op).scoped_names
+        expectations = [r for r in refs if r[2].startswith("expect")]
+        _require(path, case, step, declared, expectations, scoped=scoped)
 
 
 def _require(
@@ -365,8 +380,12 @@ def _require(
     step: Step,
     declared: Mapping[str, set[str]],
     refs: Iterable[tuple[str, str, str]],
+    *,
+    scoped: bool = False,
 ) -> None:
     for kind, name, where in refs:
+        if scoped and kind in _SCOPED_KINDS and _SCOPE in name:
+            continue
         if name not in _SPECIAL_REFS and name not in declared[kind]:
             raise ScenarioError(
                 path,

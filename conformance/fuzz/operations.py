@@ -8,7 +8,8 @@ name argument. An operation may also draw more, as its ``arguments`` say
 (declaration and set templates, a batch of placements); those are drawn only
 when it is the operation chosen.
 
-Together the operations issue every command of the scenario grammar:
+Together the operations issue every SceneGraph command of the scenario grammar
+(its ops of domain ``scene_graph``; the model ops are fuzzed by ``fuzz --models``):
 registration (sources, frames, geometry batches, Drake-name duplicates),
 role changes, removal, apply, apply_transient, remove_declaration, IsActive,
 history, CollisionFiltered, contexts, and Activate/Deactivate when both
@@ -30,7 +31,7 @@ from hypothesis import strategies as st
 
 from conformance.fuzz import strategies as cs
 from conformance.fuzz.names import CHOICES, DEFAULT_SOURCE, Choice
-from conformance.grammar import GRAMMAR, Arg, ArgKind, CommandSpec, NameKind
+from conformance.grammar import GRAMMAR, Arg, ArgKind, CommandSpec, NameKind, ops_of
 from conformance.protocol import ErrorKind, Result
 
 __all__ = [
@@ -463,12 +464,12 @@ def issued_ops(operations: dict[str, Operation]) -> frozenset[str]:
 
 
 #: What a step can do: the hand-written operations, then a generic one for every
-#: grammar op that none of them issues.
+#: SceneGraph op of the grammar that none of them issues.
 OPERATIONS: dict[str, Operation] = {
     **HAND_WRITTEN,
     **{
-        op: generic_operation(command)
-        for op, command in GRAMMAR.items()
-        if not command.harness_only and op not in issued_ops(HAND_WRITTEN)
+        op: generic_operation(GRAMMAR[op])
+        for op in ops_of("scene_graph")
+        if not GRAMMAR[op].harness_only and op not in issued_ops(HAND_WRITTEN)
     },
 }

@@ -1,17 +1,19 @@
 """The scenario grammar: one table of commands, from which everything else is derived.
 
 ``GRAMMAR`` maps each op to its ``CommandSpec``. From it come the scenario
-schema's step rules (``grammar.schema``), the corpus's name check, the
-backend's dispatch (one method per op), the fuzzer's coverage check and the
-feature tags of regression files. A new kind of work adds one table module
-here and one handler module on the backend side.
+schema's step rules and feature tags (``grammar.schema``), the corpus's name
+check, the feature tags a case needs, the backend's dispatch (one method per
+op), the fuzzer's coverage check and the feature tags of regression files. A
+new kind of work adds one table module here (``scene_graph``, ``multibody``)
+and one handler module on the backend side.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
+from conformance.grammar.multibody import MODEL_COMMANDS
 from conformance.grammar.scene_graph import SCENE_GRAPH_COMMANDS
 from conformance.grammar.spec import Arg, ArgKind, CommandSpec, NameKind
 
@@ -23,12 +25,16 @@ __all__ = [
     "NameKind",
     "UnknownOpError",
     "declared_names",
+    "features_of",
+    "ops_of",
     "referenced_names",
     "spec",
 ]
 
 #: Every op of the scenario grammar, in the order the schema lists them.
-GRAMMAR: Mapping[str, CommandSpec] = {command.op: command for command in SCENE_GRAPH_COMMANDS}
+GRAMMAR: Mapping[str, CommandSpec] = {
+    command.op: command for command in (*SCENE_GRAPH_COMMANDS, *MODEL_COMMANDS)
+}
 
 
 class UnknownOpError(KeyError):
@@ -44,6 +50,16 @@ def spec(op: str) -> CommandSpec:
         return GRAMMAR[op]
     except KeyError:
         raise UnknownOpError(op) from None
+
+
+def ops_of(domain: str) -> tuple[str, ...]:
+    """The ops of ``domain`` (``scene_graph`` or ``model``), in grammar order."""
+    return tuple(op for op, command in GRAMMAR.items() if command.domain == domain)
+
+
+def features_of(ops: Iterable[str]) -> frozenset[str]:
+    """The feature tags a backend needs to run ``ops`` (unknown ops need none here)."""
+    return frozenset(GRAMMAR[op].feature for op in ops if op in GRAMMAR)
 
 
 def _set_names(value: Mapping[str, Sequence[str]]) -> Iterator[tuple[NameKind, str, str]]:
@@ -75,7 +91,10 @@ def referenced_names(op: str, args: Mapping[str, Any]) -> Iterator[tuple[NameKin
 
 
 def declared_names(op: str, args: Mapping[str, Any]) -> Iterator[tuple[NameKind, str, str]]:
-    """(kind, name, field) for every name the command declares."""
+    """(kind, name, field) for every name the command declares (a body's name also
+    declares its frame)."""
     for key, kind in spec(op).arg_kinds.items():
         if kind.declares is not None and key in args:
             yield kind.declares, args[key], key
+            for also in kind.also_declares:
+                yield also, args[key], key

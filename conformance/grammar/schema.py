@@ -4,7 +4,10 @@
 schema. Its shared definitions (names, sets, declarations, expectations,
 cases) are written by hand; its ``$defs.step`` is generated here from the
 grammar table: the op enum, and per op an ``if``/``then`` rule listing the
-op's arguments, the required ones and the one-of groups. ``scenario_schema()``
+op's arguments, the required ones, the one-of groups and the keys that need
+others. The feature tags (``$defs.features``) are the hand-written ones
+(``scope``, ``errors``, ``quirk``: what a case is about) followed by every
+op's tag that is not among them. ``scenario_schema()``
 is what the corpus validates against; ``python -m conformance schema --write``
 writes it back to the file, and a test asserts that the file is up to date.
 """
@@ -19,7 +22,14 @@ from typing import Any
 
 from conformance.grammar import GRAMMAR, CommandSpec
 
-__all__ = ["SCHEMA_FILE", "scenario_schema", "schema_path", "step_schema", "write_schema"]
+__all__ = [
+    "SCHEMA_FILE",
+    "feature_tags",
+    "scenario_schema",
+    "schema_path",
+    "step_schema",
+    "write_schema",
+]
 
 SCHEMA_FILE = "scenario.schema.json"
 
@@ -42,6 +52,8 @@ def _rule(command: CommandSpec) -> dict[str, Any]:
     if command.one_of:
         (group,) = command.one_of
         then["oneOf"] = [{"required": [key]} for key in group]
+    if command.needs:
+        then["dependentRequired"] = {key: list(keys) for key, keys in command.needs}
     then["properties"] = {**_COMMON, **{arg.key: arg.kind.schema for arg in command.args}}
     then["additionalProperties"] = False
     return {"if": {"properties": {"op": {"const": command.op}}}, "then": then}
@@ -62,11 +74,22 @@ def step_schema() -> dict[str, Any]:
     }
 
 
+def feature_tags(written: list[str]) -> list[str]:
+    """``written`` followed by the grammar's feature tags that it lacks, in grammar order."""
+    tags = list(written)
+    for command in GRAMMAR.values():
+        if command.feature not in tags:
+            tags.append(command.feature)
+    return tags
+
+
 @cache
 def scenario_schema() -> dict[str, Any]:
     """The whole schema: the published file's definitions with the generated step rules."""
     schema: dict[str, Any] = json.loads(schema_path().read_text(encoding="utf-8"))
     schema["$defs"]["step"] = step_schema()
+    features = schema["$defs"]["features"]["items"]
+    features["enum"] = feature_tags(features["enum"])
     return schema
 
 

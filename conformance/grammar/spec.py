@@ -3,7 +3,9 @@
 An argument's ``ArgKind`` says everything the harness derives from it: the
 JSON-schema fragment that validates it, and the kind of name it refers to or
 declares, which the corpus's name check follows (a step may only refer to
-names declared in the scene or an earlier step).
+names declared in the scene or an earlier step). A ``CommandSpec`` with
+``scoped_names`` (``add_models``) makes model-scoped names (``m::l1``,
+``m::l1/Sphere``) referable from then on, as the model it parses holds them.
 """
 
 from __future__ import annotations
@@ -24,13 +26,21 @@ class NameKind(enum.Enum):
     GEOMETRY = "geometry"
     CONTEXT = "context"
     LABEL = "label"
+    BODY = "body"
+
+
+#: A path below a case's temporary folder: relative, no ``..`` part.
+_RELATIVE_PATH = {"type": "string", "pattern": "^(?!/)(?!.*(^|/)[.][.](/|$))[^\\\\]+$"}
 
 
 class ArgKind(enum.Enum):
-    """Argument types: (schema fragment, the NameKind it refers to, the NameKind it declares).
+    """Argument types: (schema fragment, the NameKind it refers to, the NameKind it declares,
+    and the NameKinds it also declares).
 
     ``SET``, ``PAIR`` and ``DECLARATION`` refer to frames and geometries inside
-    them; ``names_in`` walks those.
+    them; ``names_in`` walks those. Two kinds never share a value (an Enum
+    would make the second an alias of the first): kinds that validate alike
+    differ in their schema's ``description``.
     """
 
     NEW_SOURCE = ({"$ref": "#/$defs/name"}, None, NameKind.SOURCE)
@@ -55,6 +65,51 @@ class ArgKind(enum.Enum):
     ANY_ROLE = ({"enum": ["proximity", "illustration", "perception", "unassigned"]}, None, None)
     ASSIGN = ({"enum": ["new", "replace"]}, None, None)
     TEXT = ({"type": "string"}, None, None)
+    # Multibody plants and model files (grammar.multibody).
+    NEW_BODY = ({"$ref": "#/$defs/name"}, None, NameKind.BODY, (NameKind.FRAME,))
+    BODY = (
+        {
+            "$ref": "#/$defs/ref",
+            "description": "A body: 'world', a declared body, or 'model::body'.",
+        },
+        NameKind.BODY,
+        None,
+    )
+    MODEL_INSTANCE = (
+        {"type": "string", "minLength": 1, "description": "A model instance name."},
+        None,
+        None,
+    )
+    MODEL_TEXT = ({"type": "string", "description": "A model file's text."}, None, None)
+    MODEL_FORMAT = ({"enum": ["urdf", "sdf", "dmd.yaml"]}, None, None)
+    FILES = (
+        {
+            "type": "object",
+            "description": "Files written to the case's package 'pkg': relative path to text.",
+            "propertyNames": _RELATIVE_PATH,
+            "additionalProperties": {"type": "string"},
+        },
+        None,
+        None,
+    )
+    PATH = ({**_RELATIVE_PATH, "description": "A path below the package 'pkg'."}, None, None)
+    BOOL = ({"type": "boolean"}, None, None)
+    JOINT_TYPE = (
+        {
+            "enum": [
+                "revolute",
+                "prismatic",
+                "weld",
+                "ball_rpy",
+                "universal",
+                "planar",
+                "quaternion_floating",
+                "rpy_floating",
+            ]
+        },
+        None,
+        None,
+    )
 
     @property
     def schema(self) -> dict[str, Any]:
@@ -67,6 +122,12 @@ class ArgKind(enum.Enum):
     @property
     def declares(self) -> NameKind | None:
         return self.value[2]  # type: ignore[no-any-return]
+
+    @property
+    def also_declares(self) -> tuple[NameKind, ...]:
+        """Further namespaces the declared name enters (a body's name is also its frame's)."""
+        also: tuple[NameKind, ...] = self.value[3] if len(self.value) > 3 else ()
+        return also
 
 
 @dataclass(frozen=True)
@@ -84,12 +145,18 @@ class CommandSpec:
 
     - ``args``: the arguments, in the order a scenario writes them;
     - ``one_of``: groups of keys of which exactly one must be given;
+    - ``needs``: (key, keys it needs): given ``key``, those are required too;
     - ``feature``: the feature tag a backend needs to run it;
     - ``since``/``until``: the Drake releases that have the call;
     - ``harness_only``: no backend executes it (``check`` only checks
       expectations); every other op is executed by the backend method of the
       same name;
-    - ``doc``: one line for the schema and the README.
+    - ``doc``: one line for the schema and the README;
+    - ``domain``: what it drives, ``scene_graph`` or ``model`` (a plant and
+      its parsers); the lockstep fuzzer drives the SceneGraph ops;
+    - ``scoped_names``: from this step on, a case may refer to model-scoped
+      names (``m::l1``, ``m::l1/Sphere``) that the corpus cannot see
+      statically (the model text holds them).
     """
 
     op: str
@@ -97,9 +164,12 @@ class CommandSpec:
     feature: str
     doc: str
     one_of: tuple[tuple[str, ...], ...] = ()
+    needs: tuple[tuple[str, tuple[str, ...]], ...] = ()
     since: str | None = None
     until: str | None = None
     harness_only: bool = False
+    domain: str = "scene_graph"
+    scoped_names: bool = False
 
     @property
     def handler(self) -> str | None:

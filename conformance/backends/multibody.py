@@ -1,0 +1,332 @@
+"""The model commands of ``grammar.multibody``: a MultibodyPlant and its parsers, one method per op.
+
+``MultibodyCommands`` is a mixin of ``SceneGraphBackend``: the plant is made
+lazily, at the case's first model step, as ``MultibodyPlant(time_step=0.0)``
+registered as a source of the backend's SceneGraph (its source joins those
+whose poses ``clone_context`` fixes). Every call uses Drake's keyword names
+(``file_contents=``, ``model_instance=``, ``frame_on_parent=``), except the
+few that pydrake binds without one (``GetBodyFromFrameId(frame_id)``).
+
+Names. A body the case adds (``add_rigid_body``) is its scenario name, and so
+is its frame; ``world`` is the world body. Every body of the plant is also
+``<model instance>::<body>`` (its frame, and its body in ``add_joint`` and
+``weld_frames``), and every plant geometry the case did not name is
+``<model instance>::<body>/<its name without the leading '<model instance>::'>``
+(``m::l1/Sphere``, ``top::inner::x/c``, ``WorldModelInstance::world/Sphere``).
+Only proximity (collision) geometries get such names: a visual one may share
+its Drake name with a collision one on the same body (names are unique per
+role), and never joins C.
+
+Files. ``add_models`` writes ``files`` to the case's temporary folder, which
+every Parser of the case knows as the package ``pkg``
+(``package://pkg/rel/path.urdf``); ``path`` is a file in it. The folder's
+path is cut out of error messages, so they read ``rel/path.urdf:3: error:
+...`` on every machine.
+"""
+
+from __future__ import annotations
+
+import shutil
+import tempfile
+import weakref
+from collections.abc import Mapping
+from pathlib import Path
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
+
+from conformance.grammar.multibody import JOINT_TYPES
+from conformance.protocol import UnknownNameError
+
+if TYPE_CHECKING:
+    from conformance.backends.scene_graph import Api
+
+__all__ = ["JOINT_CLASSES", "PACKAGE", "PLANT_SOURCE", "MultibodyCommands", "model_features"]
+
+#: The package name of a case's files.
+PACKAGE = "pkg"
+#: The key of the plant's source among the backend's sources (no scenario name can be it).
+PLANT_SOURCE = "@plant"
+#: Separators of scoped names: model instance and body, body and geometry.
+_SCOPE, _GEOMETRY = "::", "/"
+WORLD = "world"
+
+#: ``add_joint`` type → (pydrake.multibody.tree class, its frame keywords, other keywords).
+JOINT_CLASSES: Mapping[str, tuple[str, tuple[str, str], Mapping[str, Any]]] = {
+    "revolute": ("RevoluteJoint", ("frame_on_parent", "frame_on_child"), {"axis": [0.0, 0.0, 1.0]}),
+    "prismatic": (
+        "PrismaticJoint",
+        ("frame_on_parent", "frame_on_child"),
+        {"axis": [0.0, 0.0, 1.0]},
+    ),
+    "weld": ("WeldJoint", ("frame_on_parent_F", "frame_on_child_M"), {"X_FM": None}),
+    "ball_rpy": ("BallRpyJoint", ("frame_on_parent", "frame_on_child"), {}),
+    "universal": ("UniversalJoint", ("frame_on_parent", "frame_on_child"), {}),
+    "planar": ("PlanarJoint", ("frame_on_parent", "frame_on_child"), {"damping": [0.0, 0.0, 0.0]}),
+    "quaternion_floating": ("QuaternionFloatingJoint", ("frame_on_parent", "frame_on_child"), {}),
+    "rpy_floating": ("RpyFloatingJoint", ("frame_on_parent", "frame_on_child"), {}),
+}
+assert tuple(JOINT_CLASSES) == JOINT_TYPES, "the grammar's joint types and the classes differ"
+
+#: Feature tag → what an implementation must have for it (module attribute, member or None).
+_FEATURE_NEEDS: Mapping[str, tuple[str, str, str | None]] = {
+    "multibody": ("plant", "MultibodyPlant", None),
+    "parsing": ("parsing", "Parser", None),
+    "adjacency_opt_out": ("plant", "MultibodyPlant", "set_adjacent_bodies_collision_filters"),
+    "filter_groups_report": ("parsing", "Parser", "GetCollisionFilterGroups"),
+}
+
+
+def model_features(api: Api) -> frozenset[str]:
+    """The model feature tags ``api`` supports (none if it lacks the multibody modules)."""
+    features = set()
+    for tag, (module_name, class_name, member) in _FEATURE_NEEDS.items():
+        module = getattr(api, module_name)
+        cls = getattr(module, class_name, None) if module is not None else None
+        if cls is not None and api.tree is not None and (member is None or hasattr(cls, member)):
+            features.add(tag)
+    return frozenset(features)
+
+
+def _missing(api: Api, what: str) -> TypeError:
+    """A binding error (ErrorKind.BINDING): the implementation lacks ``what``."""
+    return TypeError(f"{api.name} {api.version} has no {what}")
+
+
+class MultibodyCommands:
+    """The model ops (see the module doc); mixed into ``SceneGraphBackend``."""
+
+    # Provided by SceneGraphBackend.
+    api: Api
+    scene_graph: Any
+    sources: dict[str, Any]
+    frames: dict[str, Any]
+    geometries: dict[str, Any]
+    names_by_value: dict[int, str]
+
+    def _reset_models(self) -> None:
+        """Forgets the plant, its bodies and parser, and removes the case's files."""
+        self.plant: Any = None
+        self.bodies: dict[str, Any] = {}
+        self.parser: Any = None
+        cleanup = getattr(self, "_cleanup", None)
+        if cleanup is not None:
+            cleanup()
+        self._folder: Path | None = None
+        self._cleanup: weakref.finalize[..., Any] | None = None
+
+    # ------------------------------------------------------------- helpers
+    def _module(self, name: str) -> ModuleType:
+        """The implementation's ``multibody.<name>`` module (a binding error if it lacks it)."""
+        module: ModuleType | None = getattr(self.api, name)
+        if module is None:
+            raise _missing(self.api, f"multibody.{name}")
+        return module
+
+    def _plant(self) -> Any:
+        """The case's plant, made and registered with the SceneGraph at the first call."""
+        if self.plant is None:
+            self._module("tree")
+            plant = self._module("plant").MultibodyPlant(time_step=0.0)
+            self.sources[PLANT_SOURCE] = plant.RegisterAsSourceForSceneGraph(
+                scene_graph=self.scene_graph
+            )
+            self.plant = plant
+        return self.plant
+
+    def _package(self) -> Path:
+        """The case's temporary folder (made at the first call, removed at reset)."""
+        if self._folder is None:
+            self._folder = Path(tempfile.mkdtemp(prefix="conformance-models-")).resolve()
+            self._cleanup = weakref.finalize(self, shutil.rmtree, self._folder, ignore_errors=True)
+        return self._folder
+
+    def _model_instance(self, name: str) -> Any:
+        plant = self._plant()
+        if plant.HasModelInstanceNamed(name=name):
+            return plant.GetModelInstanceByName(name=name)
+        return plant.AddModelInstance(name=name)
+
+    def _body(self, name: str) -> Any:
+        """The body ``name`` stands for: ``world``, a body the case added, or ``model::body``."""
+        plant = self._plant()
+        if name == WORLD:
+            return plant.world_body()
+        if name in self.bodies:
+            return self.bodies[name]
+        model, scope, body = name.rpartition(_SCOPE)
+        if (
+            scope
+            and plant.HasModelInstanceNamed(name=model)
+            and plant.HasBodyNamed(
+                name=body, model_instance=plant.GetModelInstanceByName(name=model)
+            )
+        ):
+            return plant.GetBodyByName(
+                name=body, model_instance=plant.GetModelInstanceByName(name=model)
+            )
+        raise UnknownNameError("body", name)
+
+    def _scoped(self, body: Any) -> str:
+        """``<model instance>::<body>``."""
+        model = self.plant.GetModelInstanceName(model_instance=body.model_instance())
+        return f"{model}{_SCOPE}{body.name()}"
+
+    def _name_plant_geometries(self) -> None:
+        """Names every plant body's frame and every unnamed plant proximity geometry (module doc).
+
+        N.B. It asks the SceneGraph, not the plant: a parse that fails while
+        registering (during transient history) leaves a proximity geometry
+        that the plant does not list for its body.
+        """
+        plant = self.plant
+        inspector = self.scene_graph.model_inspector()
+        source = self.sources[PLANT_SOURCE]
+        world = self.scene_graph.world_frame_id()
+        for frame_id in inspector.FramesForSource(source_id=source):
+            self.frames.setdefault(self._scoped(plant.GetBodyFromFrameId(frame_id)), frame_id)
+        for geometry_id in inspector.GetAllGeometryIds():
+            if (
+                geometry_id.get_value() in self.names_by_value
+                or not inspector.BelongsToSource(geometry_id=geometry_id, source_id=source)
+                or inspector.GetProximityProperties(geometry_id=geometry_id) is None
+            ):
+                continue
+            frame_id = inspector.GetFrameId(geometry_id=geometry_id)
+            body = plant.world_body() if frame_id == world else plant.GetBodyFromFrameId(frame_id)
+            scoped = self._scoped(body)
+            model = scoped[: -len(body.name())]
+            drake_name = inspector.GetName(geometry_id=geometry_id)
+            name = f"{scoped}{_GEOMETRY}{drake_name.removeprefix(model)}"
+            if name not in self.geometries:
+                self.geometries[name] = geometry_id
+                self.names_by_value[geometry_id.get_value()] = name
+
+    def _local(self, exc: Exception) -> Exception:
+        """``exc`` with the case's folder cut out of its message."""
+        if self._folder is not None and exc.args and isinstance(exc.args[0], str):
+            exc.args = (exc.args[0].replace(f"{self._folder}/", ""), *exc.args[1:])
+        return exc
+
+    # ------------------------------------------------------------ commands
+    def add_models(self, args: Mapping[str, Any]) -> list[str]:
+        parsing = self._module("parsing")
+        plant = self._plant()
+        if "prefix" in args:
+            parser = parsing.Parser(plant=plant, model_name_prefix=args["prefix"])
+        else:
+            parser = parsing.Parser(plant=plant)
+        self.parser = parser
+        if "auto_renaming" in args:
+            parser.SetAutoRenaming(value=args["auto_renaming"])
+        files = args.get("files", {})
+        if files or "path" in args:
+            folder = self._package()
+            for relative, text in files.items():
+                target = folder / relative
+                target.parent.mkdir(parents=True, exist_ok=True)
+                target.write_text(text, encoding="utf-8")
+            parser.package_map().Add(package_name=PACKAGE, package_path=str(folder))
+        try:
+            if "path" in args:
+                models = parser.AddModels(file_name=str(self._package() / args["path"]))
+            else:
+                models = parser.AddModelsFromString(
+                    file_contents=args["text"], file_type=args["format"]
+                )
+        except Exception as exc:
+            raise self._local(exc) from None
+        finally:
+            self._name_plant_geometries()
+        return [plant.GetModelInstanceName(model_instance=m) for m in models]
+
+    def collision_filter_groups(self, args: Mapping[str, Any]) -> dict[str, Any]:
+        if self.parser is None:
+            raise UnknownNameError(
+                "parser", "(collision_filter_groups needs an earlier add_models)"
+            )
+        groups = self.parser.GetCollisionFilterGroups()
+        return {
+            "groups": {name: sorted(members) for name, members in sorted(groups.groups().items())},
+            "pairs": sorted(sorted(pair) for pair in groups.exclusion_pairs()),
+        }
+
+    def add_rigid_body(self, args: Mapping[str, Any]) -> None:
+        tree = self._module("tree")
+        plant = self._plant()
+        model = args.get("model")
+        instance = tree.default_model_instance() if model is None else self._model_instance(model)
+        body = plant.AddRigidBody(
+            name=args["name"],
+            model_instance=instance,
+            M_BBo_B=tree.SpatialInertia(
+                mass=1.0,
+                p_PScm_E=[0.0, 0.0, 0.0],
+                G_SP_E=tree.UnitInertia(Ixx=1.0, Iyy=1.0, Izz=1.0),
+            ),
+        )
+        self.bodies[args["name"]] = body
+        self.frames[args["name"]] = plant.GetBodyFrameIdOrThrow(body_index=body.index())
+        self._name_plant_geometries()
+
+    def add_joint(self, args: Mapping[str, Any]) -> None:
+        class_name, (on_parent, on_child), extra = JOINT_CLASSES[args["type"]]
+        cls = getattr(self._module("tree"), class_name, None)
+        if cls is None:
+            raise _missing(self.api, f"multibody.tree.{class_name}")
+        keywords = {
+            key: self.api.math.RigidTransform() if value is None else value
+            for key, value in extra.items()
+        }
+        joint = cls(
+            name=args["name"],
+            **{
+                on_parent: self._body(args["parent"]).body_frame(),
+                on_child: self._body(args["child"]).body_frame(),
+            },
+            **keywords,
+        )
+        self._plant().AddJoint(joint=joint)
+
+    def weld_frames(self, args: Mapping[str, Any]) -> None:
+        self._plant().WeldFrames(
+            frame_on_parent_F=self._body(args["parent"]).body_frame(),
+            frame_on_child_M=self._body(args["child"]).body_frame(),
+            X_FM=self.api.math.RigidTransform(),
+        )
+
+    def _register(self, args: Mapping[str, Any], geometry_id: Any) -> None:
+        self.geometries[args["name"]] = geometry_id
+        self.names_by_value[geometry_id.get_value()] = args["name"]
+
+    def register_collision_geometry(self, args: Mapping[str, Any]) -> None:
+        plant = self._plant()
+        geometry_id = plant.RegisterCollisionGeometry(
+            body=self._body(args["body"]),
+            X_BG=self.api.math.RigidTransform(),
+            shape=self.api.geometry.Sphere(radius=0.1),
+            name=args.get("drake_name", args["name"]),
+            coulomb_friction=self._module("plant").CoulombFriction(
+                static_friction=1.0, dynamic_friction=1.0
+            ),
+        )
+        self._register(args, geometry_id)
+
+    def register_visual_geometry(self, args: Mapping[str, Any]) -> None:
+        plant = self._plant()
+        geometry_id = plant.RegisterVisualGeometry(
+            body=self._body(args["body"]),
+            X_BG=self.api.math.RigidTransform(),
+            shape=self.api.geometry.Sphere(radius=0.1),
+            name=args.get("drake_name", args["name"]),
+            diffuse_color=[0.5, 0.5, 0.5, 1.0],
+        )
+        self._register(args, geometry_id)
+
+    def set_adjacent_filters(self, args: Mapping[str, Any]) -> None:
+        plant = self._plant()
+        if not hasattr(plant, "set_adjacent_bodies_collision_filters"):
+            raise _missing(self.api, "MultibodyPlant.set_adjacent_bodies_collision_filters")
+        plant.set_adjacent_bodies_collision_filters(value=args["value"])
+
+    def finalize(self, args: Mapping[str, Any]) -> None:
+        self._plant().Finalize()

@@ -1,0 +1,124 @@
+"""The model commands: a MultibodyPlant on the case's SceneGraph, and the model files it parses.
+
+One row per op, as in ``grammar.scene_graph``; ``backends.multibody`` has one
+method per op. The plant is made at the first of these steps:
+``MultibodyPlant(time_step=0.0)``, registered as a source of the case's
+SceneGraph. They mix freely with the SceneGraph ops, so a case can declare
+filters on top of a parsed model, by the scoped names of its bodies
+(``m::l1``, a frame) and geometries (``m::l1/Sphere``).
+
+Feature tags:
+
+==========================  ============================================  =======
+tag                         ops                                           since
+==========================  ============================================  =======
+``multibody``               bodies, joints, welds, geometry, Finalize     1.12
+``parsing``                 ``add_models`` (URDF, SDFormat, directives)   1.12
+``adjacency_opt_out``       ``set_adjacent_filters``                      1.13
+``filter_groups_report``    ``collision_filter_groups``                   1.40
+==========================  ============================================  =======
+"""
+
+from __future__ import annotations
+
+from conformance.grammar.spec import Arg, ArgKind, CommandSpec
+
+__all__ = ["JOINT_TYPES", "MODEL_COMMANDS"]
+
+K = ArgKind
+
+#: The joint types of ``add_joint`` (the pydrake class of each is in ``backends.multibody``).
+JOINT_TYPES: tuple[str, ...] = tuple(K.JOINT_TYPE.schema["enum"])
+
+_GEOMETRY_ARGS = (
+    Arg("name", K.NEW_GEOMETRY, True),
+    Arg("body", K.BODY, True),
+    Arg("drake_name", K.TEXT),
+)
+
+MODEL_COMMANDS: tuple[CommandSpec, ...] = (
+    CommandSpec(
+        "add_models",
+        (
+            Arg("text", K.MODEL_TEXT),
+            Arg("path", K.PATH),
+            Arg("format", K.MODEL_FORMAT),
+            Arg("prefix", K.MODEL_INSTANCE),
+            Arg("auto_renaming", K.BOOL),
+            Arg("files", K.FILES),
+        ),
+        "parsing",
+        "A new Parser(plant=[, model_name_prefix=]): AddModelsFromString(file_contents=, "
+        "file_type=) or AddModels(file_name=); ``files`` form the package 'pkg'; "
+        "returns the new model instances' names",
+        one_of=(("text", "path"),),
+        needs=(("text", ("format",)),),
+        domain="model",
+        scoped_names=True,
+    ),
+    CommandSpec(
+        "collision_filter_groups",
+        (),
+        "filter_groups_report",
+        "The last add_models Parser's GetCollisionFilterGroups(): returns "
+        '{"groups": {name: sorted members}, "pairs": sorted [a, b] lists}',
+        since="1.40",
+        domain="model",
+    ),
+    CommandSpec(
+        "add_rigid_body",
+        (Arg("name", K.NEW_BODY, True), Arg("model", K.MODEL_INSTANCE)),
+        "multibody",
+        "MultibodyPlant.AddRigidBody in ``model`` (made by AddModelInstance if new; default: "
+        "the default model instance); ``name`` is also the body's frame",
+        domain="model",
+    ),
+    CommandSpec(
+        "add_joint",
+        (
+            Arg("name", K.TEXT, True),
+            Arg("type", K.JOINT_TYPE, True),
+            Arg("parent", K.BODY, True),
+            Arg("child", K.BODY, True),
+        ),
+        "multibody",
+        "MultibodyPlant.AddJoint of a new joint of ``type`` between the bodies' frames",
+        domain="model",
+    ),
+    CommandSpec(
+        "weld_frames",
+        (Arg("parent", K.BODY, True), Arg("child", K.BODY, True)),
+        "multibody",
+        "MultibodyPlant.WeldFrames of the bodies' frames",
+        domain="model",
+    ),
+    CommandSpec(
+        "register_collision_geometry",
+        _GEOMETRY_ARGS,
+        "multibody",
+        "MultibodyPlant.RegisterCollisionGeometry: a sphere on ``body`` (the world body: anchored)",
+        domain="model",
+    ),
+    CommandSpec(
+        "register_visual_geometry",
+        _GEOMETRY_ARGS,
+        "multibody",
+        "MultibodyPlant.RegisterVisualGeometry: a sphere on ``body``",
+        domain="model",
+    ),
+    CommandSpec(
+        "set_adjacent_filters",
+        (Arg("value", K.BOOL, True),),
+        "adjacency_opt_out",
+        "MultibodyPlant.set_adjacent_bodies_collision_filters",
+        since="1.13",
+        domain="model",
+    ),
+    CommandSpec(
+        "finalize",
+        (),
+        "multibody",
+        "MultibodyPlant.Finalize: adjacent bodies and welded subgraphs are filtered",
+        domain="model",
+    ),
+)
