@@ -46,6 +46,15 @@ from reimpl.geometry.shape import Shape
 from reimpl.math import RigidTransform
 from reimpl.multibody import _link_joint_graph as graph
 from reimpl.multibody._default_filters import default_collision_filters
+from reimpl.multibody._errors import (
+    DemandFailedError,
+    DuplicateNameError,
+    FinalizedError,
+    MultibodyPlantError,
+    NotFinalizedError,
+    NotFoundError,
+    TopologyError,
+)
 from reimpl.multibody.tree import (
     BodyIndex,
     Frame,
@@ -93,7 +102,7 @@ class CoulombFriction:
 
         def set_coefficients(static_friction: float, dynamic_friction: float) -> None:
             if dynamic_friction > static_friction:
-                raise RuntimeError(
+                raise MultibodyPlantError(
                     f"The given dynamic friction ({dynamic_friction:g}) is greater than the "
                     f"given static friction ({static_friction:g}); dynamic friction must be "
                     "less than or equal to static friction."
@@ -125,19 +134,16 @@ class CoulombFriction:
 register_value_type(CoulombFriction, "drake::multibody::CoulombFriction<double>")
 
 
-def _post_finalize_error(method: str) -> RuntimeError:
-    return RuntimeError(
+def _post_finalize_error(method: str) -> FinalizedError:
+    return FinalizedError(
         f"Post-finalize calls to '{method}()' are not allowed; calls to this method must "
         "happen before Finalize()."
     )
 
 
-def _demand_failed(method: str, condition: str) -> RuntimeError:
-    """What reimpl raises where Drake's DRAKE_DEMAND aborts the process.
-
-    N.B. Divergence by necessity: pydrake 1.51.1 prints this text and aborts.
-    """
-    return RuntimeError(f"Failure in {method}(): condition '{condition}' failed.")
+def _demand_failed(method: str, condition: str) -> DemandFailedError:
+    """What reimpl raises where pydrake 1.51.1 prints this text and aborts."""
+    return DemandFailedError(f"Failure in {method}(): condition '{condition}' failed.")
 
 
 class MultibodyPlant(LeafSystem):
@@ -183,7 +189,7 @@ class MultibodyPlant(LeafSystem):
 
     def _new_context(self) -> Context:
         if not self._finalized:
-            raise RuntimeError(
+            raise NotFinalizedError(
                 "MultibodyPlant cannot SetDefaultParameters or CreateDefaultContext until "
                 "after MultibodyPlant::Finalize() has been called."
             )
@@ -193,7 +199,7 @@ class MultibodyPlant(LeafSystem):
     def RegisterAsSourceForSceneGraph(self, scene_graph: SceneGraph) -> SourceId:
         """Registers this plant (by its name) as a source; every body so far gets a frame."""
         if self._finalized:
-            raise RuntimeError(
+            raise FinalizedError(
                 "This MultibodyPlant is finalized already; RegisterAsSourceForSceneGraph() "
                 "must be called before Finalize()."
             )
@@ -242,7 +248,7 @@ class MultibodyPlant(LeafSystem):
     # ----------------------------------------------------- model instances
     def AddModelInstance(self, name: str) -> ModelInstanceIndex:
         if self._finalized:
-            raise RuntimeError(
+            raise FinalizedError(
                 "This MultibodyTree is finalized already. Therefore adding more model "
                 "instances is not allowed. See documentation for Finalize() for details."
             )
@@ -252,7 +258,7 @@ class MultibodyPlant(LeafSystem):
 
     def _check_new_instance_name(self, name: str) -> None:
         if name in self._instance_names:
-            raise RuntimeError(
+            raise DuplicateNameError(
                 f"This model already contains a model instance named '{name}'. Model instance "
                 "names must be unique within a given model."
             )
@@ -266,7 +272,7 @@ class MultibodyPlant(LeafSystem):
     def GetModelInstanceByName(self, name: str) -> ModelInstanceIndex:
         if name not in self._instance_names:
             known = ", ".join(f"'{n}'" for n in sorted(self._instance_names))
-            raise RuntimeError(
+            raise NotFoundError(
                 f"GetModelInstanceByName(): There is no model instance named '{name}'. The "
                 f"current model instances are {known}."
             )
@@ -278,7 +284,7 @@ class MultibodyPlant(LeafSystem):
     def _instance(self, model_instance: ModelInstanceIndex) -> int:
         index = int(model_instance)
         if not 0 <= index < len(self._instance_names):
-            raise RuntimeError(f"There is no model instance id {index} in the model.")
+            raise NotFoundError(f"There is no model instance id {index} in the model.")
         return index
 
     def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
@@ -332,7 +338,7 @@ class MultibodyPlant(LeafSystem):
     def _add_rigid_body_to_default(self, name: str, M_BBo_B: SpatialInertia) -> RigidBody:
         self._check_not_finalized("AddRigidBody")
         if len(self._instance_names) > _FIRST_SCOPED_INSTANCE:
-            raise RuntimeError(
+            raise MultibodyPlantError(
                 "This model has more model instances than the default.  Please call "
                 "AddRigidBody with an explicit model instance."
             )
@@ -344,12 +350,12 @@ class MultibodyPlant(LeafSystem):
         self._check_not_finalized("AddRigidBody")
         index = int(model_instance)
         if index == int(world_model_instance()):
-            raise RuntimeError(
+            raise MultibodyPlantError(
                 "AddLink(): Model instance index 0 is reserved for the World link.  World is "
                 "always predefined and is named 'world'."
             )
         if not 0 <= index < len(self._instance_names):
-            raise RuntimeError("Invalid model instance specified.")
+            raise NotFoundError("Invalid model instance specified.")
         # N.B. Measured: a body may share its name with a FixedOffsetFrame.
         self._check_unique("body", self._bodies, name, model_instance)
         return self._add_body(RigidBody(name, model_instance, M_BBo_B))
@@ -370,7 +376,7 @@ class MultibodyPlant(LeafSystem):
         self, kind: str, elements: Sequence[_E], name: str, model_instance: ModelInstanceIndex
     ) -> None:
         if any(e.name() == name and e.model_instance() == model_instance for e in elements):
-            raise RuntimeError(
+            raise DuplicateNameError(
                 f"Model instance '{self.GetModelInstanceName(model_instance)}' already contains "
                 f"a {kind} named '{name}'. {kind.capitalize()} names must be unique within a "
                 "given model."
@@ -395,7 +401,7 @@ class MultibodyPlant(LeafSystem):
     def _in_range(self, kind: str, index: Any, elements: Sequence[object]) -> int:
         value = int(index)
         if not 0 <= value < len(elements):
-            raise RuntimeError(
+            raise NotFoundError(
                 f"The given {kind}({value}) is out of bounds (must be less than {len(elements)})"
             )
         return value
@@ -403,12 +409,12 @@ class MultibodyPlant(LeafSystem):
     # ---------------------------------------------------------------- frames
     def AddFrame(self, frame: Frame) -> Frame:
         if self._finalized:
-            raise RuntimeError(
+            raise FinalizedError(
                 "This MultibodyTree is finalized already. Therefore adding more frames is not "
                 "allowed. See documentation for Finalize() for details."
             )
         if frame.body()._plant is not self:
-            raise RuntimeError(
+            raise TopologyError(
                 f"AddFrame(): frame '{frame.name()}' is attached to a body of another plant."
             )
         self._check_unique("frame", self._frames, frame.name(), frame.model_instance())
@@ -432,18 +438,18 @@ class MultibodyPlant(LeafSystem):
         self._check_not_finalized("AddJoint")
         parent, child = joint.parent_body(), joint.child_body()
         if parent._plant is not self or child._plant is not self:
-            raise RuntimeError(
+            raise TopologyError(
                 f"AddJoint(): can't add joint {joint.name()} because bodies {parent.name()} "
                 f"and {child.name()} are from different MultibodyPlants."
             )
         if parent is child:
-            raise RuntimeError(
+            raise TopologyError(
                 f"AddJoint(): joint {joint.name()} would connect body {parent.name()} to itself."
             )
         self._check_unique("joint", self._joints, joint.name(), joint.model_instance())
         for other in self._joints:
             if {other.parent_body(), other.child_body()} == {parent, child}:
-                raise RuntimeError(
+                raise TopologyError(
                     f"AddJoint(): This LinkJointGraph already has joint '{other.name()}' (model "
                     f"instance {int(other.model_instance())}) connecting link "
                     f"'{other.parent_body().name()}' to link '{other.child_body().name()}'. "
@@ -558,7 +564,7 @@ class MultibodyPlant(LeafSystem):
         if found:
             if len(found) > 1:
                 instances = ", ".join(self.GetModelInstanceName(e.model_instance()) for e in found)
-                raise RuntimeError(
+                raise NotFoundError(
                     f"{method}(): A {kind} named '{name}' appears in multiple model instances "
                     f"({instances}); you must provide a model_instance argument to disambiguate."
                 )
@@ -566,13 +572,13 @@ class MultibodyPlant(LeafSystem):
         elsewhere = sorted(self._named(elements, name, None), key=_instance_order)
         if elsewhere and model_instance is not None:
             instances = ", ".join(self.GetModelInstanceName(e.model_instance()) for e in elsewhere)
-            raise RuntimeError(
+            raise NotFoundError(
                 f"{method}(): There is no {kind} named '{name}' in the model instance named "
                 f"'{self.GetModelInstanceName(model_instance)}', but one does exist in other "
                 f"model instances ({instances})."
             )
         if not elements:
-            raise RuntimeError(f"{method}(): There are no {kind}s defined in the model")
+            raise NotFoundError(f"{method}(): There are no {kind}s defined in the model")
         valid = []
         for index, instance_name in enumerate(self._instance_names):
             names = sorted(e.name() for e in elements if int(e.model_instance()) == index)
@@ -580,7 +586,7 @@ class MultibodyPlant(LeafSystem):
                 valid.append(
                     f"valid names in model instance '{instance_name}' are: {', '.join(names)}"
                 )
-        raise RuntimeError(
+        raise NotFoundError(
             f"{method}(): There is no {kind} named '{name}' anywhere in the model "
             f"({'; '.join(valid)})"
         )
@@ -732,7 +738,7 @@ class MultibodyPlant(LeafSystem):
         """Registers ``instance`` (renamed to its scoped name) on F(body); no role yet."""
         scene_graph, source_id = self._registered_scene_graph("RegisterGeometry")
         if body._plant is not self:
-            raise RuntimeError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
+            raise NotFoundError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
         instance.set_name(self._scoped(body.model_instance(), instance.name()))
         index = int(body.index())
         if index == graph.WORLD:
@@ -764,7 +770,7 @@ class MultibodyPlant(LeafSystem):
         body = self.get_body(body_index)
         frame_id = self._body_frame_ids.get(int(body_index))
         if frame_id is None:
-            raise RuntimeError(f"Body '{body.name()}' does not have geometry registered with it.")
+            raise NotFoundError(f"Body '{body.name()}' does not have geometry registered with it.")
         return frame_id
 
     def CollectRegisteredGeometries(self, bodies: Sequence[RigidBody]) -> GeometrySet:
@@ -796,7 +802,7 @@ class MultibodyPlant(LeafSystem):
         for bodies in graph.welded_subgraphs(len(self._bodies), self._edges()):
             if index in bodies:
                 return [self._bodies[b] for b in bodies]
-        raise RuntimeError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
+        raise NotFoundError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
 
     # -------------------------------------------------------------- filters
     def set_adjacent_bodies_collision_filters(self, value: bool) -> None:
@@ -833,10 +839,10 @@ class MultibodyPlant(LeafSystem):
     def Finalize(self) -> None:
         """Adds the floating joints, then the default collision filters; seals the model."""
         if self._finalized:
-            raise RuntimeError("MultibodyTreeSystem::Finalize(): repeated calls not allowed.")
+            raise FinalizedError("MultibodyTreeSystem::Finalize(): repeated calls not allowed.")
         n = len(self._bodies)
         if graph.has_loop(n, self._edges()):
-            raise RuntimeError(
+            raise TopologyError(
                 "The bodies and joints of this system form one or more loops in the system "
                 "graph. Drake currently does not support automatic modeling of such systems; "
                 "however, they can be modeled with some input changes. See "
@@ -866,7 +872,7 @@ class MultibodyPlant(LeafSystem):
         if joint.type_name() in _REVERSIBLE_JOINT_TYPES:
             return
         kind = joint.type_name()
-        raise RuntimeError(
+        raise TopologyError(
             f"MultibodyPlant::Finalize(): parent/child ordering for {kind} joint "
             f"{joint.name()} in model instance {self.GetModelInstanceName(joint.model_instance())} "
             "would have to be reversed to make a tree-structured model for this system. "

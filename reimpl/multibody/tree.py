@@ -25,6 +25,7 @@ import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl.math import RigidTransform
+from reimpl.multibody._errors import MultibodyPlantError
 
 if TYPE_CHECKING:
     from reimpl.multibody.plant import MultibodyPlant
@@ -364,7 +365,9 @@ class _Element:
 
     def GetParentPlant(self) -> MultibodyPlant:
         if self._plant is None:
-            raise RuntimeError(f"{type(self).__name__} '{self._name}' was not added to a plant")
+            raise MultibodyPlantError(
+                f"{type(self).__name__} '{self._name}' was not added to a plant"
+            )
         return self._plant
 
     def scoped_name(self) -> ScopedName:
