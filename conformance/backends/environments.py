@@ -11,10 +11,12 @@ Drake           Python
 1.52 - 1.58     3.12, 3.13
 ==============  =====================
 
-Releases up to 1.23 also need ``numpy<2`` (``EXTRA_REQUIREMENTS``): their
-wheels ask for any numpy, and under numpy 2 ``pydrake.multibody`` fails to
-import ("initialization failed": ``ndarray.itemset`` is gone), while
-``pydrake.geometry`` still works.
+Releases up to 1.30 also need ``numpy<2`` (``EXTRA_REQUIREMENTS``): their
+wheels ask for any numpy, were built against numpy 1, and under numpy 2
+``pydrake.multibody`` fails to import up to 1.23 ("initialization failed":
+``ndarray.itemset`` is gone) and 1.24-1.30 crash (SIGSEGV) on the first
+Eigen vector argument, e.g. ``RevoluteJoint(axis=...)``; ``pydrake.geometry``
+works either way. 1.31 and later run under numpy 2 (all measured).
 
 ``find_python`` looks for such an interpreter on PATH (``python3.11`` ...)
 and in pyenv's versions, and checks each candidate by running it; a given
@@ -64,7 +66,7 @@ PYTHONS_FOR: tuple[tuple[str, str, tuple[str, ...]], ...] = (
 )
 
 #: (since, until) Drake release → what pip must install besides ``drake==X`` (see the module doc).
-EXTRA_REQUIREMENTS: tuple[tuple[str, str, tuple[str, ...]], ...] = (("1.12", "1.23", ("numpy<2",)),)
+EXTRA_REQUIREMENTS: tuple[tuple[str, str, tuple[str, ...]], ...] = (("1.12", "1.30", ("numpy<2",)),)
 
 #: Marks an environment whose install finished; it holds the requirements installed.
 _COMPLETE = ".complete"
