@@ -217,6 +217,8 @@ class MultibodyCommands:
             parser = parsing.Parser(plant=plant)
         self.parser = parser
         if "auto_renaming" in args:
+            if not hasattr(parser, "SetAutoRenaming"):  # Drake < 1.15
+                raise _missing(self.api, "Parser.SetAutoRenaming")
             parser.SetAutoRenaming(value=args["auto_renaming"])
         files = args.get("files", {})
         if files or "path" in args:
