@@ -126,8 +126,8 @@ def test_the_schema_has_a_rule_for_each_model_op_and_their_feature_tags() -> Non
     assert set(schema["$defs"]["features"]["items"]["enum"]) >= MODEL_FEATURES
 
 
-def test_pydrake_since_1_40_has_every_model_feature() -> None:
-    assert parse_version(backend_id(PYDRAKE).version) >= (1, 40)
+def test_pydrake_since_1_31_has_every_model_feature() -> None:
+    assert parse_version(backend_id(PYDRAKE).version) >= (1, 31)
     assert PYDRAKE.features() >= MODEL_FEATURES
 
 

@@ -15,7 +15,7 @@ tag                         ops                                           since
 ``multibody``               bodies, joints, welds, geometry, Finalize     1.12
 ``parsing``                 ``add_models`` (URDF, SDFormat, directives)   1.12
 ``adjacency_opt_out``       ``set_adjacent_filters``                      1.13
-``filter_groups_report``    ``collision_filter_groups``                   1.40
+``filter_groups_report``    ``collision_filter_groups``                   1.31
 ==========================  ============================================  =======
 """
 
@@ -62,7 +62,7 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
         "filter_groups_report",
         "The last add_models Parser's GetCollisionFilterGroups(): returns "
         '{"groups": {name: sorted members}, "pairs": sorted [a, b] lists}',
-        since="1.40",
+        since="1.31",
         domain="model",
     ),
     CommandSpec(
