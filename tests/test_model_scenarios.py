@@ -15,6 +15,7 @@ import pytest
 
 from conformance.backends.environments import cache_dir
 from conformance.backends.loader import load_backend
+from conformance.backends.multibody import JOINT_CLASSES
 from conformance.backends.scene_graph import SceneGraphBackend
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 from conformance.cli.main import main
@@ -80,6 +81,10 @@ def test_reimpl_agrees_with_pydrake_on_the_model_case(case: Case) -> None:
 def test_every_model_case_needs_the_features_of_its_ops() -> None:
     for case in CASES:
         assert {GRAMMAR[step.op].feature for step in case.steps} <= case.features
+
+
+def test_the_backend_has_a_joint_class_for_every_joint_type_of_the_grammar() -> None:
+    assert tuple(JOINT_CLASSES) == JOINT_TYPES
 
 
 def test_every_joint_type_and_model_op_is_exercised_by_the_corpus() -> None:
