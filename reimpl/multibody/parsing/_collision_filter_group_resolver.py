@@ -1,0 +1,132 @@
+"""Collision filter groups: from declared names to excluded geometry pairs.
+
+One resolver serves one parse (``Parser.AddModels*`` and everything it
+includes). Parsers declare groups and pairs as they read; ``resolve()`` runs
+at the end of the parse, before Finalize. In formulas, with direct(G) the
+bodies a group names itself and G → H meaning "G lists H as a member_group":
+
+    members(G) = ⋃ { direct(H) : H = G or H reachable from G by → }
+
+    (a, b) is excluded  iff  ∃ (G, H) ∈ pairs : (a ∈ G ∧ b ∈ H) ∨ (a ∈ H ∧ b ∈ G)
+
+where a and b stand for every geometry of the member bodies. → may have
+cycles: every group of a cycle gets the union of the cycle's members.
+
+Names are fully scoped: a name read inside model instance ``top::inner``
+means ``top::inner::<name>``. A group's own name must not be scoped. Bodies
+must come from model instances this parse created (the parse-scope rule);
+groups must be declared in this parse, but a pair or member_group may name a
+group declared later. The checks and messages are Drake 1.51.1's (measured):
+
+* at declaration, in this order: ``group name 'M::x::g' cannot be a scoped
+  name``, ``group 'M::g' has already been defined``, ``group 'M::g' has no
+  members``, then per body in sorted order ``body name 'N' refers to a model
+  outside the current parse`` or ``body with name 'N' not found``;
+* at resolve, without a source: ``collision filter group with name 'N' not
+  found``, first for member groups (sorted), then for pairs (sorted).
+
+Each pair is applied with ``plant._exclude_collision_geometries_with_collision_
+filter_group_pair``, whose equal names mean ExcludeWithin, else ExcludeBetween.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from reimpl.geometry import GeometrySet
+from reimpl.multibody.parsing import _scoped_name as scoped
+from reimpl.multibody.parsing._collision_filter_groups import CollisionFilterGroups
+from reimpl.multibody.parsing._diagnostics import Diagnostics
+
+__all__ = ["CollisionFilterGroupResolver"]
+
+
+class CollisionFilterGroupResolver:
+    """Collects one parse's groups and pairs, then applies them to the plant."""
+
+    def __init__(self, plant: Any) -> None:
+        self._plant = plant
+        #: Model instances with a smaller index existed before this parse.
+        self._first_new_instance = plant.num_model_instances()
+        #: group name -> {body name: body}, both fully scoped
+        self._bodies: dict[str, dict[str, Any]] = {}
+        #: group name -> the groups it names as member_group
+        self._member_groups: dict[str, set[str]] = {}
+        self._pairs: set[tuple[str, str]] = set()
+
+    def add_group(
+        self,
+        diagnostics: Diagnostics,
+        line: int | None,
+        *,
+        group_name: str,
+        body_names: set[str],
+        member_group_names: set[str],
+        scope: str,
+    ) -> None:
+        """Declares group ``scope::group_name``; names are relative to ``scope``."""
+        name = scoped.join(scope, group_name)
+        if scoped.is_scoped(group_name):
+            raise diagnostics.error(f"group name '{name}' cannot be a scoped name", line)
+        if name in self._bodies:
+            raise diagnostics.error(f"group '{name}' has already been defined", line)
+        if not body_names and not member_group_names:
+            raise diagnostics.error(f"group '{name}' has no members", line)
+        bodies = {}
+        for body_name in sorted(scoped.join(scope, b) for b in body_names):
+            bodies[body_name] = self._find_body(diagnostics, line, body_name)
+        self._bodies[name] = bodies
+        self._member_groups[name] = {scoped.join(scope, g) for g in member_group_names}
+
+    def add_pair(self, group_a: str, group_b: str, scope: str) -> None:
+        """Declares that the two groups (relative to ``scope``) do not collide."""
+        a, b = sorted((scoped.join(scope, group_a), scoped.join(scope, group_b)))
+        self._pairs.add((a, b))
+
+    def _find_body(self, diagnostics: Diagnostics, line: int | None, name: str) -> Any:
+        plant = self._plant
+        instance_name, body_name = scoped.split(name)
+        if instance_name and plant.HasModelInstanceNamed(instance_name):
+            instance = plant.GetModelInstanceByName(instance_name)
+            if int(instance) < self._first_new_instance:
+                raise diagnostics.error(
+                    f"body name '{name}' refers to a model outside the current parse", line
+                )
+            if plant.HasBodyNamed(body_name, instance):
+                return plant.GetBodyByName(body_name, instance)
+        raise diagnostics.error(f"body with name '{name}' not found", line)
+
+    def _members(self, group: str) -> dict[str, Any]:
+        """members(G): the bodies of G and of every group reachable from G."""
+        seen, stack, bodies = {group}, [group], {}
+        while stack:
+            current = stack.pop()
+            bodies.update(self._bodies[current])
+            for member_group in self._member_groups[current] - seen:
+                seen.add(member_group)
+                stack.append(member_group)
+        return dict(sorted(bodies.items()))
+
+    def resolve(self) -> CollisionFilterGroups:
+        """Checks every group name, applies the pairs, and reports what was declared."""
+        unlocated = Diagnostics(None)
+        referenced = set().union(*self._member_groups.values())
+        for name in [*sorted(referenced), *(n for pair in sorted(self._pairs) for n in pair)]:
+            if name not in self._bodies:
+                raise unlocated.error(f"collision filter group with name '{name}' not found")
+        members = {group: self._members(group) for group in sorted(self._bodies)}
+        for a, b in sorted(self._pairs):
+            self._plant._exclude_collision_geometries_with_collision_filter_group_pair(
+                (a, self._geometry_set(members[a].values())),
+                (b, self._geometry_set(members[b].values())),
+            )
+        report = CollisionFilterGroups()
+        for group, bodies in members.items():
+            report.AddGroup(group, set(bodies))
+        for pair in sorted(self._pairs):
+            report.AddExclusionPair(pair)
+        return report
+
+    def _geometry_set(self, bodies: Any) -> GeometrySet:
+        frame_ids = [self._plant.GetBodyFrameIdOrThrow(body.index()) for body in bodies]
+        return GeometrySet(frame_ids=list(dict.fromkeys(frame_ids)))

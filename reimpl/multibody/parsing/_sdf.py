@@ -1,0 +1,401 @@
+"""SDFormat: each ``<model>`` (nested ones too) becomes a model instance (Drake 1.51.1, measured).
+
+A model ``top`` holding ``<model name="inner">`` gives instances ``top`` and
+``top::inner``; an ``<include>`` (a URI through the package map, ``<name>``
+overriding the included model's) is a nested model too, SDFormat or URDF. A
+``<world>`` holds top-level models. Per model, in Drake's order: nested models
+and includes, links (geometry only with a SceneGraph), the ``__model__`` frame
+on the canonical link, joints, ``<frame>``s, the welds of a ``<static>``
+model (``sdformat_model_static_world_welds_to_<link>``), then groups.
+
+Joint types → Drake kinds: fixed → weld, revolute and continuous → revolute,
+prismatic, ball → ball_rpy, universal, screw. A joint's frame on the child is
+a FixedOffsetFrame ``<joint>_child``; on the parent, the parent body's frame,
+unless a ``<pose>`` may move it (then ``<joint>_parent``). Parent and child may
+name links or frames, scoped into nested models (``inner::x``).
+
+Collision filter groups (only with a SceneGraph) hold text children::
+
+    <drake:collision_filter_group name="G" ignore="false">
+      <drake:member>L</drake:member> <drake:member_group>H</drake:member_group>
+      <drake:ignored_collision_filter_group>K</drake:ignored_collision_filter_group>
+    </drake:collision_filter_group>
+
+``ignore`` is an SDFormat bool (``true``/``1``, any case). Names are relative
+to the model; the resolver's errors carry the ``<model>`` line. The old
+unprefixed ``<collision_filter_group>`` is an SDFormat error (see _sdf_document).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+from typing import Any
+
+from reimpl.math import RigidTransform
+from reimpl.multibody.parsing import _scoped_name as scoped
+from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
+from reimpl.multibody.parsing._model_builder import (
+    JOINT_TYPES,
+    GeometryNamer,
+    JointSpec,
+    register_geometry,
+)
+from reimpl.multibody.parsing._package_map import UriError, resolve_uri
+from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
+from reimpl.multibody.parsing._sdf_document import check_document, scoped_name_error, xml_path
+from reimpl.multibody.parsing._sdf_geometry import read_shape_spec, text_of, values_of
+from reimpl.multibody.parsing._xml import XmlElement, XmlSyntaxError, children, parse_xml
+from reimpl.multibody.tree import FixedOffsetFrame
+
+__all__ = ["read_sdf"]
+
+_LOG = logging.getLogger("drake")
+_JOINT_KINDS = {
+    "fixed": "weld",
+    "revolute": "revolute",
+    "continuous": "revolute",
+    "prismatic": "prismatic",
+    "ball": "ball_rpy",
+    "universal": "universal",
+    "screw": "screw",
+}
+_UNSUPPORTED_JOINTS = {"gearbox", "revolute2"}
+_NEEDS_AXIS = {"revolute", "continuous", "prismatic", "screw"}
+_GROUP = "drake:collision_filter_group"
+#: element -> the drake: children Drake reads there
+_DRAKE_ELEMENTS = {
+    "model": {_GROUP, "drake:joint", "drake:linear_bushing_rpy", "drake:ball_constraint"},
+    "link": set(),
+    "world": set(),
+    "sdf": set(),
+}
+_BOOLS = {"true": True, "1": True, "false": False, "0": False}
+
+
+def read_sdf(
+    context: ParseContext, source: ModelSource, model_name: str | None, parent_scope: str
+) -> list[Any]:
+    """Adds the model (or the world's models) in ``source``; returns their instances."""
+    diagnostics = source.diagnostics(context.strict)
+    try:
+        root = parse_xml(source.text)
+    except XmlSyntaxError as exc:
+        raise Diagnostics(None).error(
+            f"Error parsing XML from string: Error={exc.name} ErrorID={exc.error_id} "
+            f"(0x{exc.error_id:x}) Line number={exc.line}"
+        ) from None
+    if root.tag != "sdf" or root.get("version") is None:
+        raise Diagnostics(None).error(f"Unable to read SDF string: {source.text}")
+    check_document(root, source.label or source.path or "<data-string>")
+    if model_name is not None and "::" in model_name:
+        for model in children(root, "model"):
+            model.set("name", model_name)
+            raise scoped_name_error(model)
+    document = _Document(context, source, diagnostics)
+    document.parents = {child: parent for parent in root.iter() for child in parent}  # type: ignore[misc]
+    return document.add(root, model_name, parent_scope)
+
+
+class _Document:
+    def __init__(self, context: ParseContext, source: ModelSource, diagnostics: Diagnostics):
+        self.context, self.source, self.diagnostics = context, source, diagnostics
+        self.plant = context.plant
+        self.instances: list[Any] = []
+        #: scoped <frame> (or __model__) name -> the scoped name it is attached to
+        self.attached_to: dict[str, str] = {}
+        self.parents: dict[XmlElement, XmlElement] = {}
+
+    def _xml_path(self, element: XmlElement) -> str:
+        chain: list[XmlElement] = []
+        while element in self.parents:
+            element = self.parents[element]
+            chain.insert(0, element)
+        return xml_path(chain[-1], chain[:-1]) if chain else ""
+
+    def _check_drake_elements(self, element: XmlElement) -> None:
+        for child in element:
+            tag = child.tag
+            if ":" not in tag or tag in _DRAKE_ELEMENTS.get(element.tag, {tag}):
+                continue
+            message = f"SDFormat element in {element.tag}: {tag}"
+            if tag.startswith("drake:"):
+                raise self.diagnostics.error(f"Unsupported {message}")
+            self.diagnostics.warning(f"Ignoring unsupported {message}")
+
+    def add(self, root: XmlElement, model_name: str | None, scope: str) -> list[Any]:
+        self._check_drake_elements(root)
+        models, worlds = children(root, "model"), children(root, "world")
+        if len(models) + len(worlds) != 1:
+            if len(models) > 1:
+                raise Diagnostics(None).error(
+                    "Root object can only contain one model. Using the first one found"
+                )
+            raise self.diagnostics.error(
+                "File must have exactly one <model> or exactly one <world>, but instead has "
+                f"{len(models)} models and {len(worlds)} worlds",
+                root.line,
+            )
+        if worlds:
+            self._check_drake_elements(worlds[0])
+            for element in worlds[0]:
+                if element.tag == "model" and isinstance(element, XmlElement):
+                    self._add_model(element, None, scope)
+                elif element.tag == "include" and isinstance(element, XmlElement):
+                    self._include(element, scope)
+        else:
+            self._add_model(models[0], model_name, scope)
+        return self.instances
+
+    # --------------------------------------------------------------- models
+    def _include(self, include: XmlElement, scope: str) -> None:
+        uri = text_of(include, "uri", "")
+        try:
+            if os.path.isabs(uri) and os.path.isfile(uri):  # libsdformat takes plain paths
+                path = uri
+            else:
+                path = resolve_uri(self.context.package_map, uri, self.source.root_dir)
+        except UriError:
+            label = self.source.label or self.source.path or "<data-string>"
+            parent = self.parents[include]
+            index = children(parent, "include").index(include)
+            raise ModelParseError(
+                f"{label}:{include.line}: error: At XML path {self._xml_path(include)}"
+                f"/include[{index}]/uri: Unable to find uri[{uri}]"
+            ) from None
+        name = text_of(include, "name", "") or None
+        self.instances += self.context.read_file(self.context, path, name, scope)
+
+    def _add_model(self, model: XmlElement, model_name: str | None, scope: str) -> None:
+        self._check_drake_elements(model)
+        name = scoped.join(scope, model_name or model.get("name") or "")
+        instance = self.context.add_model_instance(name)
+        instance_name = self.plant.GetModelInstanceName(instance)
+        self.instances.append(instance)
+        for element in model:
+            if element.tag == "model" and isinstance(element, XmlElement):
+                self._add_model(element, None, instance_name)
+            elif element.tag == "include" and isinstance(element, XmlElement):
+                self._include(element, instance_name)
+        links = children(model, "link")
+        if not links and not children(model, "model") and not children(model, "include"):
+            raise Diagnostics(None).error("A model must have at least one link.")
+        bodies = {link.get("name", ""): self._add_link(link, instance) for link in links}
+        self._add_model_frame(model, instance, bodies)
+        for frame in children(model, "frame"):
+            target = frame.get("attached_to") or "__model__"
+            self.attached_to[scoped.join(instance_name, frame.get("name", ""))] = scoped.join(
+                instance_name, target
+            )
+        for joint in children(model, "joint"):
+            self._add_joint(joint, model, instance_name)
+        for frame in children(model, "frame"):
+            self._add_frame(frame, instance, instance_name)
+        if _bool(text_of(model, "static", "false")):
+            world = self.plant.world_frame()
+            for link_name, body in bodies.items():
+                self.plant.AddJoint(
+                    JOINT_TYPES["weld"](
+                        _spec(f"sdformat_model_static_world_welds_to_{link_name}", "weld"),
+                        world,
+                        body.body_frame(),
+                    )
+                )
+        if self.context.has_scene_graph():
+            for group in children(model, _GROUP):
+                self._add_group(group, model, instance_name)
+
+    def _add_model_frame(self, model: XmlElement, instance: Any, bodies: dict[str, Any]) -> None:
+        canonical = model.get("canonical_link")
+        if canonical is not None and canonical in bodies:
+            body = bodies[canonical]
+        elif bodies:
+            body = next(iter(bodies.values()))
+        else:
+            indices = self.plant.GetBodyIndices(instance) or self._nested_bodies(instance)
+            if not indices:
+                return
+            body = self.plant.get_body(indices[0])
+        frame = FixedOffsetFrame("__model__", body.body_frame(), RigidTransform(), instance)
+        self.plant.AddFrame(frame)
+        instance_name = self.plant.GetModelInstanceName(instance)
+        body_instance = self.plant.GetModelInstanceName(body.model_instance())
+        self.attached_to[scoped.join(instance_name, "__model__")] = scoped.join(
+            body_instance, body.name()
+        )
+
+    def _nested_bodies(self, instance: Any) -> list[Any]:
+        prefix = self.plant.GetModelInstanceName(instance) + "::"
+        for other in self.instances:
+            if self.plant.GetModelInstanceName(other).startswith(prefix):
+                indices = self.plant.GetBodyIndices(other)
+                if indices:
+                    return list(indices)
+        return []
+
+    # ---------------------------------------------------------------- links
+    def _add_link(self, link: XmlElement, instance: Any) -> Any:
+        self._check_drake_elements(link)
+        body = self.plant.AddRigidBody(name=link.get("name", ""), model_instance=instance)
+        if not self.context.has_scene_graph():
+            return body
+        for role in ("visual", "collision"):
+            namer = GeometryNamer()
+            for element in children(link, role):
+                spec = read_shape_spec(element, self._resolve)
+                if spec is not None:
+                    register_geometry(self.plant, body, spec, namer.name(spec, self.diagnostics))
+        return body
+
+    def _resolve(self, uri: str) -> str:
+        try:
+            return resolve_uri(self.context.package_map, uri, self.source.root_dir)
+        except UriError as exc:
+            raise self.diagnostics.error(str(exc)) from None
+
+    # --------------------------------------------------------------- frames
+    def _frame(self, name: str, scope: str, joint: str, end: str, model: XmlElement) -> Any:
+        """The frame a joint end names: a link's body frame, or a <frame>, maybe nested."""
+        if name == "world":
+            if end == "child":
+                raise Diagnostics(None).error(
+                    f"Joint with name[{joint}] specified invalid child link [world]."
+                )
+            return self.plant.world_frame()
+        full_name = scoped.join(scope, name)
+        while full_name in self.attached_to:  # a <frame>: the link it is attached to
+            full_name = self.attached_to[full_name]
+        namespace, element = scoped.split(full_name)
+        plant = self.plant
+        if plant.HasModelInstanceNamed(namespace):
+            instance = plant.GetModelInstanceByName(namespace)
+            if plant.HasBodyNamed(element, instance):
+                return plant.GetBodyByName(element, instance).body_frame()
+        word = "parent" if end == "parent" else "Child"
+        raise Diagnostics(None).error(
+            f"{word} frame with name[{name}] specified by joint with name[{joint}] not found in "
+            f"model with name[{model.get('name')}]."
+        )
+
+    def _add_frame(self, frame: XmlElement, instance: Any, scope: str) -> None:
+        attached_to = frame.get("attached_to") or "__model__"
+        namespace, element = scoped.split(scoped.join(scope, attached_to))
+        target_instance = self.plant.GetModelInstanceByName(namespace)
+        if self.plant.HasBodyNamed(element, target_instance):
+            parent = self.plant.GetBodyByName(element, target_instance).body_frame()
+        else:
+            parent = self.plant.GetFrameByName(element, target_instance)
+        self.plant.AddFrame(
+            FixedOffsetFrame(frame.get("name", ""), parent, RigidTransform(), instance)
+        )
+
+    # --------------------------------------------------------------- joints
+    def _add_joint(self, joint: XmlElement, model: XmlElement, scope: str) -> None:
+        name, joint_type = joint.get("name", ""), joint.get("type", "")
+        parent_name = text_of(joint, "parent", "")
+        child_name = text_of(joint, "child", "")
+        if joint_type not in _JOINT_KINDS and joint_type not in _UNSUPPORTED_JOINTS:
+            raise Diagnostics(None).error(
+                f"Joint type of {joint_type} is invalid. Refer to the SDF documentation for a "
+                "list of valid joint types"
+            )
+        frame_on_parent = self._frame(parent_name, scope, name, "parent", model)
+        frame_on_child = self._frame(child_name, scope, name, "child", model)
+        if joint_type in _UNSUPPORTED_JOINTS:
+            raise self.diagnostics.error(
+                f"Joint type ({joint_type}) not supported for joint '{name}'.", joint.line
+            )
+        axes = children(joint, "axis")
+        if joint_type in _NEEDS_AXIS and not axes:
+            raise self.diagnostics.error(
+                f"An axis must be specified for joint '{name}'", joint.line
+            )
+        if joint_type == "universal" and (not axes or not children(joint, "axis2")):
+            raise self.diagnostics.error(
+                f"Both axis and axis2 must be specified for joint '{name}'", joint.line
+            )
+        xyz = values_of(axes[0], "xyz", "0 0 1") if axes else [0.0, 0.0, 1.0]
+        pitch = float(text_of(joint, "screw_thread_pitch", "1"))
+        spec = JointSpec(
+            name, _JOINT_KINDS[joint_type], parent_name, child_name, joint.line,
+            (xyz[0], xyz[1], xyz[2]), pitch,
+        )  # fmt: skip
+        if joint_type == "universal":
+            self.diagnostics.warning(
+                "Actuation (via non-zero effort limits) for universal joint "
+                f"'{name}' is not implemented yet and will be ignored.",
+                joint.line,
+            )
+        child_instance = frame_on_child.model_instance()
+        # N.B. Measured: a universal joint always gets a parent frame too.
+        if joint_type == "universal" or _moves_parent_frame(joint, model, parent_name, child_name):
+            frame_on_parent = self.plant.AddFrame(
+                FixedOffsetFrame(
+                    f"{name}_parent", frame_on_parent, RigidTransform(), child_instance
+                )
+            )
+        frame_on_child = self.plant.AddFrame(
+            FixedOffsetFrame(f"{name}_child", frame_on_child, RigidTransform(), child_instance)
+        )
+        self.plant.AddJoint(JOINT_TYPES[spec.kind](spec, frame_on_parent, frame_on_child))
+
+    # --------------------------------------------------------------- groups
+    def _texts(self, group: XmlElement, tag: str) -> set[str]:
+        values = set()
+        for child in children(group, tag):
+            value = (child.text or "").strip()
+            if not value:
+                raise self.diagnostics.error(f"The tag <{tag}> is missing a required string value.")
+            values.add(value)
+        return values
+
+    def _add_group(self, group: XmlElement, model: XmlElement, scope: str) -> None:
+        name = group.get("name")
+        if name is None:
+            raise self.diagnostics.error(
+                f'The tag <{_GROUP}> is missing the required attribute "name"'
+            )
+        if not name or _bool(group.get("ignore", "false")):
+            return
+        members = self._texts(group, "drake:member")
+        member_groups = self._texts(group, "drake:member_group")
+        ignored = self._texts(group, "drake:ignored_collision_filter_group")
+        resolver = self.context.resolver
+        resolver.add_group(
+            self.diagnostics,
+            model.line,
+            group_name=name,
+            body_names=members,
+            member_group_names=member_groups,
+            scope=scope,
+        )
+        for other in sorted(ignored):
+            resolver.add_pair(name, other, scope)
+
+
+def _bool(text: str) -> bool:
+    """SDFormat's bool: ``true``/``1`` or ``false``/``0`` in any case; else an error, False."""
+    value = _BOOLS.get(text.strip().lower())
+    if value is None:
+        _LOG.error("SDFormat Error [Element.hh:1054] Invalid boolean value")
+        return False
+    return value
+
+
+def _spec(name: str, kind: str) -> JointSpec:
+    return JointSpec(name, kind, "", "", 0)
+
+
+def _pose_text(element: XmlElement | None) -> str:
+    return " ".join(text_of(element, "pose", "").split()) if element is not None else ""
+
+
+def _moves_parent_frame(joint: XmlElement, model: XmlElement, parent: str, child: str) -> bool:
+    """Whether ``<pose>``s may put the joint frame off the parent link's frame."""
+    links = {link.get("name"): link for link in children(model, "link")}
+    zero = {"", "0 0 0 0 0 0"}
+    joint_pose = _pose_text(joint)
+    parent_pose, child_pose = _pose_text(links.get(parent)), _pose_text(links.get(child))
+    return joint_pose not in zero or (
+        parent_pose != child_pose and {parent_pose, child_pose} != zero
+    )

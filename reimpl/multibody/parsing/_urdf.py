@@ -1,0 +1,255 @@
+"""URDF: one ``<robot>`` becomes one model instance (Drake 1.51.1, measured).
+
+Elements are read in Drake's order: links (visuals, then collisions, only
+with a SceneGraph), joints, then ``<drake:joint>``s, then collision filter
+groups. Tag names are matched literally (``drake:`` needs no xmlns).
+
+Joints (``<joint type>`` → Drake kind): fixed → weld, revolute and continuous
+→ revolute, prismatic, planar; ``floating`` adds no joint (a warning; the
+child stays free). ``<drake:joint type>``: ball → ball_rpy, universal,
+planar, screw. Each joint's frame on the parent is a FixedOffsetFrame
+``<joint>_parent`` in the child's model instance; on the child, the body frame.
+
+Collision filter groups (only with a SceneGraph; the old unprefixed
+``<collision_filter_group>`` is silently ignored)::
+
+    <drake:collision_filter_group name="G" [ignore="true"]>
+      <drake:member link="L"/> <drake:member_group name="H"/>
+      <drake:ignored_collision_filter_group name="K"/>
+    </drake:collision_filter_group>
+
+``ignore`` drops the group only when exactly ``"true"``. An empty name or link
+is skipped; a missing one is an error at that element's line. The resolver's
+errors about a group carry the ``<robot>`` line.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from reimpl.math import RigidTransform
+from reimpl.multibody.parsing import _scoped_name as scoped
+from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._model_builder import (
+    JOINT_TYPES,
+    GeometryNamer,
+    JointSpec,
+    register_geometry,
+)
+from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
+from reimpl.multibody.parsing._urdf_geometry import read_geometry, read_origin, read_vector3
+from reimpl.multibody.parsing._xml import XmlElement, XmlSyntaxError, children, parse_xml
+from reimpl.multibody.tree import FixedOffsetFrame
+
+__all__ = ["read_urdf"]
+
+_JOINT_KINDS = {
+    "fixed": "weld",
+    "revolute": "revolute",
+    "continuous": "revolute",
+    "prismatic": "prismatic",
+    "planar": "planar",
+    "floating": None,
+}
+_DRAKE_JOINT_KINDS = {"ball": "ball_rpy", "universal": "universal", "planar": "planar"}
+_DRAKE_ONLY = {"ball", "universal", "screw"}
+_GROUP = "drake:collision_filter_group"
+
+
+def read_urdf(
+    context: ParseContext, source: ModelSource, model_name: str | None, parent_scope: str
+) -> list[Any]:
+    """Adds the robot in ``source`` to the plant; returns its model instance."""
+    diagnostics = source.diagnostics(context.strict)
+    try:
+        document = parse_xml(source.text)
+    except XmlSyntaxError as exc:
+        raise diagnostics.error(f"Failed to parse XML string: {exc.name}", exc.line) from None
+    robot = document if document.tag == "robot" else None
+    if robot is None:
+        raise diagnostics.error("URDF does not contain a robot tag.", document.line)
+    name = model_name or robot.get("name")
+    if name is None:
+        raise diagnostics.error(
+            "Your robot must have a name attribute or a model name must be specified.", robot.line
+        )
+    return [_Robot(context, source, diagnostics, robot).add(scoped.join(parent_scope, name))]
+
+
+class _Robot:
+    def __init__(
+        self,
+        context: ParseContext,
+        source: ModelSource,
+        diagnostics: Diagnostics,
+        robot: XmlElement,
+    ) -> None:
+        self.context, self.source, self.diagnostics, self.robot = (
+            context,
+            source,
+            diagnostics,
+            robot,
+        )
+        self.plant = context.plant
+
+    def add(self, name: str) -> Any:
+        self.instance = self.context.add_model_instance(name)
+        for link in children(self.robot, "link"):
+            self._add_link(link)
+        for joint in children(self.robot, "joint"):
+            self._add_joint(joint, drake_joint=False)
+        for joint in children(self.robot, "drake:joint"):
+            self._add_joint(joint, drake_joint=True)
+        if self.context.has_scene_graph():
+            for group in children(self.robot, _GROUP):
+                self._add_group(group)
+        return self.instance
+
+    def _required(self, element: XmlElement, attribute: str) -> str:
+        value = element.get(attribute)
+        if value is None:
+            raise self.diagnostics.error(
+                f'The tag <{element.tag}> does not specify the required attribute "{attribute}".',
+                element.line,
+            )
+        return value
+
+    # ---------------------------------------------------------------- links
+    def _add_link(self, link: XmlElement) -> None:
+        name = link.get("name")
+        if name is None:
+            raise self.diagnostics.error("link tag is missing name attribute.", link.line)
+        if name == "world":
+            body = self.plant.world_body()
+        else:
+            body = self.plant.AddRigidBody(name=name, model_instance=self.instance)
+        if not self.context.has_scene_graph():
+            return
+        for role in ("visual", "collision"):
+            namer = GeometryNamer()
+            for element in children(link, role):
+                spec = read_geometry(
+                    element,
+                    name,
+                    self.diagnostics,
+                    self.context.package_map,
+                    self.source.root_dir,
+                )
+                register_geometry(self.plant, body, spec, namer.name(spec, self.diagnostics))
+
+    # --------------------------------------------------------------- joints
+    def _link_name(self, joint: XmlElement, name: str, end: str) -> str:
+        ends = children(joint, end)
+        if not ends:
+            raise self.diagnostics.error(f"joint '{name}' doesn't have a {end} node!", joint.line)
+        link = ends[0].get("link")
+        if link is None:
+            raise self.diagnostics.error(
+                f"joint {name}'s {end} does not have a link attribute!", joint.line
+            )
+        return link
+
+    def _body(self, link: str, joint_name: str) -> Any:
+        if link == "world":
+            return self.plant.world_body()
+        if not self.plant.HasBodyNamed(link, self.instance):
+            raise self.diagnostics.error(
+                f"Could not find link named '{link}' with model instance ID "
+                f"{int(self.instance)} for element '{joint_name}'.",
+                1,
+            )
+        return self.plant.GetBodyByName(link, self.instance)
+
+    def _add_joint(self, joint: XmlElement, drake_joint: bool) -> None:
+        d = self.diagnostics
+        name = joint.get("name")
+        if name is None:
+            raise d.error("joint tag is missing name attribute", joint.line)
+        joint_type = joint.get("type")
+        if joint_type is None:
+            raise d.error(f"joint '{name}' is missing type attribute", joint.line)
+        parent_link = self._link_name(joint, name, "parent")
+        child_link = self._link_name(joint, name, "child")
+        parent, child = self._body(parent_link, name), self._body(child_link, name)
+        kind = self._kind(joint, name, joint_type, drake_joint)
+        if kind is None:
+            d.warning(
+                f"Joint '{name}' specified as type floating which is not supported by "
+                f"MultibodyPlant.  Leaving '{child_link}' as a free body.",
+                joint.line,
+            )
+            return
+        axes = children(joint, "axis")
+        axis = read_vector3(axes[0], "xyz", "1 0 0") if axes else [1.0, 0.0, 0.0]
+        xyz = (axis[0], axis[1], axis[2])
+        spec = JointSpec(name, kind, parent_link, child_link, joint.line, xyz)
+        if kind == "screw":
+            spec = self._with_pitch(joint, spec)
+        frame_on_parent = FixedOffsetFrame(
+            f"{name}_parent", parent.body_frame(), read_origin(joint), child.model_instance()
+        )
+        self.plant.AddFrame(frame_on_parent)
+        frame_on_child = child.body_frame()
+        if kind == "planar":  # N.B. Measured: Drake orients a planar joint's child frame.
+            frame_on_child = FixedOffsetFrame(
+                f"{name}_child", frame_on_child, RigidTransform(), child.model_instance()
+            )
+            self.plant.AddFrame(frame_on_child)
+        self.plant.AddJoint(JOINT_TYPES[kind](spec, frame_on_parent, frame_on_child))
+
+    def _kind(self, joint: XmlElement, name: str, joint_type: str, drake_joint: bool) -> str | None:
+        d = self.diagnostics
+        if drake_joint:
+            if joint_type in _DRAKE_JOINT_KINDS or joint_type == "screw":
+                return _DRAKE_JOINT_KINDS.get(joint_type, "screw")
+            if joint_type in _JOINT_KINDS:
+                raise d.error(
+                    f"Joint {name} of type {joint_type} is a standard joint type, and should be "
+                    "a <joint>",
+                    joint.line,
+                )
+        else:
+            if joint_type in _JOINT_KINDS:
+                return _JOINT_KINDS[joint_type]
+            if joint_type in _DRAKE_ONLY:
+                raise d.error(
+                    f"Joint {name} of type {joint_type} is a custom joint type, and should be a "
+                    "<drake:joint>",
+                    joint.line,
+                )
+        raise d.error(f"Joint '{name}' has unrecognized type: '{joint_type}'", joint.line)
+
+    def _with_pitch(self, joint: XmlElement, spec: JointSpec) -> JointSpec:
+        pitches = children(joint, "drake:screw_thread_pitch")
+        if not pitches:
+            raise self.diagnostics.error(
+                "A screw joint is missing the <drake:screw_thread_pitch> tag.", joint.line
+            )
+        pitch = float(self._required(pitches[0], "value"))
+        return JointSpec(spec.name, spec.kind, spec.parent, spec.child, spec.line, spec.axis, pitch)
+
+    # --------------------------------------------------------------- groups
+    def _names(self, group: XmlElement, tag: str, attribute: str) -> set[str]:
+        """The non-empty ``attribute`` values of ``group``'s ``tag`` children."""
+        values = (self._required(child, attribute) for child in children(group, tag))
+        return {value for value in values if value}
+
+    def _add_group(self, group: XmlElement) -> None:
+        name = self._required(group, "name")
+        if not name or group.get("ignore") == "true":
+            return
+        members = self._names(group, "drake:member", "link")
+        member_groups = self._names(group, "drake:member_group", "name")
+        ignored = self._names(group, "drake:ignored_collision_filter_group", "name")
+        scope = self.plant.GetModelInstanceName(self.instance)
+        resolver = self.context.resolver
+        resolver.add_group(
+            self.diagnostics,
+            self.robot.line,
+            group_name=name,
+            body_names=members,
+            member_group_names=member_groups,
+            scope=scope,
+        )
+        for other in sorted(ignored):
+            resolver.add_pair(name, other, scope)

@@ -1,0 +1,945 @@
+"""Parser on reimpl and on real pydrake: URDF, SDFormat, model directives and filter groups.
+
+Every test runs on both implementations (the same calls, the imports switched)
+and asserts the value measured on pydrake 1.51.1 (drake-semantics.md §6 and
+checklist 26-32, pydrake-observed.md §3), never mere agreement. Calls use
+pydrake's keyword names.
+
+Setup unless stated: ``AddMultibodyPlantSceneGraph(builder, time_step=0.0)``,
+``Parser(plant=plant)`` with package ``test_models`` = tests/models. A
+geometry is named ``<model>::<body>/<geometry>``, the geometry's name without
+its model prefix; a candidate pair is the two names sorted and joined by
+``|``. Candidates are read before Finalize unless a test finalizes.
+"""
+
+from __future__ import annotations
+
+import importlib
+import itertools
+from dataclasses import dataclass
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+import pytest
+
+from tests.conftest import IMPLEMENTATIONS
+
+MODELS = Path(__file__).parent / "models"
+
+
+@dataclass(frozen=True)
+class Modules:
+    """One implementation's modules, named as in pydrake."""
+
+    framework: ModuleType
+    plant: ModuleType
+    parsing: ModuleType
+
+
+@pytest.fixture(params=IMPLEMENTATIONS)
+def mb(request: pytest.FixtureRequest) -> Modules:
+    root = "pydrake" if request.param == "pydrake" else "reimpl"
+    names = ("systems.framework", "multibody.plant", "multibody.parsing")
+    return Modules(*(importlib.import_module(f"{root}.{name}") for name in names))
+
+
+class Parsed:
+    """A plant and SceneGraph filled by one Parser, read back by name."""
+
+    def __init__(self, mb: Modules, *, scene_graph: bool = True) -> None:
+        self.builder = mb.framework.DiagramBuilder()
+        if scene_graph:
+            self.plant, self.scene_graph = mb.plant.AddMultibodyPlantSceneGraph(
+                builder=self.builder, time_step=0.0
+            )
+        else:
+            self.plant, self.scene_graph = mb.plant.MultibodyPlant(time_step=0.0), None
+        self.parser = mb.parsing.Parser(plant=self.plant)
+        self.parser.package_map().Add(package_name="test_models", package_path=str(MODELS))
+
+    def add(self, text: str, file_type: str) -> list[str]:
+        instances = self.parser.AddModelsFromString(file_contents=text, file_type=file_type)
+        return [self.plant.GetModelInstanceName(i) for i in instances]
+
+    def name(self, geometry_id: Any) -> str:
+        inspector = self.scene_graph.model_inspector()
+        body = self.plant.GetBodyFromFrameId(inspector.GetFrameId(geometry_id))
+        model = self.plant.GetModelInstanceName(body.model_instance())
+        local = inspector.GetName(geometry_id).removeprefix(f"{model}::")
+        return f"{model}::{body.name()}/{local}"
+
+    def geometries(self) -> set[str]:
+        return {self.name(g) for g in self.scene_graph.model_inspector().GetAllGeometryIds()}
+
+    def candidates(self) -> set[str]:
+        pairs = self.scene_graph.model_inspector().GetCollisionCandidates()
+        return {"|".join(sorted((self.name(a), self.name(b)))) for a, b in pairs}
+
+    def report(self) -> tuple[dict[str, set[str]], set[tuple[str, str]]]:
+        groups = self.parser.GetCollisionFilterGroups()
+        return groups.groups(), groups.exclusion_pairs()
+
+
+def pairs(*names: str) -> set[str]:
+    """``pairs("a", "b", "c")`` is every pair among the names."""
+    return {"|".join(sorted(p)) for p in itertools.combinations(names, 2)}
+
+
+def pair(a: str, b: str) -> str:
+    return "|".join(sorted((a, b)))
+
+
+# ------------------------------------------------------------------ URDF groups
+
+DRAKE_NS = 'xmlns:drake="http://drake.mit.edu"'
+
+
+def robot(body: str, *, name: str = "r", links: str = "abcd") -> str:
+    """URDF robot ``name`` with free links (one unnamed sphere each), then ``body``."""
+    link_text = "".join(
+        f'<link name="{link}"><collision><geometry><sphere radius="0.1"/></geometry>'
+        "</collision></link>\n"
+        for link in links
+    )
+    return f'<robot name="{name}" {DRAKE_NS}>\n{link_text}{body}</robot>\n'
+
+
+def group(name: str, *children: str, attributes: str = "") -> str:
+    return (
+        f'<drake:collision_filter_group name="{name}"{attributes}>\n'
+        + "".join(f"{child}\n" for child in children)
+        + "</drake:collision_filter_group>\n"
+    )
+
+
+def member(link: str) -> str:
+    return f'<drake:member link="{link}"/>'
+
+
+def member_group(name: str) -> str:
+    return f'<drake:member_group name="{name}"/>'
+
+
+def ignores(name: str) -> str:
+    return f'<drake:ignored_collision_filter_group name="{name}"/>'
+
+
+A, B, C, D = (f"r::{x}/Sphere" for x in "abcd")
+ALL_ABCD = pairs(A, B, C, D)
+
+
+def test_group_ignoring_itself_and_a_second_group_filters_its_members_and_the_second(
+    mb: Modules,
+) -> None:
+    """Checklist 26: g1={a,b} ignores g1 and g2={c}: ab, ac, bc filtered."""
+    parsed = Parsed(mb)
+    text = robot(
+        group("g1", member("a"), member("b"), ignores("g1"), ignores("g2"))
+        + group("g2", member("c"))
+    )
+    assert parsed.add(text, "urdf") == ["r"]
+    assert parsed.candidates() == {pair(A, D), pair(B, D), pair(C, D)}
+    assert parsed.report() == (
+        {"r::g1": {"r::a", "r::b"}, "r::g2": {"r::c"}},
+        {("r::g1", "r::g1"), ("r::g1", "r::g2")},
+    )
+
+
+@pytest.mark.parametrize(
+    ("ignore", "applied"),
+    [("true", False), ("1", True), ("True", True), ("false", True)],
+)
+def test_urdf_group_is_dropped_only_when_ignore_is_exactly_true(
+    mb: Modules, ignore: str, applied: bool
+) -> None:
+    """Checklist 27: only ignore="true" drops the group (and its report entry)."""
+    parsed = Parsed(mb)
+    attributes = f' ignore="{ignore}"'
+    parsed.add(
+        robot(group("g", member("a"), member("b"), ignores("g"), attributes=attributes)), "urdf"
+    )
+    if applied:
+        assert parsed.candidates() == ALL_ABCD - {pair(A, B)}
+        assert parsed.report() == ({"r::g": {"r::a", "r::b"}}, {("r::g", "r::g")})
+    else:
+        assert parsed.candidates() == ALL_ABCD
+        assert parsed.report() == ({}, set())
+
+
+def test_unprefixed_urdf_collision_filter_group_is_silently_ignored(mb: Modules) -> None:
+    """Checklist 28: the RigidBodyTree syntax: no filter, no error, no report."""
+    parsed = Parsed(mb)
+    old = (
+        '<collision_filter_group name="g"><member link="a"/><member link="b"/>'
+        '<ignored_collision_filter_group collision_filter_group="g"/>'
+        "</collision_filter_group>\n"
+    )
+    parsed.add(robot(old), "urdf")
+    assert parsed.candidates() == ALL_ABCD
+    assert parsed.report() == ({}, set())
+
+
+def test_member_groups_are_transitive(mb: Modules) -> None:
+    """Checklist 30: g1={a}, g2={b}+g1, g3={c}+g2 ignoring g3: ab, ac, bc filtered."""
+    parsed = Parsed(mb)
+    text = robot(
+        group("g1", member("a"))
+        + group("g2", member("b"), member_group("g1"))
+        + group("g3", member("c"), member_group("g2"), ignores("g3"))
+    )
+    parsed.add(text, "urdf")
+    assert parsed.candidates() == {pair(A, D), pair(B, D), pair(C, D)}
+    assert parsed.report() == (
+        {"r::g1": {"r::a"}, "r::g2": {"r::a", "r::b"}, "r::g3": {"r::a", "r::b", "r::c"}},
+        {("r::g3", "r::g3")},
+    )
+
+
+def test_a_cycle_of_member_groups_gives_each_group_the_union(mb: Modules) -> None:
+    """Checklist 30: g1 → g3 → g2 → g1; g4={d}+itself ignores g1: a, b, c each vs d."""
+    parsed = Parsed(mb)
+    text = robot(
+        group("g1", member("a"), member_group("g3"))
+        + group("g2", member("b"), member_group("g1"))
+        + group("g3", member("c"), member_group("g2"))
+        + group("g4", member("d"), member_group("g4"), ignores("g1"))
+    )
+    parsed.add(text, "urdf")
+    assert parsed.candidates() == pairs(A, B, C)
+    abc = {"r::a", "r::b", "r::c"}
+    assert parsed.report() == (
+        {"r::g1": abc, "r::g2": abc, "r::g3": abc, "r::g4": {"r::d"}},
+        {("r::g1", "r::g4")},
+    )
+
+
+# pydrake-observed.md §3: model "m" with free links l1..l4, one sphere each.
+L1, L2, L3, L4 = (f"m::l{i}/Sphere" for i in range(1, 5))
+SECTION_3_ROWS = {
+    "no groups": ("", pairs(L1, L2, L3, L4)),
+    "a group ignoring itself": (
+        group("g", member("l1"), member("l2"), member("l3"), ignores("g")),
+        {pair(L1, L4), pair(L2, L4), pair(L3, L4)},
+    ),
+    "a group alone does nothing": (
+        group("g", member("l1"), member("l2"), member("l3")),
+        pairs(L1, L2, L3, L4),
+    ),
+    "ga ignores gb": (
+        group("ga", member("l1"), member("l2"), ignores("gb"))
+        + group("gb", member("l3"), member("l4")),
+        {pair(L1, L2), pair(L3, L4)},
+    ),
+    "overlapping groups": (
+        group("ga", member("l1"), member("l2"), ignores("gb"))
+        + group("gb", member("l2"), member("l3")),
+        {pair(L1, L4), pair(L2, L4), pair(L3, L4)},
+    ),
+    "nested member group": (
+        group("inner", member("l1"), member("l2"))
+        + group("outer", member_group("inner"), member("l3"), ignores("outer")),
+        {pair(L1, L4), pair(L2, L4), pair(L3, L4)},
+    ),
+    "ignore=true drops the group": (
+        group("g", member("l1"), member("l2"), ignores("g"), attributes=' ignore="true"'),
+        pairs(L1, L2, L3, L4),
+    ),
+    "an unknown child element is ignored": (
+        group("g", member("l1"), "<drake:foo/>", member("l2"), ignores("g")),
+        pairs(L1, L2, L3, L4) - {pair(L1, L2)},
+    ),
+}
+
+
+@pytest.mark.parametrize("row", SECTION_3_ROWS)
+def test_section_3_group_table(mb: Modules, row: str) -> None:
+    body, expected = SECTION_3_ROWS[row]
+    parsed = Parsed(mb)
+    parsed.add(robot(body, name="m", links=("l1", "l2", "l3", "l4")), "urdf")  # type: ignore[arg-type]
+    assert parsed.candidates() == expected
+
+
+def test_groups_of_two_prefixed_instances_apply_per_instance(mb: Modules) -> None:
+    """§3: Parser(plant, 'left'/'right'): names 'left::m::g'; no cross-instance filter."""
+    parsed = Parsed(mb)
+    text = robot(group("g", member("a"), member("b"), ignores("g")), name="m", links="ab")
+    names = []
+    for prefix in ("left", "right"):
+        parser = mb.parsing.Parser(plant=parsed.plant, model_name_prefix=prefix)
+        names += [
+            parsed.plant.GetModelInstanceName(i) for i in parser.AddModelsFromString(text, "urdf")
+        ]
+        assert parser.GetCollisionFilterGroups().groups() == {
+            f"{prefix}::m::g": {f"{prefix}::m::a", f"{prefix}::m::b"}
+        }
+    assert names == ["left::m", "right::m"]
+    left = [f"left::m::{x}/Sphere" for x in "ab"]
+    right = [f"right::m::{x}/Sphere" for x in "ab"]
+    assert parsed.candidates() == {pair(x, y) for x in left for y in right}
+
+
+def test_urdf_groups_are_skipped_without_a_scene_graph(mb: Modules) -> None:
+    """No SceneGraph: groups are not read at all, so even an unknown link is no error."""
+    parsed = Parsed(mb, scene_graph=False)
+    parsed.add(robot(group("g", member("zz"), ignores("nope"))), "urdf")
+    assert parsed.parser.GetCollisionFilterGroups().empty()
+
+
+def test_filter_groups_report_accumulates_successful_parses(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    for name in ("x", "y"):
+        parsed.add(robot(group("g", member("a"), ignores("g")), name=name, links="a"), "urdf")
+    with pytest.raises(RuntimeError):
+        parsed.add(robot(group("g", member("zz")), name="z", links="a"), "urdf")
+    assert parsed.report() == (
+        {"x::g": {"x::a"}, "y::g": {"y::a"}},
+        {("x::g", "x::g"), ("y::g", "y::g")},
+    )
+
+
+# ------------------------------------------------------------------ URDF errors
+
+URDF_GROUP_ERRORS = {
+    "unknown link": (
+        group("g1", member("zz")),
+        "<literal-string>.urdf:1: error: body with name 'r::zz' not found",
+    ),
+    "unknown ignored group": (
+        group("g1", member("a"), ignores("nope")),
+        "error: collision filter group with name 'r::nope' not found",
+    ),
+    "unknown member group": (
+        group("g1", member("a"), member_group("zz")),
+        "error: collision filter group with name 'r::zz' not found",
+    ),
+    "no members": (
+        group("g1", ignores("g1")),
+        "<literal-string>.urdf:1: error: group 'r::g1' has no members",
+    ),
+    "defined twice": (
+        group("g1", member("a")) + group("g1", member("b")),
+        "<literal-string>.urdf:1: error: group 'r::g1' has already been defined",
+    ),
+    "scoped group name": (
+        group("x::g1", member("a")),
+        "<literal-string>.urdf:1: error: group name 'r::x::g1' cannot be a scoped name",
+    ),
+    "a scoped link is read inside the robot": (
+        group("g1", member("r::a")),
+        "<literal-string>.urdf:1: error: body with name 'r::r::a' not found",
+    ),
+    "the world is no member": (
+        group("g1", member("world")),
+        "<literal-string>.urdf:1: error: body with name 'r::world' not found",
+    ),
+    "unknown links are reported in sorted order": (
+        group("g1", member("zz"), member("yy")),
+        "<literal-string>.urdf:1: error: body with name 'r::yy' not found",
+    ),
+    "member groups are checked before pairs": (
+        group("g1", member("a"), member_group("m1"), ignores("m0")),
+        "error: collision filter group with name 'r::m1' not found",
+    ),
+    "group without name": (
+        '<drake:collision_filter_group>\n<drake:member link="a"/>\n'
+        "</drake:collision_filter_group>\n",
+        "<literal-string>.urdf:6: error: The tag <drake:collision_filter_group> does not "
+        'specify the required attribute "name".',
+    ),
+    "member without link": (
+        group("g1", "<drake:member/>"),
+        "<literal-string>.urdf:7: error: The tag <drake:member> does not specify the required "
+        'attribute "link".',
+    ),
+    "ignored group without name": (
+        group("g1", member("a"), "<drake:ignored_collision_filter_group/>"),
+        "<literal-string>.urdf:8: error: The tag <drake:ignored_collision_filter_group> does "
+        'not specify the required attribute "name".',
+    ),
+}
+
+
+@pytest.mark.parametrize("case", URDF_GROUP_ERRORS)
+def test_urdf_group_error_message(mb: Modules, case: str) -> None:
+    """Checklist 29: Drake's messages, byte for byte (the robot tag is on line 1)."""
+    body, message = URDF_GROUP_ERRORS[case]
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add(robot(body), "urdf")
+    assert str(info.value) == message
+
+
+def test_group_errors_carry_the_robot_line(mb: Modules) -> None:
+    text = "<?xml version='1.0'?>\n<!-- model -->\n" + robot(group("g1", member("zz")))
+    with pytest.raises(RuntimeError, match=r"^<literal-string>\.urdf:3: error: body with name"):
+        Parsed(mb).add(text, "urdf")
+
+
+def test_parse_scope_rule_rejects_bodies_of_earlier_parses(mb: Modules) -> None:
+    """A group may name only bodies of model instances made by the same parse."""
+    parsed = Parsed(mb)
+    inner = '<sdf version="1.9"><model name="x"><link name="a"/></model></sdf>'
+    mb.parsing.Parser(plant=parsed.plant, model_name_prefix="r").AddModelsFromString(inner, "sdf")
+    with pytest.raises(RuntimeError) as info:
+        parsed.add(robot(group("g", member("x::a")), links="b"), "urdf")
+    assert str(info.value) == (
+        "<literal-string>.urdf:1: error: body name 'r::x::a' refers to a model outside the "
+        "current parse"
+    )
+
+
+URDF_MODEL_ERRORS = {
+    "robot without name": (
+        '<robot>\n<link name="a"/>\n</robot>',
+        "<literal-string>.urdf:1: error: Your robot must have a name attribute or a model name "
+        "must be specified.",
+    ),
+    "link without name": (
+        '<robot name="m">\n<link/>\n</robot>',
+        "<literal-string>.urdf:2: error: link tag is missing name attribute.",
+    ),
+    "duplicate link": (
+        '<robot name="m">\n<link name="a"/>\n<link name="a"/>\n</robot>',
+        "Model instance 'm' already contains a body named 'a'. Body names must be unique "
+        "within a given model.",
+    ),
+    "joint without name": (
+        '<robot name="m">\n<link name="a"/><link name="b"/>\n'
+        '<joint type="fixed"><parent link="a"/><child link="b"/></joint>\n</robot>',
+        "<literal-string>.urdf:3: error: joint tag is missing name attribute",
+    ),
+    "joint to an unknown link": (
+        '<robot name="m">\n<link name="b"/>\n'
+        '<joint name="j" type="fixed"><parent link="zz"/><child link="b"/></joint>\n</robot>',
+        "<literal-string>.urdf:1: error: Could not find link named 'zz' with model instance ID "
+        "2 for element 'j'.",
+    ),
+    "unknown joint type": (
+        '<robot name="m">\n<link name="a"/><link name="b"/>\n'
+        '<joint name="j" type="weird"><parent link="a"/><child link="b"/></joint>\n</robot>',
+        "<literal-string>.urdf:3: error: Joint 'j' has unrecognized type: 'weird'",
+    ),
+    "ball is a drake:joint": (
+        '<robot name="m">\n<link name="a"/><link name="b"/>\n'
+        '<joint name="j" type="ball"><parent link="a"/><child link="b"/></joint>\n</robot>',
+        "<literal-string>.urdf:3: error: Joint j of type ball is a custom joint type, and should "
+        "be a <drake:joint>",
+    ),
+    "sphere without radius": (
+        '<robot name="m">\n<link name="a">\n<collision><geometry>\n<sphere/>\n</geometry>'
+        "</collision>\n</link>\n</robot>",
+        "<literal-string>.urdf:4: error: Missing sphere attribute: radius",
+    ),
+    "not a robot": (
+        '<model name="m"/>',
+        "<literal-string>.urdf:1: error: URDF does not contain a robot tag.",
+    ),
+    "malformed XML": (
+        '<robot name="m">\n<link name="a">\n</robot>',
+        "<literal-string>.urdf:1: error: Failed to parse XML string: XML_ERROR_MISMATCHED_ELEMENT",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", URDF_MODEL_ERRORS)
+def test_urdf_model_error_message(mb: Modules, case: str) -> None:
+    text, message = URDF_MODEL_ERRORS[case]
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add(text, "urdf")
+    assert str(info.value) == message
+
+
+def test_duplicate_model_name_is_an_error_unless_auto_renaming(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = robot("", name="m", links="a")
+    assert parsed.add(text, "urdf") == ["m"]
+    with pytest.raises(RuntimeError) as info:
+        parsed.add(text, "urdf")
+    assert str(info.value) == (
+        "This model already contains a model instance named 'm'. Model instance names must be "
+        "unique within a given model."
+    )
+    parsed.parser.SetAutoRenaming(True)
+    assert parsed.parser.GetAutoRenaming()
+    assert parsed.add(text, "urdf") == ["m_1"]
+    assert parsed.add(text, "urdf") == ["m_2"]
+
+
+# ------------------------------------------------------- URDF names and joints
+
+
+def test_unnamed_urdf_geometry_is_named_after_its_shape_per_link_and_role(mb: Modules) -> None:
+    """Measured: ``Sphere``, ``Sphere_1``, ... per link and role; visuals count apart."""
+    parsed = Parsed(mb)
+    sphere = '<geometry><sphere radius="0.1"/></geometry>'
+    text = (
+        '<robot name="m" xmlns:drake="http://drake.mit.edu">\n<link name="l1">\n'
+        + f"<collision>{sphere}</collision>\n" * 2
+        + '<collision name="Sphere_2">'
+        + sphere
+        + "</collision>\n"
+        + f"<collision>{sphere}</collision>\n"
+        + '<collision><geometry><box size="1 1 1"/></geometry></collision>\n'
+        + '<collision><geometry><cylinder radius="1" length="2"/></geometry></collision>\n'
+        + '<collision><geometry><capsule radius="1" length="2"/></geometry></collision>\n'
+        + '<collision><geometry><drake:ellipsoid a="1" b="2" c="3"/></geometry></collision>\n'
+        + f"<visual>{sphere}</visual>\n"
+        + "</link>\n"
+        + f'<link name="l2"><collision>{sphere}</collision></link>\n'
+        + "</robot>"
+    )
+    parsed.add(text, "urdf")
+    inspector = parsed.scene_graph.model_inspector()
+    visuals = [
+        g for g in inspector.GetAllGeometryIds() if inspector.GetProximityProperties(g) is None
+    ]
+    assert [parsed.name(g) for g in visuals] == ["m::l1/Sphere"]
+    assert parsed.geometries() == {
+        "m::l1/Sphere",
+        "m::l1/Sphere_1",
+        "m::l1/Sphere_2",
+        "m::l1/Sphere_3",
+        "m::l1/Box",
+        "m::l1/Cylinder",
+        "m::l1/Capsule",
+        "m::l1/Ellipsoid",
+        "m::l2/Sphere",
+    }
+
+
+def test_a_repeated_explicit_urdf_name_is_renamed(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    sphere = '<geometry><sphere radius="0.1"/></geometry>'
+    parsed.add(
+        f'<robot name="m"><link name="a"><collision name="x">{sphere}</collision>'
+        f'<collision name="x">{sphere}</collision></link></robot>',
+        "urdf",
+    )
+    assert parsed.geometries() == {"m::a/x", "m::a/x_1"}
+
+
+def test_urdf_joint_types_and_names(mb: Modules) -> None:
+    """fixed → weld, continuous → revolute, floating → no joint (the body stays free)."""
+    parsed = Parsed(mb)
+    text = (
+        '<robot name="m" xmlns:drake="http://drake.mit.edu">\n'
+        + "".join(f'<link name="{x}"/>' for x in "abcdefghi")
+        + '\n<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>'
+        '<joint name="j2" type="revolute"><parent link="a"/><child link="c"/></joint>'
+        '<joint name="j3" type="continuous"><parent link="a"/><child link="d"/></joint>'
+        '<joint name="j4" type="prismatic"><parent link="a"/><child link="e"/></joint>'
+        '<joint name="j5" type="floating"><parent link="a"/><child link="f"/></joint>'
+        '<joint name="j6" type="planar"><parent link="a"/><child link="g"/></joint>'
+        '<drake:joint name="j7" type="ball"><parent link="a"/><child link="h"/></drake:joint>'
+        '<drake:joint name="j8" type="universal"><parent link="a"/><child link="i"/>'
+        "</drake:joint>\n</robot>"
+    )
+    parsed.add(text, "urdf")
+    plant = parsed.plant
+    joints = {
+        (plant.get_joint(j).name(), plant.get_joint(j).type_name()) for j in plant.GetJointIndices()
+    }
+    assert joints == {
+        ("j1", "weld"),
+        ("j2", "revolute"),
+        ("j3", "revolute"),
+        ("j4", "prismatic"),
+        ("j6", "planar"),
+        ("j7", "ball_rpy"),
+        ("j8", "universal"),
+    }
+    assert plant.HasFrameNamed("j1_parent")
+    assert plant.HasFrameNamed("j6_child")
+
+
+def test_urdf_joints_filter_adjacent_links_at_finalize(mb: Modules) -> None:
+    """§3: revolute l1->l2 filters l1-l2; a fixed chain l1->l2->l3 filters all three."""
+    parsed = Parsed(mb)
+    joints = (
+        '<joint name="j" type="revolute"><parent link="l1"/><child link="l2"/></joint>\n'
+        '<joint name="k" type="fixed"><parent link="l3"/><child link="l4"/></joint>\n'
+    )
+    parsed.add(robot(joints, name="m", links=("l1", "l2", "l3", "l4")), "urdf")  # type: ignore[arg-type]
+    parsed.plant.Finalize()
+    assert parsed.candidates() == pairs(L1, L2, L3, L4) - {pair(L1, L2), pair(L3, L4)}
+
+
+# ------------------------------------------------------------------ SDFormat
+
+
+def sdf(body: str) -> str:
+    return f'<?xml version="1.0"?>\n<sdf version="1.9">\n{body}</sdf>\n'
+
+
+def link(name: str) -> str:
+    return (
+        f'<link name="{name}"><collision name="c"><geometry><sphere><radius>0.1</radius>'
+        "</sphere></geometry></collision></link>\n"
+    )
+
+
+def sdf_group(name: str, members: tuple[str, ...] = (), ignored: tuple[str, ...] = ()) -> str:
+    return (
+        f'<drake:collision_filter_group name="{name}">'
+        + "".join(f"<drake:member>{m}</drake:member>" for m in members)
+        + "".join(
+            f"<drake:ignored_collision_filter_group>{g}</drake:ignored_collision_filter_group>"
+            for g in ignored
+        )
+        + "</drake:collision_filter_group>\n"
+    )
+
+
+def test_sdf_nested_model_groups_use_scoped_names(mb: Modules) -> None:
+    """Checklist 31: inner::ig={x}; tg={a, inner::y} ignoring inner::ig and tg."""
+    parsed = Parsed(mb)
+    text = sdf(
+        '<model name="top">\n'
+        + link("a")
+        + link("b")
+        + '<model name="inner">\n'
+        + link("x")
+        + link("y")
+        + sdf_group("ig", ("x",))
+        + "</model>\n"
+        + sdf_group("tg", ("a", "inner::y"), ("inner::ig", "tg"))
+        + "</model>\n"
+    )
+    assert parsed.add(text, "sdf") == ["top", "top::inner"]
+    a, b, x, y = "top::a/c", "top::b/c", "top::inner::x/c", "top::inner::y/c"
+    assert parsed.candidates() == pairs(a, b, x, y) - {pair(a, x), pair(y, x), pair(a, y)}
+    assert parsed.report() == (
+        {"top::inner::ig": {"top::inner::x"}, "top::tg": {"top::a", "top::inner::y"}},
+        {("top::inner::ig", "top::tg"), ("top::tg", "top::tg")},
+    )
+
+
+@pytest.mark.parametrize(("ignore", "applied"), [("true", False), ("1", False), ("false", True)])
+def test_sdf_ignore_is_an_sdformat_bool(mb: Modules, ignore: str, applied: bool) -> None:
+    parsed = Parsed(mb)
+    text = sdf(
+        '<model name="m">\n'
+        + link("a")
+        + link("b")
+        + f'<drake:collision_filter_group name="g" ignore="{ignore}">'
+        "<drake:member>a</drake:member><drake:member>b</drake:member>"
+        "<drake:ignored_collision_filter_group>g</drake:ignored_collision_filter_group>"
+        "</drake:collision_filter_group>\n</model>\n"
+    )
+    parsed.add(text, "sdf")
+    assert parsed.candidates() == (set() if applied else {pair("m::a/c", "m::b/c")})
+
+
+def test_sdf_include_through_the_package_map_with_a_name_override(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = sdf(
+        '<model name="top">\n'
+        + link("a")
+        + "<include><uri>package://test_models/simple_box.sdf</uri></include>\n"
+        + "<include><uri>package://test_models/simple_box.sdf</uri><name>second</name></include>\n"
+        + sdf_group("g", ("simple_box::base", "second::base"), ("g",))
+        + "</model>\n"
+    )
+    assert parsed.add(text, "sdf") == ["top", "top::simple_box", "top::second"]
+    assert parsed.candidates() == {
+        pair("top::a/c", "top::simple_box::base/collision"),
+        pair("top::a/c", "top::second::base/collision"),
+    }
+
+
+def test_sdf_world_models_are_top_level_instances(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = sdf('<world name="w">\n<model name="m">\n' + link("a") + "</model>\n"
+               '<model name="n">\n' + link("b") + "</model>\n</world>\n")  # fmt: skip
+    assert parsed.add(text, "sdf") == ["m", "n"]
+    assert parsed.candidates() == {pair("m::a/c", "n::b/c")}
+
+
+SDF_ERRORS = {
+    "unprefixed collision_filter_group": (
+        '<model name="m">\n' + link("a") + link("b")
+        + '<collision_filter_group name="g"><member>a</member></collision_filter_group>\n'
+        "</model>\n",
+        '<data-string>:6: error: At XML path /sdf/model[@name="m"]/collision_filter_group'
+        '[@name="g"]: XML Element[collision_filter_group], child of element[model], not '
+        "defined in SDF. Copying[collision_filter_group] as children of [model].\n",
+    ),
+    "unknown link in a group": (
+        '<model name="m">\n' + link("a") + sdf_group("g", ("zz",)) + "</model>\n",
+        "<literal-string>.sdf:3: error: body with name 'm::zz' not found",
+    ),
+    "group without name": (
+        '<model name="m">\n' + link("a")
+        + "<drake:collision_filter_group><drake:member>a</drake:member>"
+        "</drake:collision_filter_group>\n</model>\n",
+        '<literal-string>.sdf: error: The tag <drake:collision_filter_group> is missing the '
+        'required attribute "name"',
+    ),
+    "empty member": (
+        '<model name="m">\n' + link("a") + sdf_group("g", ("",)) + "</model>\n",
+        "<literal-string>.sdf: error: The tag <drake:member> is missing a required string value.",
+    ),
+    "group in a link": (
+        '<model name="m">\n<link name="a">\n' + sdf_group("g", ("a",)) + "</link>\n</model>\n",
+        "<literal-string>.sdf: error: Unsupported SDFormat element in link: "
+        "drake:collision_filter_group",
+    ),
+    "model without name": (
+        "<model>\n" + link("a") + "</model>\n",
+        "<data-string>:3: error: At XML path /sdf/model: Required attribute[name] in "
+        "element[model] is not specified in SDF.",
+    ),
+    "collision without name": (
+        '<model name="m">\n<link name="a"><collision><geometry><sphere><radius>1</radius>'
+        "</sphere></geometry></collision></link>\n</model>\n",
+        '<data-string>:4: error: At XML path /sdf/model[@name="m"]/link[@name="a"]/collision: '
+        "Required attribute[name] in element[collision] is not specified in SDF.",
+    ),
+    "duplicate link": (
+        '<model name="m">\n' + link("a") + link("a") + "</model>\n",
+        "error: Non-unique name[a] detected 2 times in XML children of model with name[m].",
+    ),
+    "a group named like a link": (
+        '<model name="m">\n' + link("g") + sdf_group("g", ("g",)) + "</model>\n",
+        "error: Non-unique name[g] detected 2 times in XML children of model with name[m].",
+    ),
+    "two models": (
+        '<model name="m">\n' + link("a") + '</model>\n<model name="n">\n' + link("b")
+        + "</model>\n",
+        "error: Root object can only contain one model. Using the first one found",
+    ),
+    "joint to an unknown child": (
+        '<model name="m">\n' + link("a")
+        + '<joint name="j" type="fixed"><parent>a</parent><child>zz</child></joint>\n'
+        "</model>\n",
+        "error: Child frame with name[zz] specified by joint with name[j] not found in model "
+        "with name[m].",
+    ),
+    "revolute joint without axis": (
+        '<model name="m">\n' + link("a") + link("b")
+        + '<joint name="j" type="revolute"><parent>a</parent><child>b</child></joint>\n'
+        "</model>\n",
+        "<literal-string>.sdf:6: error: An axis must be specified for joint 'j'",
+    ),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("case", SDF_ERRORS)
+def test_sdf_error_message(mb: Modules, case: str) -> None:
+    body, message = SDF_ERRORS[case]
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add(sdf(body), "sdf")
+    assert str(info.value) == message
+
+
+# ---------------------------------------------------------------- directives
+
+
+def test_directive_filter_groups_filter_eleven_pairs_before_finalize(mb: Modules) -> None:
+    """Checklist 32: the CollisionFilterGroupSmokeTest situations, before Finalize."""
+    parsed = Parsed(mb)
+    models = parsed.parser.AddModels(file_name=str(MODELS / "filter_groups.dmd.yaml"))
+    assert len(models) == 9
+    assert not parsed.plant.is_finalized()
+    boxes = [f"model{i}::base/collision" for i in range(1, 8)]
+    subs = [f"nested::sub_model{i}::base/collision" for i in (1, 2)]
+    m1, m2, m3, m4, m5, m6, m7 = boxes
+    s1, s2 = subs
+    filtered = {pair(m1, m2), pair(m1, s2), pair(m3, s1), pair(m3, s2), pair(s1, s2)}
+    filtered |= pairs(m4, m5, m6, m7)
+    assert len(filtered) == 11
+    assert parsed.candidates() == pairs(*boxes, *subs) - filtered
+    groups, exclusion_pairs = parsed.report()
+    assert groups == {
+        "across_models": {"model1::base", "model2::base"},
+        "group_45": {"model4::base", "model5::base"},
+        "group_4567": {"model4::base", "model5::base", "model6::base", "model7::base"},
+        "group_67": {"model6::base", "model7::base"},
+        "nested::across_sub_models": {"nested::sub_model1::base", "nested::sub_model2::base"},
+        "nested_group": {"model3::base"},
+        "nested_members": {"model1::base", "nested::sub_model2::base"},
+    }
+    assert exclusion_pairs == {
+        ("across_models", "across_models"),
+        ("group_4567", "group_4567"),
+        ("nested::across_sub_models", "nested::across_sub_models"),
+        ("nested::across_sub_models", "nested_group"),
+        ("nested_members", "nested_members"),
+    }
+
+
+def box(name: str) -> str:
+    return f"- add_model: {{name: {name}, file: package://test_models/simple_box.sdf}}\n"
+
+
+def test_directive_group_with_model_namespace_reads_names_in_that_instance(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = (
+        "directives:\n"
+        + box("a")
+        + box("b")
+        + "- add_collision_filter_group: {name: g, model_namespace: a, members: [base]}\n"
+        + "- add_collision_filter_group:\n"
+        "    {name: h, members: [b::base], member_groups: [a::g], "
+        "ignored_collision_filter_groups: [h]}\n"
+    )
+    assert parsed.add(text, "dmd.yaml") == ["a", "b"]
+    assert parsed.candidates() == set()
+    assert parsed.report() == (
+        {"a::g": {"a::base"}, "h": {"a::base", "b::base"}},
+        {("h", "h")},
+    )
+
+
+def test_add_weld_names_the_joint_after_its_frames(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = (
+        "directives:\n"
+        + box("a")
+        + box("b")
+        + "- add_weld: {parent: world, child: a::base}\n"
+        + "- add_weld: {parent: a::top, child: b::base, X_PC: {translation: [0, 0, 1]}}\n"
+    )
+    parsed.add(text, "dmd.yaml")
+    plant = parsed.plant
+    assert plant.HasJointNamed("world_welds_to_base", plant.GetModelInstanceByName("a"))
+    assert plant.HasJointNamed("top_welds_to_base", plant.GetModelInstanceByName("b"))
+    parsed.plant.Finalize()
+    assert parsed.candidates() == set()
+
+
+DIRECTIVE_ERRORS = {
+    "unknown member": (
+        box("a") + "- add_collision_filter_group: {name: g, members: [a::zz]}\n",
+        "error: body with name 'a::zz' not found",
+    ),
+    "unscoped member at global scope": (
+        box("a") + "- add_collision_filter_group: {name: g, members: [base]}\n",
+        "error: body with name 'base' not found",
+    ),
+    "unknown ignored group": (
+        box("a") + "- add_collision_filter_group:\n"
+        "    {name: g, members: [a::base], ignored_collision_filter_groups: [nope]}\n",
+        "error: collision filter group with name 'nope' not found",
+    ),
+    "scoped group name": (
+        box("a") + "- add_collision_filter_group: {name: a::g, members: [a::base]}\n",
+        "error: group name 'a::g' cannot be a scoped name",
+    ),
+    "group defined twice": (
+        box("a") + "- add_collision_filter_group: {name: g, members: [a::base]}\n" * 2,
+        "error: group 'g' has already been defined",
+    ),
+    "unknown package": (
+        "- add_model: {name: a, file: package://nope/simple_box.sdf}\n",
+        "error: URI 'package://nope/simple_box.sdf' refers to unknown package 'nope'",
+    ),
+    "unknown key": (
+        "- add_model: {name: a, file: package://test_models/simple_box.sdf, foo: 1}\n",
+        "<string>:2:14: YAML node of type Mapping (with size 3 and keys {file, foo, name}) key "
+        "'foo' did not match any visited value entry for <root> while accepting YAML node of "
+        "type Mapping (with size 1 and keys {add_model}) while visiting "
+        "std::optional<drake::multibody::parsing::AddModel> add_model while accepting  (with "
+        "size 1 and keys {directives[0]}) while visiting "
+        "drake::multibody::parsing::ModelDirective directives[0] while accepting YAML node of "
+        "type Mapping (with size 1 and keys {directives}) while visiting "
+        "std::vector<drake::multibody::parsing::ModelDirective,std::allocator<drake::multibody::"
+        "parsing::ModelDirective>> directives.",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", DIRECTIVE_ERRORS)
+def test_directive_error_message(mb: Modules, case: str) -> None:
+    body, message = DIRECTIVE_ERRORS[case]
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add("directives:\n" + body, "dmd.yaml")
+    assert str(info.value) == message
+
+
+def test_an_invalid_directive_ends_the_program_as_pydrake_does(mb: Modules) -> None:
+    """Drake's IsValid is a DRAKE_DEMAND, which pydrake reports as SystemExit."""
+    with pytest.raises(SystemExit) as info:
+        Parsed(mb).add("directives:\n- add_collision_filter_group: {name: g}\n", "dmd.yaml")
+    assert str(info.value) == (
+        "Failure at external/drake+/multibody/parsing/detail_dmd_parser.cc:332 in "
+        "LoadModelDirectives(): condition 'directives.IsValid()' failed."
+    )
+
+
+def test_directive_groups_are_skipped_without_a_scene_graph(mb: Modules) -> None:
+    parsed = Parsed(mb, scene_graph=False)
+    parsed.add(
+        "directives:\n" + box("a") + "- add_collision_filter_group: {name: g, members: [a::zz]}\n",
+        "dmd.yaml",
+    )
+    assert parsed.parser.GetCollisionFilterGroups().empty()
+
+
+# ---------------------------------------------------- Parser, PackageMap, groups
+
+
+def test_parser_from_a_builder_finds_the_plant_named_plant(mb: Modules) -> None:
+    builder = mb.framework.DiagramBuilder()
+    with pytest.raises(RuntimeError) as info:
+        mb.parsing.Parser(builder=builder)
+    assert str(info.value) == (
+        "DiagramBuilder does not contain a subsystem named plant. Valid subsystems are ."
+    )
+    plant, scene_graph = mb.plant.AddMultibodyPlantSceneGraph(builder=builder, time_step=0.0)
+    parser = mb.parsing.Parser(builder=builder, model_name_prefix="p")
+    assert parser.plant() is plant
+    assert parser.scene_graph() is scene_graph
+    assert parser.builder() is builder
+    models = parser.AddModelsFromString(file_contents=robot("", links="a"), file_type="urdf")
+    assert [plant.GetModelInstanceName(m) for m in models] == ["p::r"]
+
+
+def test_unknown_file_type_message(mb: Modules) -> None:
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add("<robot/>", "foo")
+    assert str(info.value) == (
+        "error: The file '<literal-string>.foo' is not a recognized type. Known types are: "
+        ".urdf, .sdf, .xml (Mujoco), .dmd.yaml, .obj"
+    )
+
+
+def test_add_models_reads_a_file_and_names_it_in_errors(mb: Modules, tmp_path: Path) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(robot(group("g", member("zz")), links="a"))
+    parsed = Parsed(mb)
+    with pytest.raises(RuntimeError) as info:
+        parsed.parser.AddModels(file_name=str(path))
+    assert str(info.value) == f"{path}:1: error: body with name 'r::zz' not found"
+
+
+def test_package_map(mb: Modules, tmp_path: Path) -> None:
+    package_map = mb.parsing.PackageMap.MakeEmpty()
+    assert package_map.size() == 0
+    package_map.Add(package_name="p", package_path=str(tmp_path))
+    package_map.Add(package_name="p", package_path=str(tmp_path))  # the same path: no error
+    assert package_map.Contains("p")
+    assert not package_map.Contains("q")
+    assert package_map.GetPath("p") == str(tmp_path)
+    (tmp_path / "m.sdf").write_text("")
+    assert package_map.ResolveUrl("package://p/m.sdf") == str(tmp_path / "m.sdf")
+    with pytest.raises(RuntimeError) as info:
+        package_map.ResolveUrl("package://q/m.sdf")
+    assert str(info.value) == "error: URI 'package://q/m.sdf' refers to unknown package 'q'"
+    with pytest.raises(RuntimeError) as info:
+        package_map.Add(package_name="q", package_path=str(tmp_path / "nope"))
+    assert str(info.value) == (
+        f"PackageMap::Add cannot add 'q' because directory '{tmp_path / 'nope'}' does not exist"
+    )
+    assert sorted(mb.parsing.PackageMap().GetPackageNames()) == ["drake", "drake_models"]
+
+
+def test_collision_filter_groups_value_api(mb: Modules) -> None:
+    groups = mb.parsing.CollisionFilterGroups()
+    assert groups.empty()
+    groups.AddGroup(name="g", members={"m::a", "m::b"})
+    groups.AddExclusionPair(pair=("h", "g"))
+    groups.AddExclusionPair(pair=("g", "h"))
+    assert not groups.empty()
+    assert groups.groups() == {"g": {"m::a", "m::b"}}
+    assert groups.exclusion_pairs() == {("g", "h")}
