@@ -369,6 +369,28 @@ def test_urdf_group_error_message(mb: Modules, case: str) -> None:
     assert str(info.value) == message
 
 
+def test_pairs_sorted_before_an_unknown_group_are_applied_when_it_raises(mb: Modules) -> None:
+    """(r::g1, r::g1) sorts before (r::g1, r::nope): a-b is filtered, then the error."""
+    parsed = Parsed(mb)
+    with pytest.raises(RuntimeError, match="'r::nope' not found"):
+        parsed.add(
+            robot(group("g1", member("a"), member("b"), ignores("g1"), ignores("nope"))), "urdf"
+        )
+    assert parsed.candidates() == ALL_ABCD - {pair(A, B)}
+    assert parsed.report() == ({}, set())
+
+
+def test_an_unknown_member_group_stops_before_any_pair_is_applied(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = robot(
+        group("g1", member("a"), member("b"), ignores("g1"))
+        + group("h", member("c"), member_group("zz"))
+    )
+    with pytest.raises(RuntimeError, match="'r::zz' not found"):
+        parsed.add(text, "urdf")
+    assert parsed.candidates() == ALL_ABCD
+
+
 def test_group_errors_carry_the_robot_line(mb: Modules) -> None:
     text = "<?xml version='1.0'?>\n<!-- model -->\n" + robot(group("g1", member("zz")))
     with pytest.raises(RuntimeError, match=r"^<literal-string>\.urdf:3: error: body with name"):

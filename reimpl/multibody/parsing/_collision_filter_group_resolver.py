@@ -23,7 +23,8 @@ group declared later. The checks and messages are Drake 1.51.1's (measured):
   members``, then per body in sorted order ``body name 'N' refers to a model
   outside the current parse`` or ``body with name 'N' not found``;
 * at resolve, without a source: ``collision filter group with name 'N' not
-  found``, first for member groups (sorted), then for pairs (sorted).
+  found``, first for member groups (sorted), then for pairs (sorted), each
+  pair applied once both its groups are found.
 
 Each pair is applied with ``plant._exclude_collision_geometries_with_collision_
 filter_group_pair``, whose equal names mean ExcludeWithin, else ExcludeBetween.
@@ -108,14 +109,18 @@ class CollisionFilterGroupResolver:
         return dict(sorted(bodies.items()))
 
     def resolve(self) -> CollisionFilterGroups:
-        """Checks every group name, applies the pairs, and reports what was declared."""
+        """Checks every group name, applies the pairs, and reports what was declared.
+
+        N.B. Pairs are applied one by one in sorted order, so the pairs sorted
+        before one naming an unknown group are applied when it raises (measured).
+        """
         unlocated = Diagnostics(None)
-        referenced = set().union(*self._member_groups.values())
-        for name in [*sorted(referenced), *(n for pair in sorted(self._pairs) for n in pair)]:
-            if name not in self._bodies:
-                raise unlocated.error(f"collision filter group with name '{name}' not found")
+        for name in sorted(set().union(*self._member_groups.values())):
+            self._check_group(unlocated, name)
         members = {group: self._members(group) for group in sorted(self._bodies)}
         for a, b in sorted(self._pairs):
+            self._check_group(unlocated, a)
+            self._check_group(unlocated, b)
             self._plant._exclude_collision_geometries_with_collision_filter_group_pair(
                 (a, self._geometry_set(members[a].values())),
                 (b, self._geometry_set(members[b].values())),
@@ -126,6 +131,10 @@ class CollisionFilterGroupResolver:
         for pair in sorted(self._pairs):
             report.AddExclusionPair(pair)
         return report
+
+    def _check_group(self, diagnostics: Diagnostics, name: str) -> None:
+        if name not in self._bodies:
+            raise diagnostics.error(f"collision filter group with name '{name}' not found")
 
     def _geometry_set(self, bodies: Any) -> GeometrySet:
         frame_ids = [self._plant.GetBodyFrameIdOrThrow(body.index()) for body in bodies]
