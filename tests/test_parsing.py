@@ -391,6 +391,17 @@ def test_an_unknown_member_group_stops_before_any_pair_is_applied(mb: Modules) -
     assert parsed.candidates() == ALL_ABCD
 
 
+def test_urdf_groups_are_read_before_joints_so_a_group_error_leaves_no_joint(
+    mb: Modules,
+) -> None:
+    """Measured: the group error wins over a bad joint, and l0-l1 stays unjoined."""
+    parsed = Parsed(mb)
+    joint = '<joint name="j" type="weird"><parent link="a"/><child link="b"/></joint>\n'
+    with pytest.raises(RuntimeError, match="body with name 'r::zz' not found"):
+        parsed.add(robot(joint + group("g", member("zz"))), "urdf")
+    assert parsed.plant.num_joints() == 0
+
+
 def test_group_errors_carry_the_robot_line(mb: Modules) -> None:
     text = "<?xml version='1.0'?>\n<!-- model -->\n" + robot(group("g1", member("zz")))
     with pytest.raises(RuntimeError, match=r"^<literal-string>\.urdf:3: error: body with name"):

@@ -1,8 +1,9 @@
 """URDF: one ``<robot>`` becomes one model instance (Drake 1.51.1, measured).
 
-Elements are read in Drake's order: links (visuals, then collisions, only
-with a SceneGraph), joints, then ``<drake:joint>``s, then collision filter
-groups. Tag names are matched literally (``drake:`` needs no xmlns).
+Elements are read in Drake's order (measured by which error comes first):
+links (visuals, then collisions, only with a SceneGraph), collision filter
+groups, joints, then ``<drake:joint>``s; a group error thus leaves no joint.
+Tag names are matched literally (``drake:`` needs no xmlns).
 
 Joints (``<joint type>`` → Drake kind): fixed → weld, revolute and continuous
 → revolute, prismatic, planar; ``floating`` adds no joint (a warning; the
@@ -96,13 +97,13 @@ class _Robot:
         self.instance = self.context.add_model_instance(name)
         for link in children(self.robot, "link"):
             self._add_link(link)
+        if self.context.has_scene_graph():
+            for group in children(self.robot, _GROUP):
+                self._add_group(group)
         for joint in children(self.robot, "joint"):
             self._add_joint(joint, drake_joint=False)
         for joint in children(self.robot, "drake:joint"):
             self._add_joint(joint, drake_joint=True)
-        if self.context.has_scene_graph():
-            for group in children(self.robot, _GROUP):
-                self._add_group(group)
         return self.instance
 
     def _required(self, element: XmlElement, attribute: str) -> str:
