@@ -976,3 +976,83 @@ def test_collision_filter_groups_value_api(mb: Modules) -> None:
     assert not groups.empty()
     assert groups.groups() == {"g": {"m::a", "m::b"}}
     assert groups.exclusion_pairs() == {("g", "h")}
+
+
+def test_add_models_by_url_resolves_package_and_file_urls(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    by_package = parsed.parser.AddModels(url="package://test_models/simple_box.sdf")
+    by_file = parsed.parser.AddModelsFromUrl(url=f"file://{MODELS / 'filter_groups.dmd.yaml'}")
+    names = [parsed.plant.GetModelInstanceName(i) for i in [*by_package, *by_file]]
+    assert names[:2] == ["simple_box", "model1"]
+    with pytest.raises(RuntimeError) as info:
+        parsed.parser.AddModelsFromUrl(url="package://test_models/zz.sdf")
+    assert str(info.value) == (
+        f"error: URI 'package://test_models/zz.sdf' resolved to '{MODELS / 'zz.sdf'}' which does "
+        "not exist."
+    )
+
+
+def test_sdformat_names_a_file_with_a_leading_slash(mb: Modules, tmp_path: Path) -> None:
+    """Measured: libsdformat's and Drake's messages about an SDFormat file say ``//tmp/...``."""
+    path = tmp_path / "m.sdf"
+    path.write_text(sdf('<model name="m">\n' + link("a") + sdf_group("g", ("zz",)) + "</model>\n"))
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).parser.AddModels(file_name=str(path))
+    assert str(info.value) == f"/{path}:3: error: body with name 'm::zz' not found"
+
+
+def test_a_static_sdf_model_welds_each_of_its_links_to_the_world(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    parsed.add(
+        sdf('<model name="m">\n<static>true</static>\n' + link("a") + link("b") + "</model>\n"),
+        "sdf",
+    )
+    plant = parsed.plant
+    welds = {plant.get_joint(j).name() for j in plant.GetJointIndices()}
+    assert welds == {
+        "sdformat_model_static_world_welds_to_a",
+        "sdformat_model_static_world_welds_to_b",
+    }
+    plant.Finalize()
+    assert parsed.candidates() == set()
+
+
+def test_sdf_joint_types_and_the_joint_frames_drake_adds(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    axis = "<axis><xyz>0 0 1</xyz></axis>"
+    joints = {
+        "j1": ("fixed", ""),
+        "j2": ("prismatic", axis),
+        "j3": ("ball", ""),
+        "j4": ("universal", axis + "<axis2><xyz>0 1 0</xyz></axis2>"),
+        "j5": ("continuous", axis),
+    }
+    text = '<model name="m">\n' + link("a")
+    for i, (name, (kind, extra)) in enumerate(joints.items()):
+        ends = f"<parent>a</parent><child>c{i}</child>"
+        text += link(f"c{i}") + f'<joint name="{name}" type="{kind}">{ends}{extra}</joint>\n'
+    parsed.add(sdf(text + "</model>\n"), "sdf")
+    plant = parsed.plant
+    assert {
+        (plant.get_joint(j).name(), plant.get_joint(j).type_name()) for j in plant.GetJointIndices()
+    } == {
+        ("j1", "weld"),
+        ("j2", "prismatic"),
+        ("j3", "ball_rpy"),
+        ("j4", "universal"),
+        ("j5", "revolute"),
+    }
+    m = plant.GetModelInstanceByName("m")
+    assert all(plant.HasFrameNamed(f"{name}_child", m) for name in joints)
+    assert plant.HasFrameNamed("j4_parent", m)
+    assert not plant.HasFrameNamed("j1_parent", m)
+    assert plant.HasFrameNamed("__model__", m)
+
+
+def test_parser_with_a_scene_graph_registers_the_plant(mb: Modules) -> None:
+    geometry = importlib.import_module(f"{mb.plant.__name__.split('.')[0]}.geometry")
+    plant = mb.plant.MultibodyPlant(time_step=0.0)
+    scene_graph = geometry.SceneGraph()
+    parser = mb.parsing.Parser(plant=plant, scene_graph=scene_graph)
+    assert plant.geometry_source_is_registered()
+    assert parser.scene_graph() is scene_graph
