@@ -92,26 +92,35 @@ def read_sdf(
         for model in children(root, "model"):
             model.set("name", model_name)
             raise scoped_name_error(model)
-    document = _Document(context, source, diagnostics)
-    document.parents = {child: parent for parent in root.iter() for child in parent}  # type: ignore[misc]
-    return document.add(root, model_name, parent_scope)
+    return _Document(context, source, diagnostics, root).add(root, model_name, parent_scope)
 
 
 class _Document:
-    def __init__(self, context: ParseContext, source: ModelSource, diagnostics: Diagnostics):
+    def __init__(
+        self,
+        context: ParseContext,
+        source: ModelSource,
+        diagnostics: Diagnostics,
+        root: XmlElement,
+    ) -> None:
         self.context, self.source, self.diagnostics = context, source, diagnostics
         self.plant = context.plant
         self.instances: list[Any] = []
         #: scoped <frame> (or __model__) name -> the scoped name it is attached to
         self.attached_to: dict[str, str] = {}
-        self.parents: dict[XmlElement, XmlElement] = {}
+        self.parents: dict[XmlElement, XmlElement] = {
+            child: parent  # type: ignore[misc]
+            for parent in root.iter()
+            for child in parent
+        }
 
-    def _xml_path(self, element: XmlElement) -> str:
+    def _parent_path(self, element: XmlElement) -> str:
+        """libsdformat's XML path of ``element``'s parent."""
         chain: list[XmlElement] = []
         while element in self.parents:
             element = self.parents[element]
             chain.insert(0, element)
-        return xml_path(chain[-1], chain[:-1]) if chain else ""
+        return xml_path(chain[-1], chain[:-1])
 
     def _check_drake_elements(self, element: XmlElement) -> None:
         for child in element:
@@ -160,7 +169,7 @@ class _Document:
             parent = self.parents[include]
             index = children(parent, "include").index(include)
             raise ModelParseError(
-                f"{label}:{include.line}: error: At XML path {self._xml_path(include)}"
+                f"{label}:{include.line}: error: At XML path {self._parent_path(include)}"
                 f"/include[{index}]/uri: Unable to find uri[{uri}]"
             ) from None
         name = text_of(include, "name", "") or None
