@@ -397,6 +397,59 @@ def _fault(draw: st.DrawFn, groups: list[Group], bodies: Sequence[str]) -> list[
     return groups
 
 
+#: A group as drawn: its ``ignore`` attribute, then picks of its members, member groups and
+#: ignored groups (resolved once all groups and bodies are drawn).
+_GroupSpec = tuple[str | None, list[int], list[int], list[int]]
+
+
+def _group_specs(
+    max_groups: int, max_members: int, ignore_values: Sequence[str | None]
+) -> st.SearchStrategy[list[_GroupSpec]]:
+    """Groups as drawn: ``ignore``, then picks of members, member groups and ignored groups."""
+    references = st.lists(st.integers(0, max(max_groups - 1, 0)), max_size=2)
+    return st.lists(
+        st.tuples(
+            # ``ignore`` is written rarely; None (not written) is where it shrinks to.
+            st.integers(0, 3).flatmap(
+                lambda x: st.sampled_from(ignore_values) if x == 3 else st.just(None)
+            ),
+            st.lists(st.integers(0, 255), max_size=max_members),
+            references,
+            references,
+        ),
+        max_size=max_groups,
+    )
+
+
+def _groups(
+    specs: Sequence[_GroupSpec], bodies: Sequence[str], formats: Sequence[str]
+) -> list[Group]:
+    """The groups of ``specs`` over ``bodies``, valid in every format of ``formats``."""
+    names = [f"g{i}" for i in range(len(specs))]
+    kept = [
+        name
+        for name, (ignore, *_) in zip(names, specs, strict=True)
+        if not any(drops(Group(name, ignore=ignore), fmt) for fmt in formats)
+    ]
+
+    def resolve(picks: Sequence[int], among: Sequence[str]) -> tuple[str, ...]:
+        return tuple(among[pick % len(among)] for pick in picks) if among else ()
+
+    groups: list[Group] = []
+    for name, (ignore, members, member_groups, ignored) in zip(names, specs, strict=True):
+        group = Group(
+            name,
+            resolve(members, bodies),
+            resolve(member_groups, kept),
+            resolve(ignored, kept),
+            ignore,
+        )
+        if not group.members and not group.member_groups:
+            group = replace(group, members=(bodies[0],))
+        groups.append(group)
+    return groups
+
+
 @st.composite
 def collision_filter_groups(
     draw: st.DrawFn,
@@ -408,40 +461,22 @@ def collision_filter_groups(
     ignore_values: Sequence[str | None] = IGNORE_VALUES,
     invalid: bool = False,
 ) -> tuple[Group, ...]:
-    """Groups over ``bodies`` (names of links): members, member groups (cycles and forward
-    references included), ignored groups (the group itself included), ``ignore`` attributes.
+    """Groups ``g0``, ``g1``... over ``bodies`` (names of links): members, member groups
+    (cycles and forward references included), ignored groups (the group itself included),
+    ``ignore`` attributes.
 
     Valid in every format of ``formats`` unless ``invalid``: then one of ``FAULTS``.
+    Each group is one list element, so the shrinker deletes whole groups.
     """
-    count = draw(st.integers(0, max_groups))
-    names = [f"g{i}" for i in range(count)]
-    # ``ignore`` is written rarely: index 0 (None) is where it shrinks to.
-    ignores = [
-        draw(st.sampled_from(ignore_values)) if draw(st.integers(0, 3)) == 3 else None
-        for _ in names
-    ]
-    kept = [
-        name
-        for name, ignore in zip(names, ignores, strict=True)
-        if not any(drops(Group(name, ignore=ignore), fmt) for fmt in formats)
-    ]
-    members = st.lists(st.sampled_from(bodies), max_size=max_members)
-    references = st.lists(st.sampled_from(kept), max_size=2) if kept else st.just([])
-    groups: list[Group] = []
-    for name, ignore in zip(names, ignores, strict=True):
-        group = Group(
-            name,
-            members=tuple(draw(members)),
-            member_groups=tuple(draw(references)),
-            ignored=tuple(draw(references)),
-            ignore=ignore,
-        )
-        if not group.members and not group.member_groups:
-            group = replace(group, members=(bodies[0],))
-        groups.append(group)
+    groups = _groups(draw(_group_specs(max_groups, max_members, ignore_values)), bodies, formats)
     if invalid:
         groups = _fault(draw, groups, bodies)
     return tuple(groups)
+
+
+#: A body as drawn: its geometry, then its parent pick (0: a root; k: body (k - 1) mod i),
+#: its joint kind pick, whether the joint is reversed, and (a root) how it meets the world.
+_BodySpec = tuple[tuple[Geometry, ...], int, int, bool, _Root]
 
 
 @st.composite
@@ -461,7 +496,9 @@ def kinematic_trees(
     """A random tree that renders in every format of ``formats`` (see the module doc).
 
     ``joint_kinds`` limits the kinds (default: every kind all ``formats`` have).
-    ``invalid`` breaks one rule of the groups on purpose (``FAULTS``).
+    ``invalid`` breaks one rule of the groups on purpose (``FAULTS``). Each body
+    is one list element, and everything shrinks towards free roots, so a shrunk
+    model keeps only the bodies and joints a finding needs.
     """
     if min_bodies < 1:
         raise ValueError("a model needs a body (SDFormat: 'A model must have at least one link')")
@@ -470,32 +507,38 @@ def kinematic_trees(
     roots = [_Root.FREE, _Root.PARENT_WORLD]
     if "sdf" not in formats and reversible:  # SDFormat: "specified invalid child link [world]"
         roots.append(_Root.CHILD_WORLD)
-    count = draw(st.integers(min_bodies, max_bodies))
-    bodies = tuple(Body(f"l{i}", draw(_geometries(max_geometries))) for i in range(count))
-    joints: list[Joint] = []
-    for i, body in enumerate(bodies):
-        parent = draw(st.integers(-1, i - 1))  # -1: a root
-        name = f"j{len(joints)}"
-        if parent >= 0:
-            kind = draw(st.sampled_from(kinds))
-            other = bodies[parent].name
-            if kind in reversible and draw(st.integers(0, 4)) == 4:
-                joints.append(Joint(name, kind, body.name, other))
-            else:
-                joints.append(Joint(name, kind, other, body.name))
-            continue
-        root = draw(st.sampled_from(roots))
-        if root is _Root.PARENT_WORLD:
-            joints.append(Joint(name, draw(st.sampled_from(kinds)), WORLD, body.name))
-        elif root is _Root.CHILD_WORLD:
-            joints.append(Joint(name, draw(st.sampled_from(reversible)), body.name, WORLD))
-    groups = draw(
-        collision_filter_groups(
-            [b.name for b in bodies],
-            formats=formats,
-            max_groups=max_groups,
-            ignore_values=ignore_values,
-            invalid=invalid,
+    # The groups' picks first: drawn after the bodies, they would keep the shrinker
+    # from deleting bodies (see conformance.fuzz.model_campaign).
+    group_specs = draw(_group_specs(max_groups, 3, ignore_values))
+    specs: list[_BodySpec] = draw(
+        st.lists(
+            st.tuples(
+                _geometries(max_geometries),
+                st.integers(0, max_bodies),
+                st.integers(0, len(kinds) - 1),
+                st.integers(0, 4).map(lambda x: x == 4),  # reversed, 1 in 5
+                st.sampled_from(roots),
+            ),
+            min_size=min_bodies,
+            max_size=max_bodies,
         )
     )
-    return Model(draw(st.sampled_from(model_names)), bodies, tuple(joints), groups)
+    bodies = tuple(Body(f"l{i}", spec[0]) for i, spec in enumerate(specs))
+    joints: list[Joint] = []
+    for i, (_, parent, kind_pick, reverse, root) in enumerate(specs):
+        body, name, kind = bodies[i].name, f"j{len(joints)}", kinds[kind_pick]
+        if parent and i:
+            other = bodies[(parent - 1) % i].name
+            if reverse and kind in reversible:
+                joints.append(Joint(name, kind, body, other))
+            else:
+                joints.append(Joint(name, kind, other, body))
+        elif root is _Root.PARENT_WORLD:
+            joints.append(Joint(name, kind, WORLD, body))
+        elif root is _Root.CHILD_WORLD:
+            kind = kind if kind in reversible else reversible[kind_pick % len(reversible)]
+            joints.append(Joint(name, kind, body, WORLD))
+    groups = _groups(group_specs, [b.name for b in bodies], formats)
+    if invalid:
+        groups = _fault(draw, groups, [b.name for b in bodies])
+    return Model(draw(st.sampled_from(model_names)), bodies, tuple(joints), tuple(groups))
