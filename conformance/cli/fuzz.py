@@ -4,6 +4,11 @@ Progress goes to stderr about once a second: elapsed time, examples and steps
 (with rates), and findings. Each divergence is written as soon as its batch
 ends (or on Ctrl-C, the smallest one seen so far). The file is then replayed
 with the scenario runner to confirm that ``run`` reproduces it.
+
+``--models`` runs a ``ModelCampaign`` (``conformance.fuzz.model_campaign``):
+each example is a random model case run by the corpus runner, not a lockstep
+command sequence; everything else (seeds, budgets, findings, exit codes) is
+the same.
 """
 
 from __future__ import annotations
@@ -25,6 +30,7 @@ from conformance.cli.run import PROG
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
 from conformance.fuzz.lockstep import FuzzStats, HarnessError
+from conformance.fuzz.model_campaign import ModelCampaign, write_model_regression
 from conformance.fuzz.regression import drake_release, write_regression, write_reproducer
 from conformance.protocol import Backend, backend_id
 from conformance.run.outputs import unwritable_dir
@@ -127,8 +133,9 @@ def _report(
         return
     backend, reference = backends
     release = cross_release(backend, reference)
+    write = write_model_regression if args.models else write_regression
     path = _write_finding(
-        lambda folder: write_regression(
+        lambda folder: write(
             divergence,
             folder,
             backend=args.backend,
@@ -242,7 +249,8 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     max_examples = args.max_examples
     if max_examples is None and args.time_budget is None:
         max_examples = 100
-    campaign = Campaign(
+    kind = ModelCampaign if args.models else Campaign
+    campaign = kind(
         backend=lambda: backend,
         reference=lambda: reference,
         seed=args.seed,
@@ -257,10 +265,10 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         step_timeout=args.step_timeout or None,
     )
     err.write(
-        f"fuzz: {backend.name} {backend.version()} against {reference.name} "
-        f"{reference.version()}, seed {args.seed}, "
+        f"fuzz{' --models' if args.models else ''}: {backend.name} {backend.version()} against "
+        f"{reference.name} {reference.version()}, seed {args.seed}, "
         + (f"{max_examples} examples" if max_examples else f"time budget {args.time_budget}s")
-        + f", {args.steps} steps each\n"
+        + (", one model case each\n" if args.models else f", {args.steps} steps each\n")
     )
     watching = progress.watch()
     try:

@@ -104,6 +104,12 @@ def _add_fuzz(commands: Any) -> None:
         help=f"batches of {BATCH_EXAMPLES} examples until SEC seconds have passed",
     )
     fuzz.add_argument(
+        "--models",
+        action="store_true",
+        help="fuzz random models (URDF/SDFormat trees, parse and Finalize) instead of "
+        "SceneGraph command sequences",
+    )
+    fuzz.add_argument(
         "--steps", type=_positive(int), default=DEFAULT_STEPS, help="commands per example"
     )
     fuzz.add_argument(
