@@ -1,9 +1,13 @@
-"""conformance.fuzz.models draws kinematic trees that pydrake parses as drawn; ``fuzz --models``."""
+"""conformance.fuzz.models draws kinematic trees that pydrake parses as drawn; ``fuzz --models``
+compares them on two backends and writes a shrunk finding that ``run`` replays."""
 
 from __future__ import annotations
 
+import dataclasses
+import io
 import logging
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -12,9 +16,21 @@ from pydrake.geometry import GeometryId, SceneGraph
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import MultibodyPlant
 
+from conformance.backends.loader import load_backend
+from conformance.backends.pydrake_api import pydrake_api
+from conformance.backends.reimpl_api import reimpl_api
+from conformance.backends.scene_graph import SceneGraphBackend
+from conformance.cli.main import EXIT_FAILURE, EXIT_OK, main
+from conformance.corpus.loader import load_file
 from conformance.fuzz import models as fm
+from conformance.fuzz.lockstep import HarnessError
+from conformance.fuzz.model_campaign import ModelCampaign, model_cases
 from conformance.fuzz.models import Body, Geometry, Group, Joint, Model
+from conformance.protocol import Command
+from conformance.testing.model_mutants import MODEL_MUTANTS, model_mutant_backend
+from reimpl.multibody import tree as reimpl_tree
 
+PYDRAKE = load_backend("pydrake")
 SETTINGS = settings(
     max_examples=60, deadline=None, database=None, suppress_health_check=list(HealthCheck)
 )
@@ -206,3 +222,120 @@ def _urdf_trees(seed: int) -> list[Model]:
 
     draw()
     return out
+
+
+# ------------------------------------------------------------------ fuzz --models
+def _cases(seed: int) -> list[list[Command]]:
+    out: list[list[Command]] = []
+
+    @hypothesis_seed(seed)
+    @SETTINGS
+    @given(model_cases())
+    def draw(commands: list[Command]) -> None:
+        out.append(commands)
+
+    draw()
+    return out
+
+
+def test_model_cases_are_deterministic_for_a_seed_and_end_in_finalize_and_check() -> None:
+    first = _cases(3)
+    assert first == _cases(3)
+    assert first != _cases(4)
+    for commands in first:
+        ops = [c.op for c in commands]
+        assert ops.count("add_models") == 1
+        assert ops[-1] == "check"
+        assert "finalize" in ops
+
+
+def test_two_pydrake_backends_agree_on_100_random_model_cases() -> None:
+    twin = SceneGraphBackend(dataclasses.replace(pydrake_api(), name="pydrake-twin"))
+    result = ModelCampaign(
+        backend=lambda: twin, reference=lambda: PYDRAKE, seed=2, max_examples=100
+    ).run()
+    assert result.divergences == []
+    assert result.stats.examples == 100
+
+
+def test_fuzz_models_needs_the_model_features_of_both_backends() -> None:
+    bare = SceneGraphBackend(dataclasses.replace(reimpl_api(), name="no-parser", parsing=None))
+    campaign = ModelCampaign(backend=lambda: bare, reference=lambda: PYDRAKE, max_examples=1)
+    with pytest.raises(HarnessError, match="needs the feature"):
+        campaign.run()
+
+
+def fuzz(*argv: str) -> tuple[int, str, str]:
+    out, err = io.StringIO(), io.StringIO()
+    code = main(["fuzz", "--models", *argv], out=out, err=err)
+    return code, out.getvalue(), err.getvalue()
+
+
+def run(*argv: str) -> int:
+    return main(["run", *argv, "-q"], out=io.StringIO(), err=io.StringIO())
+
+
+def test_fuzz_models_of_reimpl_against_pydrake_exits_0_and_writes_nothing(tmp_path: Path) -> None:
+    code, out, err = fuzz("--seed", "3", "--max-examples", "50", "--out", str(tmp_path / "r"))
+    assert code == EXIT_OK, out + err
+    assert "50 examples" in out
+    assert "0 divergence(s)" in out
+    assert err.startswith("fuzz --models: reimpl")
+    assert not (tmp_path / "r").exists()
+
+
+MUTANT = "conformance.testing.model_mutants:rpy_floating_unfiltered"
+#: Seed 3 meets the mutant's bug after 94 examples (seeds 1 and 2 after 235 and 207; 4 and 5
+#: not within 300): an RpyFloatingJoint between two bodies with collision geometry.
+SEED_3 = ("--seed", "3", "--max-examples", "300")
+
+
+def test_fuzz_models_catches_the_rpy_floating_mutant_with_a_shrunk_file_that_replays(
+    tmp_path: Path,
+) -> None:
+    code, out, _ = fuzz(
+        "--backend", MUTANT, "--seed", "3", "--max-examples", "300", "--out", str(tmp_path)
+    )
+    assert code == EXIT_FAILURE
+    assert "(reproduces)" in out
+    (path,) = tmp_path.glob("*.json")
+    assert path.name.startswith("models-")
+    (case,) = load_file(path, root=tmp_path).cases
+    # Shrunk: one parsed model, two added bodies, the second on an RpyFloatingJoint from the
+    # first, Finalize; pydrake filters b0-b1 (adjacent), the mutant does not.
+    assert [s.op for s in case.steps] == [
+        "add_models",
+        "add_rigid_body",
+        "register_collision_geometry",
+        "add_rigid_body",
+        "register_collision_geometry",
+        "add_joint",
+        "finalize",
+    ]
+    assert case.steps[5].args["type"] == "rpy_floating"
+    assert case.steps[-1].expect[0]["candidates"] == []
+    assert "fuzz --models --backend" in (path.read_text())
+    assert run(str(path), "--backend", MUTANT, "--backend", "pydrake") == EXIT_FAILURE
+    assert run(str(path), "--backend", MUTANT) == EXIT_FAILURE
+    assert run(str(path), "--backend", "reimpl", "--backend", "pydrake") == EXIT_OK
+
+
+def test_the_same_seed_gives_the_same_model_finding(tmp_path: Path) -> None:
+    found = []
+    for attempt in ("a", "b"):
+        folder = tmp_path / attempt
+        code, out, _ = fuzz(
+            "--backend", MUTANT, "--seed", "3", "--max-examples", "300", "--out", str(folder)
+        )
+        assert code == EXIT_FAILURE
+        (path,) = folder.glob("*.json")
+        found.append((path.name, path.read_text(), out.splitlines()[-1].split(" in ")[0]))
+    assert found[0] == found[1]
+
+
+def test_a_model_mutant_leaves_plain_reimpl_alone() -> None:
+    mutant = model_mutant_backend("rpy_floating_unfiltered")
+    assert mutant.api.tree is not None
+    assert mutant.api.tree.RpyFloatingJoint.kTypeName == "quaternion_floating"
+    assert reimpl_tree.RpyFloatingJoint.kTypeName == "rpy_floating"
+    assert set(MODEL_MUTANTS) == {"rpy_floating_unfiltered"}
