@@ -26,6 +26,7 @@ from typing import Any, TextIO
 from conformance.cli.bisect import add_bisect_parser, bisect_command
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
+from conformance.cli.legacy_diff import add_legacy_diff_parser, legacy_diff_command
 from conformance.cli.matrix import add_matrix_parser, matrix_command
 from conformance.cli.options import add_backend_options
 from conformance.cli.run import PROG, add_run_parser, run_command
@@ -51,6 +52,7 @@ def _parser() -> argparse.ArgumentParser:
     _add_fuzz(commands)
     add_matrix_parser(commands)
     add_bisect_parser(commands)
+    add_legacy_diff_parser(commands)
     schema = commands.add_parser(
         "schema", help="print the scenario schema (its step rules come from the grammar)"
     )
@@ -147,6 +149,8 @@ def main(
         return matrix_command(args, out, err)
     if args.command == "bisect":
         return bisect_command(args, out, err)
+    if args.command == "legacy-diff":
+        return legacy_diff_command(args, out, err)
     if args.command == "schema":
         return _schema(args, out)
     raise AssertionError(args.command)  # pragma: no cover
