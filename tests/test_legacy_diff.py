@@ -3,9 +3,10 @@ today's, through the backend machinery (pydrake by default, reimpl on request)."
 
 from __future__ import annotations
 
-import argparse
 import io
 import json
+import subprocess
+import sys
 from pathlib import Path
 from typing import ClassVar
 
@@ -13,7 +14,7 @@ import pytest
 
 from conformance.backends.loader import load_backend
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
-from conformance.cli.legacy_diff import add_legacy_diff_parser, legacy_diff_command
+from conformance.cli.main import main
 from conformance.legacy_diff import Rule, legacy_diff
 from conformance.protocol import MODEL, Command
 
@@ -63,10 +64,9 @@ MODERN_ONLY = """<robot name="m">
 
 
 def run(argv: list[str]) -> tuple[int, str, str]:
-    parser = argparse.ArgumentParser()
-    add_legacy_diff_parser(parser.add_subparsers(dest="command"))
+    """``python -m conformance legacy-diff *argv``: exit code, stdout, stderr."""
     out, err = io.StringIO(), io.StringIO()
-    code = legacy_diff_command(parser.parse_args(["legacy-diff", *argv]), out, err)
+    code = main(["legacy-diff", *argv], out, err)
     return code, out.getvalue(), err.getvalue()
 
 
@@ -208,3 +208,23 @@ class TestInputErrorsExitTwo:
         code, _, err = run([str(arm), "--backend", "nonsense"])
         assert code == EXIT_USAGE
         assert "unknown backend 'nonsense'" in err
+
+
+def test_python_m_conformance_runs_it(arm: Path) -> None:
+    """The real entry point: exit 0 with the report on stdout, exit 2 for a missing file."""
+    done = subprocess.run(
+        [sys.executable, "-m", "conformance", "legacy-diff", str(arm), "--json"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert done.returncode == EXIT_OK
+    assert json.loads(done.stdout)["summary"]["differences"] == 5
+    missing = subprocess.run(
+        [sys.executable, "-m", "conformance", "legacy-diff", str(arm.with_name("x.urdf"))],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert missing.returncode == EXIT_USAGE
+    assert "x.urdf: cannot read the file" in missing.stderr
