@@ -61,6 +61,8 @@ class UnknownNameError(KeyError):
         super().__init__(f"unknown {kind} name {name!r}")
         self.kind = kind
         self.name = name
+        #: The step that named it (``step 3 (apply)``), added by the runner.
+        self.where: str | None = None
 
     def __str__(self) -> str:
         return str(self.args[0])
@@ -96,12 +98,15 @@ _KIND_BY_PREFIX: tuple[tuple[str, ErrorKind], ...] = (
     ("Frame id # does not belong", ErrorKind.NOT_OWNED),
 )
 
-_ID_VALUE = re.compile(r"\b\d+\b")
+#: A model file's position (``r.urdf:7:``, ``<data-string>:7:``, ``r.sdf:7:3:``), kept
+#: as it is, or else an integer (an id value).
+_POSITION_OR_ID = re.compile(r"((?:\.\w+|>):\d+(?::\d+)?:)|\b\d+\b")
 
 
 def normalise_message(message: str) -> str:
-    """Replaces id values (every integer) with ``#``: ids differ between runs."""
-    return _ID_VALUE.sub("#", message.strip())
+    """Replaces id values (every integer but a model file's line) with ``#``: ids differ
+    between runs; lines in a model file do not, and name the element."""
+    return _POSITION_OR_ID.sub(lambda m: m.group(1) or "#", message.strip())
 
 
 def classify_error(exception: BaseException) -> ErrorInfo:

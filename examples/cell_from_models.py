@@ -1,5 +1,7 @@
 # A two-arm cell from model files: which pairs does the collision engine consider?
 
+from collections.abc import Callable, Iterable
+
 from pydrake.geometry import Box, CollisionFilterDeclaration, Sphere
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import Parser
@@ -96,13 +98,13 @@ diagram = builder.Build()
 inspector = scene_graph.model_inspector()
 
 
-def name(geometry_id):
+def name(geometry_id: object) -> str:
     body = plant.GetBodyFromFrameId(inspector.GetFrameId(geometry_id))
     model = plant.GetModelInstanceName(body.model_instance())
     return f"{model}::{body.name()}/{inspector.GetName(geometry_id)}"
 
 
-def show(label, candidates):
+def show(label: str, candidates: Iterable[tuple[object, object]]) -> None:
     pairs = sorted(" - ".join(sorted((name(a), name(b)))) for a, b in candidates)
     print(f"{label}: {len(pairs)} pairs")
     for pair in pairs:
@@ -136,7 +138,7 @@ show(
     "context",
     scene_graph.get_query_output_port().Eval(sg_context).inspector().GetCollisionCandidates(),
 )
-for label, call in [
+checks: list[tuple[str, Callable[[], object]]] = [
     ("unknown body", lambda: plant.GetBodyByName("elbow")),
     ("late adjacency flag", lambda: plant.set_adjacent_bodies_collision_filters(False)),
     (
@@ -145,7 +147,8 @@ for label, call in [
             ARM.replace('<drake:member link="hand"/>', '<drake:member link="claw"/>'), "urdf"
         ),
     ),
-]:
+]
+for label, call in checks:
     try:
         call()
     except RuntimeError as e:

@@ -215,7 +215,7 @@ def test_a_bad_model_is_a_result_with_drakes_message_naming_the_element(
     assert result.error is not None
     assert result.error.kind is ErrorKind.OTHER
     assert (
-        result.error.message == "<literal-string>.urdf:#: error: body with name 'r::zz' not found"
+        result.error.message == "<literal-string>.urdf:1: error: body with name 'r::zz' not found"
     )
 
 
@@ -229,7 +229,7 @@ def test_a_bad_model_file_names_the_file_below_the_case_folder(
     files = {"robots/r.urdf": URDF.format(member="zz")}
     result = backend.execute(Command("add_models", {"files": files, "path": "robots/r.urdf"}))
     assert result.error is not None
-    assert result.error.message == "robots/r.urdf:#: error: body with name 'r::zz' not found"
+    assert result.error.message == "robots/r.urdf:1: error: body with name 'r::zz' not found"
 
 
 def test_a_case_folder_holds_the_files_until_the_next_reset() -> None:
@@ -256,7 +256,41 @@ def test_an_unknown_scoped_body_in_a_step_is_an_input_error_of_the_case(tmp_path
     )
     code, err = _run(path)
     assert code == EXIT_USAGE
-    assert f"{path.name}: case 'c1': unknown body name 'r::zz'" in err
+    assert f"{path.name}: case 'c1': step 2 (weld_frames): unknown body name 'r::zz'" in err
+
+
+def test_a_model_every_backend_rejects_unexpectedly_is_exit_two_naming_file_case_and_line(
+    tmp_path: Path,
+) -> None:
+    path = _write(
+        tmp_path,
+        [
+            {"op": "add_models", "text": URDF.format(member="zz"), "format": "urdf"},
+            {"op": "finalize"},
+        ],
+    )
+    code, err = _run(path)
+    assert code == EXIT_USAGE
+    assert (
+        f"{path.name}: case 'c1': step 1 (add_models): the model is invalid on pydrake: "
+        "<literal-string>.urdf:1: error: body with name 'r::zz' not found"
+    ) in err
+
+
+def test_a_model_error_the_case_expects_is_a_conformance_check(tmp_path: Path) -> None:
+    error = {"kind": "other", "message": "<literal-string>.urdf:1: error: body with name"}
+    path = _write(
+        tmp_path,
+        [
+            {
+                "op": "add_models",
+                "text": URDF.format(member="zz"),
+                "format": "urdf",
+                "expect": {"error": error},
+            },
+        ],
+    )
+    assert _run(path)[0] == EXIT_OK
 
 
 # --------------------------------------------------------- other releases

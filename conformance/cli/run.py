@@ -193,6 +193,7 @@ def _run_cases(
                 strict_divergences=args.strict_divergences,
                 step_timeout=args.step_timeout or None,
                 on_step=_LongCase(err, case.qualified_name, quiet=args.quiet),
+                bad_models_are_input_errors=True,
             )
             report.cases.append(case_report)
             if not args.quiet:

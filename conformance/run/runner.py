@@ -37,6 +37,7 @@ the divergence's id instead of ``fail``, unless ``strict_divergences``.
 
 from __future__ import annotations
 
+import contextlib
 import enum
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -51,6 +52,7 @@ from conformance.backends.calls import (
 )
 from conformance.compare import diff, diff_results
 from conformance.corpus.loader import Case, Step
+from conformance.grammar import spec
 from conformance.policy.divergences import KnownDivergence, match_case
 from conformance.policy.guards import arm_guards
 from conformance.policy.versions import version_in_range
@@ -228,26 +230,41 @@ def _answers(
         commands = [None if s.op == "check" else Command(s.op, s.args) for s in steps]
         stream = iter(backend.run_steps(list(zip(commands, observed, strict=True))))
         for label in where:
-            yield call_function(
-                backend,
-                lambda: next(stream),
-                "run_steps",
-                where=label,
-                returns=tuple,
-                timeout=timeout,
-            )
+            with _naming_step(label):
+                answer = call_function(
+                    backend,
+                    lambda: next(stream),
+                    "run_steps",
+                    where=label,
+                    returns=tuple,
+                    timeout=timeout,
+                )
+            yield answer
         return
     for step, label, look in zip(steps, where, observed, strict=True):
         result = Result()
-        if step.op != "check":
-            command = Command(step.op, step.args)
-            result = call(backend, "execute", command, where=label, returns=Result, timeout=timeout)
+        with _naming_step(label):
+            if step.op != "check":
+                command = Command(step.op, step.args)
+                result = call(
+                    backend, "execute", command, where=label, returns=Result, timeout=timeout
+                )
         observation = None
         if look:
             observation = call(
                 backend, "observe", where=f"{label}, observe", returns=Observation, timeout=timeout
             )
         yield result, observation
+
+
+@contextlib.contextmanager
+def _naming_step(label: str) -> Iterator[None]:
+    """Adds the step (``label``) to an UnknownNameError raised inside: the input error names it."""
+    try:
+        yield
+    except UnknownNameError as exc:
+        exc.where = exc.where or label
+        raise
 
 
 def _trace(
@@ -281,11 +298,14 @@ def run_case(
     divergences: Sequence[KnownDivergence] | None = None,
     step_timeout: float | None = None,
     on_step: Callable[[int, int], None] | None = None,
+    bad_models_are_input_errors: bool = False,
 ) -> CaseReport:
     """Runs ``case`` on every backend whose features cover it (see the module doc).
 
     ``on_step(done, total)`` is called after each step of each backend (for progress
-    on long cases).
+    on long cases). With ``bad_models_are_input_errors`` (the ``run`` command), a
+    model step that every backend rejects, in a case that does not expect an
+    error there, ends the case as an input error (``_bad_model``).
     """
     oracle = choose_reference(backends, reference)
     report = CaseReport(case)
@@ -312,9 +332,14 @@ def run_case(
     try:
         traces = [_trace(b, case.steps, observed, step_timeout, step_done) for b in active]
     except UnknownNameError as exc:
-        report.aborted = f"{exc} (the case names something no earlier step made)"
+        where = f"{exc.where}: " if exc.where else ""
+        report.aborted = f"{where}{exc} (the case names something no earlier step made)"
         return report
     report.traces = {t.name: t for t in traces}
+    if bad_models_are_input_errors:
+        report.aborted = _bad_model(case, traces, ref)
+        if report.aborted is not None:
+            return report
     _compare(case, traces, ref, observed, report)
     release = ref.version() if ref is not None else ""
     for trace in traces:
@@ -325,6 +350,28 @@ def run_case(
                 report, backend_id(trace.backend), release, strict_divergences, divergences
             )
     return report
+
+
+def _bad_model(case: Case, traces: Sequence[Trace], ref: Backend | None) -> str | None:
+    """Why the case's model is bad, if a model step failed on every backend unexpectedly.
+
+    A user's model that Drake rejects (an unknown link in a group, an
+    undefined group, a malformed file) is an input error, not a conformance
+    result, unless the step expects an error: then the case tests it. If the
+    backends disagree, it is a conformance failure, and the comparison says so.
+    """
+    for index, step in enumerate(case.steps):
+        if spec(step.op).domain != "model" or any("error" in e for e in step.expect):
+            continue
+        first = sorted(traces, key=lambda t: t.backend is not ref)  # the reference first
+        errors = [t.results[index].error for t in first if t.covers(index)]
+        if len(errors) == len(traces) and errors[0] is not None and all(errors):
+            return (
+                f"{step.label} ({step.op}): the model is invalid on {first[0].name}: "
+                f"{errors[0].message} (a case that tests this error says so with "
+                '"expect": {"error": ...})'
+            )
+    return None
 
 
 def _compare(
