@@ -318,3 +318,14 @@ def test_drake_1_30_aborts_on_an_undefined_ignored_group_as_a_known_divergence()
     )
     assert report.broken["drake==1.30.0"] is Status.CRASH
     assert report.xfails == {"drake==1.30.0": "undefined-ignored-group-aborts"}
+
+
+@pytest.mark.skipif(not _cached("1.12.0"), reason="no cached environment for Drake 1.12.0")
+def test_a_release_without_a_binding_the_case_calls_skips_it_in_run() -> None:
+    worker = load_backend("drake==1.12.0")
+    case = next(c for c in CASES if "RpyFloatingJoint between two bodies" in c.description)
+    report = run_case(case, [REIMPL, worker])
+    assert report.status[worker.name] is Status.SKIP
+    assert report.skip_reasons[worker.name].startswith(
+        "no binding: step 5 (add_joint): pydrake #.#.# has no multibody.tree.RpyFloatingJoint"
+    )

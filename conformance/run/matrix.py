@@ -39,7 +39,15 @@ from conformance.backends.calls import BackendError
 from conformance.backends.environments import DrakeEnvironmentError
 from conformance.backends.subprocess_backend import WorkerBackend
 from conformance.corpus.loader import Case
-from conformance.run.runner import CaseReport, Failure, Status, Trace, run_case, trace_disagreements
+from conformance.run.runner import (
+    CaseReport,
+    Failure,
+    Status,
+    Trace,
+    binding_gap,
+    run_case,
+    trace_disagreements,
+)
 
 __all__ = [
     "Cell",
@@ -96,18 +104,6 @@ _BROKEN_OUTCOMES = {
 }
 
 
-def _binding_gap(report: CaseReport, backend: str) -> str | None:
-    """The first step the release answered with an error of kind ``binding`` (its Python
-    bindings lack the call, or the keywords, the step uses), if any."""
-    trace = report.traces.get(backend)
-    if trace is None:
-        return None
-    for step, result in zip(report.case.steps, trace.results, strict=False):
-        if result.error is not None and result.error.kind.value == "binding":
-            return f"{step.label} ({step.op}): {result.error.message}"
-    return None
-
-
 def _broke(report: CaseReport, backend: str) -> str:
     """Where the backend broke, and the last line of what it said (a worker's stderr)."""
     trace = report.traces.get(backend)
@@ -119,8 +115,8 @@ def _broke(report: CaseReport, backend: str) -> str:
 
 
 def _failed(report: CaseReport, backend: str) -> Cell:
-    gap = _binding_gap(report, backend)
-    if gap is not None:
+    gap = binding_gap(report, backend)
+    if gap is not None:  # a backend not named like a Drake release (run's SKIP covers those)
         return Cell(Outcome.UNSUPPORTED, f"no binding: {gap}")
     first = report.failures_of(backend)[0]
     return Cell(Outcome.FAIL, f"{first.step}: {first.what}")

@@ -60,6 +60,7 @@ from conformance.protocol import (
     Backend,
     BackendId,
     Command,
+    ErrorKind,
     Observation,
     Result,
     UnknownNameError,
@@ -469,6 +470,18 @@ def _broke(
     report.status[trace.name] = status
 
 
+def binding_gap(report: CaseReport, backend: str) -> str | None:
+    """The first step ``backend`` answered with an error of kind ``binding`` (its Python
+    bindings lack the call, or the keywords, the step uses), if any."""
+    trace = report.traces.get(backend)
+    if trace is None:
+        return None
+    for step, result in zip(report.case.steps, trace.results, strict=False):
+        if result.error is not None and result.error.kind is ErrorKind.BINDING:
+            return f"{step.label} ({step.op}): {result.error.message}"
+    return None
+
+
 def _status(
     report: CaseReport,
     backend: BackendId,
@@ -476,8 +489,15 @@ def _status(
     strict: bool,
     divergences: Sequence[KnownDivergence] | None,
 ) -> Status:
+    """PASS, or, for a backend with failures: SKIP if it is a Drake release whose bindings
+    lack a call the case makes (it cannot run the case; an implementation's missing
+    binding is a failure), XFAIL if a known divergence expects them, else FAIL."""
     if not report.failures_of(backend.name):
         return Status.PASS
+    gap = binding_gap(report, backend.name)
+    if gap is not None and backend.name.startswith(_DRAKE_NAMES):
+        report.skip_reasons[backend.name] = f"no binding: {gap}"
+        return Status.SKIP
     if strict:
         return Status.FAIL
     known = match_case(report.case.qualified_name, backend, release, divergences)
