@@ -13,46 +13,16 @@ prints.
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
-from pathlib import Path
-
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+from tests.dropin import ROOT, as_reimpl, run_script
+
 SCRIPT = (ROOT / "examples" / "cell_from_models.py").read_text()
-
-
-def as_reimpl(script: str) -> str:
-    """The textual switch a user makes: ``pydrake.`` becomes ``reimpl.`` in the imports."""
-    return "".join(
-        line.replace("pydrake.", "reimpl.", 1)
-        if line.startswith(("from pydrake.", "import pydrake."))
-        else line
-        for line in script.splitlines(keepends=True)
-    )
-
-
-def run(script: str) -> str:
-    path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)
-    completed = subprocess.run(
-        [sys.executable, "-c", script],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        env=dict(os.environ, PYTHONPATH=path),
-        timeout=120,
-        check=False,
-    )
-    assert completed.returncode == 0, completed.stderr
-    assert "Traceback" not in completed.stderr, completed.stderr
-    return completed.stdout
 
 
 @pytest.fixture(scope="module")
 def outputs() -> tuple[str, str]:
-    return run(SCRIPT), run(as_reimpl(SCRIPT))
+    return run_script(SCRIPT), run_script(as_reimpl(SCRIPT))
 
 
 def test_reimpl_variant_imports_only_reimpl() -> None:
