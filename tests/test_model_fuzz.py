@@ -244,7 +244,7 @@ def test_model_cases_are_deterministic_for_a_seed_and_end_in_finalize_and_check(
     assert first != _cases(4)
     for commands in first:
         ops = [c.op for c in commands]
-        assert ops.count("add_models") == 1
+        assert ops.count("add_models") in (1, 2)
         assert ops[-1] == "check"
         assert "finalize" in ops
 
@@ -285,9 +285,9 @@ def test_fuzz_models_of_reimpl_against_pydrake_exits_0_and_writes_nothing(tmp_pa
 
 
 MUTANT = "conformance.testing.model_mutants:rpy_floating_unfiltered"
-#: Seed 3 meets the mutant's bug after 94 examples (seeds 1 and 2 after 235 and 207; 4 and 5
-#: not within 300): an RpyFloatingJoint between two bodies with collision geometry.
-SEED_3 = ("--seed", "3", "--max-examples", "300")
+#: Seed 1 meets the mutant's bug after 106 examples (seeds 2-6: 177, 231, 211, 133, 109):
+#: an RpyFloatingJoint between two bodies with collision geometry.
+SEED_1 = ("--seed", "1", "--max-examples", "300")
 
 
 def test_fuzz_models_catches_the_rpy_floating_mutant_with_a_shrunk_file_that_replays(
@@ -301,18 +301,13 @@ def test_fuzz_models_catches_the_rpy_floating_mutant_with_a_shrunk_file_that_rep
     (path,) = tmp_path.glob("*.json")
     assert path.name.startswith("models-")
     (case,) = load_file(path, root=tmp_path).cases
-    # Shrunk: one parsed model, two added bodies, the second on an RpyFloatingJoint from the
-    # first, Finalize; pydrake filters b0-b1 (adjacent), the mutant does not.
-    assert [s.op for s in case.steps] == [
-        "add_models",
-        "add_rigid_body",
-        "register_collision_geometry",
-        "add_rigid_body",
-        "register_collision_geometry",
-        "add_joint",
-        "finalize",
-    ]
-    assert case.steps[5].args["type"] == "rpy_floating"
+    # Shrunk: a parsed model, a body added on an RpyFloatingJoint from a parsed body (or
+    # from a body added before it), Finalize; pydrake filters the two, the mutant does not.
+    ops = [s.op for s in case.steps]
+    assert ops[0] == "add_models"
+    assert ops[-2:] == ["add_joint", "finalize"]
+    assert len(ops) <= 7
+    assert case.steps[-2].args["type"] == "rpy_floating"
     assert case.steps[-1].expect[0]["candidates"] == []
     assert "fuzz --models --backend" in (path.read_text())
     assert run(str(path), "--backend", MUTANT, "--backend", "pydrake") == EXIT_FAILURE

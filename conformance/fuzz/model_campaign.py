@@ -9,7 +9,10 @@ Each example is one case (``model_cases``), in the scenario grammar:
 3. ``add_models``: a tree from ``conformance.fuzz.models``, rendered as URDF
    or SDFormat, sometimes with a model name prefix; one in eight examples is
    a model with a broken group (``kinematic_trees(invalid=True)``), for the
-   parse errors;
+   parse errors. Now and then the same text is parsed again (under the
+   prefix ``q``, with ``auto_renaming``, or as it is: a name clash), and the
+   last Parser's ``collision_filter_groups`` report is compared (both
+   backends having the op);
 4. for a valid model, up to two bodies the case adds (``add_rigid_body``,
    ``register_collision_geometry``: ``B0`` with ``b0``, ``B1`` with ``b1``),
    each on a joint of any ``add_joint`` type from the world, a parsed body
@@ -101,6 +104,14 @@ _ADDED_BODIES = st.lists(
     max_size=2,
 )
 _PREFIX = "p"
+#: How the model is parsed a second time, if at all: under another prefix, with
+#: SetAutoRenaming (Drake names the instance ``m_1``), or as it is (the names clash).
+_AGAIN: tuple[dict[str, Any] | None, ...] = (
+    None,
+    {"prefix": "q"},
+    {"auto_renaming": True},
+    {},
+)
 _ANCHORED = "w"
 _FILE = ScenarioFile(Path("fuzz-models"), "fuzz --models", "random models")
 
@@ -136,6 +147,8 @@ def model_cases(
     anchored = [f"{_ANCHORED}{i}" for i in range(draw(st.integers(0, max_anchored)))]
     adjacent = draw(st.sampled_from((None, False, True)))
     prefix = draw(st.sampled_from((None, _PREFIX)))
+    again = draw(st.sampled_from(_AGAIN))
+    report = draw(st.booleans()) and have(GRAMMAR["collision_filter_groups"].feature)
     added = draw(_ADDED_BODIES)
     applies = draw(
         st.lists(st.tuples(cs.declaration_templates(), st.booleans()), max_size=max_applies)
@@ -152,6 +165,10 @@ def model_cases(
     if prefix is not None:
         add["prefix"] = prefix
     commands.append(Command("add_models", add))
+    if again is not None:  # the same text once more: a second instance, renamed, or a clash
+        commands.append(Command("add_models", {"text": add["text"], "format": fmt, **again}))
+    if report:
+        commands.append(Command("collision_filter_groups", {}))
     finalize = [Command("finalize", {}), Command("check", {})]
     if invalid:
         return commands + finalize
