@@ -76,6 +76,21 @@ class Parsed:
         pairs = self.scene_graph.model_inspector().GetCollisionCandidates()
         return {"|".join(sorted((self.name(a), self.name(b)))) for a, b in pairs}
 
+    def bodies(self) -> set[str]:
+        """``<model>::<body>`` of every body but the world."""
+        plant = self.plant
+        body_index = type(plant.world_body().index())  # BodyIndex, of this implementation
+        bodies = (plant.get_body(body_index(i)) for i in range(1, plant.num_bodies()))
+        return {f"{plant.GetModelInstanceName(b.model_instance())}::{b.name()}" for b in bodies}
+
+    def joints(self) -> set[str]:
+        """``<joint>:<type>:<parent>-><child>`` of every joint."""
+        joints = (self.plant.get_joint(j) for j in self.plant.GetJointIndices())
+        return {
+            f"{j.name()}:{j.type_name()}:{j.parent_body().name()}->{j.child_body().name()}"
+            for j in joints
+        }
+
     def report(self) -> tuple[dict[str, set[str]], set[tuple[str, str]]]:
         groups = self.parser.GetCollisionFilterGroups()
         return groups.groups(), groups.exclusion_pairs()
@@ -595,6 +610,222 @@ def test_urdf_joints_filter_adjacent_links_at_finalize(mb: Modules) -> None:
     parsed.add(robot(joints, name="m", links=("l1", "l2", "l3", "l4")), "urdf")  # type: ignore[arg-type]
     parsed.plant.Finalize()
     assert parsed.candidates() == pairs(L1, L2, L3, L4) - {pair(L1, L2), pair(L3, L4)}
+
+
+# ---------------------------------------------- URDF drake_ignore, names, axes
+
+
+def sphere_link(name: str, attributes: str = "") -> str:
+    return (
+        f'<link name="{name}"{attributes}><collision><geometry><sphere radius="0.1"/>'
+        "</geometry></collision></link>\n"
+    )
+
+
+def joint(name: str, parent: str, child: str, kind: str = "revolute", inner: str = "") -> str:
+    tag = "drake:joint" if kind in ("ball", "universal", "screw") else "joint"
+    return (
+        f'<{tag} name="{name}" type="{kind}">{inner}<parent link="{parent}"/>'
+        f'<child link="{child}"/></{tag}>\n'
+    )
+
+
+def urdf(*elements: str) -> str:
+    return f'<robot name="r" {DRAKE_NS}>\n' + "".join(elements) + "</robot>\n"
+
+
+# Measured on pydrake 1.51.1: only the exact value "true" counts.
+DRAKE_IGNORE_VALUES = [
+    ("true", True),
+    ("1", False),
+    ("True", False),
+    ("TRUE", False),
+    (" true", False),
+    ("false", False),
+    ("", False),
+]
+
+
+@pytest.mark.parametrize(("value", "ignored"), DRAKE_IGNORE_VALUES)
+def test_drake_ignore_drops_a_link_only_when_exactly_true(
+    mb: Modules, value: str, ignored: bool
+) -> None:
+    """An ignored link leaves no body and no geometry, hence no candidate pair."""
+    parsed = Parsed(mb)
+    parsed.add(
+        urdf(sphere_link("a"), sphere_link("b", f' drake_ignore="{value}"'), sphere_link("c")),
+        "urdf",
+    )
+    a, b, c = (f"r::{x}/Sphere" for x in "abc")
+    if ignored:
+        assert parsed.bodies() == {"r::a", "r::c"}
+        assert parsed.candidates() == {pair(a, c)}
+    else:
+        assert parsed.bodies() == {"r::a", "r::b", "r::c"}
+        assert parsed.candidates() == pairs(a, b, c)
+
+
+@pytest.mark.parametrize(("value", "ignored"), DRAKE_IGNORE_VALUES)
+def test_drake_ignore_drops_a_joint_or_drake_joint_only_when_exactly_true(
+    mb: Modules, value: str, ignored: bool
+) -> None:
+    parsed = Parsed(mb)
+    attribute = f'drake_ignore="{value}" '
+    text = urdf(
+        *(sphere_link(x) for x in "abc"),
+        joint("j", "a", "b").replace("<joint ", f"<joint {attribute}"),
+        joint("k", "a", "c", "ball").replace("<drake:joint ", f"<drake:joint {attribute}"),
+    )
+    parsed.add(text, "urdf")
+    assert parsed.bodies() == {"r::a", "r::b", "r::c"}
+    assert parsed.joints() == (set() if ignored else {"j:revolute:a->b", "k:ball_rpy:a->c"})
+    assert parsed.plant.HasFrameNamed("j_parent") is not ignored
+
+
+def test_ignored_links_and_joints_are_not_read(mb: Modules) -> None:
+    """Measured: no name, a bad shape, a taken name, a bad type or an unknown link in an
+    ignored element is no error; the rest of the robot is parsed."""
+    parsed = Parsed(mb)
+    ignore = ' drake_ignore="true"'
+    text = urdf(
+        f"<link{ignore}/>\n",
+        f'<link name="x"{ignore}><collision><geometry><bogus/></geometry></collision></link>\n',
+        sphere_link("a"),
+        sphere_link("a", ignore),
+        sphere_link("b"),
+        f'<joint type="revolute"{ignore}><parent link="a"/><child link="b"/></joint>\n',
+        f'<joint name="j" type="bogus"{ignore}><parent link="a"/><child link="b"/></joint>\n',
+        f'<joint name="k" type="fixed"{ignore}><parent link="a"/><child link="zz"/></joint>\n',
+        joint("m", "a", "b", "fixed"),
+    )
+    parsed.add(text, "urdf")
+    assert parsed.bodies() == {"r::a", "r::b"}
+    assert parsed.joints() == {"m:weld:a->b"}
+
+
+def test_an_ignored_world_link_registers_no_world_geometry(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = urdf(
+        sphere_link("world", ' drake_ignore="true"'),
+        sphere_link("a"),
+        sphere_link("b"),
+        joint("j", "world", "a", "fixed"),
+    )
+    parsed.add(text, "urdf")
+    assert parsed.bodies() == {"r::a", "r::b"}
+    assert parsed.joints() == {"j:weld:world->a"}
+    assert parsed.geometries() == {"r::a/Sphere", "r::b/Sphere"}
+    assert parsed.candidates() == {pair("r::a/Sphere", "r::b/Sphere")}
+
+
+IGNORED_LINK_ERRORS = {
+    # Measured: a joint (of any type, floating too) or a filter group naming an ignored
+    # link fails as for a link never written; the joint is not dropped with the link.
+    "revolute child": joint("j", "a", "b"),
+    "revolute parent": joint("j", "b", "a"),
+    "floating": joint("j", "a", "b", "floating"),
+    "drake:joint": joint("j", "a", "b", "ball"),
+    "group member": group("g", member("a"), member("b"), ignores("g")),
+}
+
+
+@pytest.mark.parametrize("case", IGNORED_LINK_ERRORS)
+def test_naming_an_ignored_link_is_an_error(mb: Modules, case: str) -> None:
+    parsed = Parsed(mb)
+    text = urdf(
+        sphere_link("a"), sphere_link("b", ' drake_ignore="true"'), IGNORED_LINK_ERRORS[case]
+    )
+    with pytest.raises(RuntimeError) as info:
+        parsed.add(text, "urdf")
+    if case == "group member":
+        assert str(info.value) == "<literal-string>.urdf:1: error: body with name 'r::b' not found"
+    else:
+        assert str(info.value) == (
+            "<literal-string>.urdf:1: error: Could not find link named 'b' with model instance "
+            "ID 2 for element 'j'."
+        )
+    assert parsed.joints() == set()
+
+
+def test_a_joint_with_an_empty_name_is_skipped_unread(mb: Modules) -> None:
+    """Measured: no joint, no ``_parent`` frame, no error (even for a bad type or an
+    unknown link) and no warning; a name of one space is a name."""
+    parsed = Parsed(mb)
+    text = urdf(
+        *(sphere_link(x) for x in "abc"),
+        joint("", "a", "b"),
+        joint("", "a", "b", "fixed"),
+        joint("", "a", "zz"),
+        joint("", "a", "b", "bogus"),
+        joint("", "a", "c", "ball"),
+        joint(" ", "b", "c", "prismatic"),
+    )
+    parsed.add(text, "urdf")
+    assert parsed.joints() == {" :prismatic:b->c"}
+    assert not parsed.plant.HasFrameNamed("_parent")
+
+
+@pytest.mark.parametrize(
+    # screw: before its missing <drake:screw_thread_pitch> is noticed.
+    "kind",
+    ["revolute", "continuous", "prismatic", "planar", "universal", "screw"],
+)
+def test_a_zero_axis_is_an_error_at_the_axis_line(mb: Modules, kind: str) -> None:
+    text = urdf(
+        sphere_link("a"), sphere_link("b"), joint("j", "a", "b", kind, '\n<axis xyz="0 0 0"/>')
+    )
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add(text, "urdf")
+    assert str(info.value) == (
+        "<literal-string>.urdf:5: error: Joint 'j' axis is zero.  Don't do that."
+    )
+
+
+def test_an_axis_is_zero_below_norm_1e_8_and_unchecked_for_weld_ball_and_floating(
+    mb: Modules,
+) -> None:
+    parsed = Parsed(mb)
+    zero, small = '<axis xyz="0 0 0"/>', '<axis xyz="0 0 1e-8"/>'
+    text = urdf(
+        *(sphere_link(x) for x in "abcde"),
+        joint("j1", "a", "b", "fixed", zero),
+        joint("j2", "a", "c", "floating", zero),
+        joint("j3", "a", "d", "ball", zero),
+        joint("j4", "a", "e", "revolute", small),
+    )
+    parsed.add(text, "urdf")
+    assert parsed.joints() == {"j1:weld:a->b", "j3:ball_rpy:a->d", "j4:revolute:a->e"}
+    tiny = urdf(
+        sphere_link("a"),
+        sphere_link("b"),
+        joint("j", "a", "b", "revolute", '<axis xyz="5e-9 5e-9 5e-9"/>'),
+    )
+    with pytest.raises(RuntimeError, match="axis is zero"):
+        Parsed(mb).add(tiny, "urdf")
+
+
+EMPTY_NAME = (
+    "Failure at external/drake+/multibody/tree/model_instance.cc:23 in set_name(): condition "
+    "'!name.empty()' failed."
+)
+
+
+def test_an_empty_model_instance_name_ends_the_program(mb: Modules) -> None:
+    """pydrake 1.51.1's DRAKE_DEMAND in ModelInstance::set_name, raised (measured) as
+    SystemExit by AddModelInstance, RenameModelInstance and ``<robot name="">``."""
+    parsed = Parsed(mb)
+    with pytest.raises(SystemExit) as info:
+        parsed.add(robot("", name=""), "urdf")
+    assert str(info.value) == EMPTY_NAME
+    assert parsed.bodies() == set()
+    with pytest.raises(SystemExit) as info:
+        parsed.plant.AddModelInstance("")
+    assert str(info.value) == EMPTY_NAME
+    instance = parsed.plant.AddModelInstance("m")
+    with pytest.raises(SystemExit) as info:
+        parsed.plant.RenameModelInstance(instance, "")
+    assert str(info.value) == EMPTY_NAME
+    assert parsed.plant.GetModelInstanceName(instance) == "m"
 
 
 # ------------------------------------------------------------------ SDFormat

@@ -146,6 +146,14 @@ def _demand_failed(method: str, condition: str) -> DemandFailedError:
     return DemandFailedError(f"Failure in {method}(): condition '{condition}' failed.")
 
 
+def _empty_instance_name() -> SystemExit:
+    """What pydrake 1.51.1 raises (SystemExit, measured) naming a model instance ``""``."""
+    return SystemExit(
+        "Failure at external/drake+/multibody/tree/model_instance.cc:23 in set_name(): "
+        "condition '!name.empty()' failed."
+    )
+
+
 class MultibodyPlant(LeafSystem):
     """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
 
@@ -247,12 +255,15 @@ class MultibodyPlant(LeafSystem):
 
     # ----------------------------------------------------- model instances
     def AddModelInstance(self, name: str) -> ModelInstanceIndex:
+        """Adds an empty model instance; an empty ``name`` ends the program as on pydrake."""
         if self._finalized:
             raise FinalizedError(
                 "This MultibodyTree is finalized already. Therefore adding more model "
                 "instances is not allowed. See documentation for Finalize() for details."
             )
         self._check_new_instance_name(name)
+        if not name:
+            raise _empty_instance_name()
         self._instance_names.append(name)
         return ModelInstanceIndex(len(self._instance_names) - 1)
 
@@ -291,7 +302,9 @@ class MultibodyPlant(LeafSystem):
         """Renames the instance, and the scoped names of its SceneGraph frames and geometries.
 
         A geometry named ``old::x`` becomes ``new::x``. N.B. pydrake 1.51.1 aborts
-        (DRAKE_DEMAND) when called after Finalize; reimpl raises.
+        (DRAKE_DEMAND) when called after Finalize; reimpl raises. An empty ``name``
+        raises SystemExit as on pydrake (which, measured, still registers ``""``;
+        reimpl leaves the instance as it was).
         """
         if self._finalized:
             raise _demand_failed("RenameModelInstance", "!is_finalized()")
@@ -299,6 +312,8 @@ class MultibodyPlant(LeafSystem):
         old = self._instance_names[index]
         if name == old:
             return
+        if not name:
+            raise _empty_instance_name()
         self._check_new_instance_name(name)
         self._instance_names[index] = name
         if self._scene_graph is None or index < _FIRST_SCOPED_INSTANCE:

@@ -11,6 +11,17 @@ child stays free). ``<drake:joint type>``: ball → ball_rpy, universal,
 planar, screw. Each joint's frame on the parent is a FixedOffsetFrame
 ``<joint>_parent`` in the child's model instance; on the child, the body frame.
 
+``drake_ignore="true"`` (exactly; "1", "True", " true" do not count) on a
+``<link>``, ``<joint>`` or ``<drake:joint>`` skips the element unread: no body
+(nor geometry, even for ``world``), no joint, no check of its name, type or
+geometry, no warning. A joint end or group member naming a skipped link is
+then an error as for a link never written (measured).
+
+A joint whose ``name`` is empty is skipped silently and unread. An
+``<axis xyz>`` of norm below 1e-8 is an error at the ``<axis>`` line for every
+kind but weld, ball and floating (checked after the links, before a screw's
+pitch).
+
 Collision filter groups (only with a SceneGraph; the old unprefixed
 ``<collision_filter_group>`` is silently ignored)::
 
@@ -26,6 +37,7 @@ errors about a group carry the ``<robot>`` line.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from reimpl.math import RigidTransform
@@ -55,6 +67,13 @@ _JOINT_KINDS = {
 _DRAKE_JOINT_KINDS = {"ball": "ball_rpy", "universal": "universal", "planar": "planar"}
 _DRAKE_ONLY = {"ball", "universal", "screw"}
 _GROUP = "drake:collision_filter_group"
+_AXIS_KINDS = {"revolute", "prismatic", "planar", "universal", "screw"}
+_ZERO_AXIS = 1e-8  # Measured: |axis| = 1e-8 passes, 1e-9 is "zero".
+
+
+def _ignored(element: XmlElement) -> bool:
+    """Whether Drake skips ``element``: its ``drake_ignore`` is exactly ``"true"``."""
+    return element.get("drake_ignore") == "true"
 
 
 def read_urdf(
@@ -96,14 +115,17 @@ class _Robot:
     def add(self, name: str) -> Any:
         self.instance = self.context.add_model_instance(name)
         for link in children(self.robot, "link"):
-            self._add_link(link)
+            if not _ignored(link):
+                self._add_link(link)
         if self.context.has_scene_graph():
             for group in children(self.robot, _GROUP):
                 self._add_group(group)
         for joint in children(self.robot, "joint"):
-            self._add_joint(joint, drake_joint=False)
+            if not _ignored(joint):
+                self._add_joint(joint, drake_joint=False)
         for joint in children(self.robot, "drake:joint"):
-            self._add_joint(joint, drake_joint=True)
+            if not _ignored(joint):
+                self._add_joint(joint, drake_joint=True)
         return self.instance
 
     def _required(self, element: XmlElement, attribute: str) -> str:
@@ -166,6 +188,8 @@ class _Robot:
         name = joint.get("name")
         if name is None:
             raise d.error("joint tag is missing name attribute", joint.line)
+        if not name:  # N.B. Measured: skipped unread and silently, like drake_ignore.
+            return
         joint_type = joint.get("type")
         if joint_type is None:
             raise d.error(f"joint '{name}' is missing type attribute", joint.line)
@@ -180,9 +204,7 @@ class _Robot:
                 joint.line,
             )
             return
-        axes = children(joint, "axis")
-        axis = read_vector3(axes[0], "xyz", "1 0 0") if axes else [1.0, 0.0, 0.0]
-        xyz = (axis[0], axis[1], axis[2])
+        xyz = self._axis(joint, name, kind)
         spec = JointSpec(name, kind, parent_link, child_link, joint.line, xyz)
         if kind == "screw":
             spec = self._with_pitch(joint, spec)
@@ -197,6 +219,18 @@ class _Robot:
             )
             self.plant.AddFrame(frame_on_child)
         self.plant.AddJoint(JOINT_TYPES[kind](spec, frame_on_parent, frame_on_child))
+
+    def _axis(self, joint: XmlElement, name: str, kind: str) -> tuple[float, float, float]:
+        """The first ``<axis xyz>`` (default x); nearly zero is an error where it is used."""
+        axes = children(joint, "axis")
+        if not axes:
+            return (1.0, 0.0, 0.0)
+        x, y, z = read_vector3(axes[0], "xyz", "1 0 0")
+        if kind in _AXIS_KINDS and math.hypot(x, y, z) < _ZERO_AXIS:
+            raise self.diagnostics.error(
+                f"Joint '{name}' axis is zero.  Don't do that.", axes[0].line
+            )
+        return (x, y, z)
 
     def _kind(self, joint: XmlElement, name: str, joint_type: str, drake_joint: bool) -> str | None:
         d = self.diagnostics
