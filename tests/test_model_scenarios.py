@@ -329,3 +329,10 @@ def test_a_release_without_a_binding_the_case_calls_skips_it_in_run() -> None:
     assert report.skip_reasons[worker.name].startswith(
         "no binding: step 5 (add_joint): pydrake #.#.# has no multibody.tree.RpyFloatingJoint"
     )
+
+
+def test_a_model_case_that_no_backend_runs_is_no_input_error() -> None:
+    case = _case("the parser reports each group's scoped members and each ignored pair once")
+    from conformance.run.runner import _bad_model  # noqa: PLC0415 (the rule under test)
+
+    assert _bad_model(case, [], None) is None

@@ -366,7 +366,7 @@ def _bad_model(case: Case, traces: Sequence[Trace], ref: Backend | None) -> str 
             continue
         first = sorted(traces, key=lambda t: t.backend is not ref)  # the reference first
         errors = [t.results[index].error for t in first if t.covers(index)]
-        if len(errors) == len(traces) and errors[0] is not None and all(errors):
+        if errors and len(errors) == len(traces) and errors[0] is not None and all(errors):
             return (
                 f"{step.label} ({step.op}): the model is invalid on {first[0].name}: "
                 f"{errors[0].message} (a case that tests this error says so with "
