@@ -7,7 +7,8 @@ Each example is one case (``model_cases``), in the scenario grammar:
    filtered against it, whichever source it comes from);
 2. now and then ``set_adjacent_filters`` (when both backends have the op);
 3. ``add_models``: a tree from ``conformance.fuzz.models``, rendered as URDF
-   or SDFormat, sometimes with a model name prefix; one in eight examples is
+   or SDFormat (with up to two nested models), sometimes with a model name
+   prefix; one in eight examples is
    a model with a broken group (``kinematic_trees(invalid=True)``), for the
    parse errors. Now and then the same text is parsed again (under the
    prefix ``q``, with ``auto_renaming``, or as it is: a name clash), and the
@@ -104,6 +105,9 @@ _ADDED_BODIES = st.lists(
     max_size=2,
 )
 _PREFIX = "p"
+#: Nested models in an SDFormat model (each ``<model name="n<i>">`` a model instance
+#: ``m::n<i>`` whose bodies and groups the outer model names as ``n<i>::...``).
+_MAX_NESTED = 2
 #: How the model is parsed a second time, if at all: under another prefix, with
 #: SetAutoRenaming (Drake names the instance ``m_1``), or as it is (the names clash).
 _AGAIN: tuple[dict[str, Any] | None, ...] = (
@@ -153,7 +157,8 @@ def model_cases(
     applies = draw(
         st.lists(st.tuples(cs.declaration_templates(), st.booleans()), max_size=max_applies)
     )
-    model = draw(kinematic_trees(formats=(fmt,), invalid=invalid))
+    nesting = _MAX_NESTED if fmt == "sdf" else 0
+    model = draw(kinematic_trees(formats=(fmt,), invalid=invalid, max_nested=nesting))
 
     commands = [
         Command("register_geometry", {"name": name, "frame": WORLD, "roles": ["proximity"]})
@@ -173,10 +178,11 @@ def model_cases(
     if invalid:
         return commands + finalize
     scope = _scope(model.name, prefix)
-    frames = [f"{scope}::{body.name}" for body in model.bodies]
+    bodies = model.scoped_bodies()
+    frames = [f"{scope}::{name}" for name, _ in bodies]
     geometries = [f"{scope}{name.removeprefix(model.name)}" for name in geometry_names(model, fmt)]
     # Parents with collision geometry first: there a joint type shows in C.
-    solid = [f"{scope}::{b.name}" for b in model.bodies if any(g.collision for g in b.geometries)]
+    solid = [f"{scope}::{n}" for n, b in bodies if any(g.collision for g in b.geometries)]
     parents = [*solid, WORLD, *(f for f in frames if f not in solid)]
     for i, (instance, joint_type, pick) in enumerate(added):
         body, geometry = f"{ADDED_BODY}{i}", f"{_ADDED_GEOMETRY}{i}"

@@ -184,10 +184,22 @@ class Group:
 
 @dataclass(frozen=True)
 class Model:
+    """A model; ``nested`` models (SDFormat only) are its children, whose bodies and groups
+    its joints and groups name as ``<nested>::<name>``."""
+
     name: str
     bodies: tuple[Body, ...]
     joints: tuple[Joint, ...] = ()
     groups: tuple[Group, ...] = ()
+    nested: tuple[Model, ...] = ()
+
+    def scoped_bodies(self) -> list[tuple[str, Body]]:
+        """Every body with its name relative to this model (``l0``, ``n0::l0``)."""
+        return [(body.name, body) for body in self.bodies] + [
+            (f"{inner.name}::{name}", body)
+            for inner in self.nested
+            for name, body in inner.scoped_bodies()
+        ]
 
 
 def drops(group: Group, fmt: str) -> bool:
@@ -209,7 +221,8 @@ def _default_name(geometry: Geometry, position: int) -> str:
 
 
 def geometry_names(model: Model, fmt: str, *, visual: bool = False) -> list[str]:
-    """Scoped names (``model::body/name``) of the collision geometry whose name is certain.
+    """Scoped names (``model::body/name``, ``model::nested::body/name``) of the collision
+    geometry whose name is certain.
 
     Certain: written in the text and unlike Drake's default names (in URDF an
     unnamed sphere is ``Sphere``, and a named ``Sphere`` beside it is renamed).
@@ -217,7 +230,7 @@ def geometry_names(model: Model, fmt: str, *, visual: bool = False) -> list[str]
     """
     defaults = {shape.capitalize() for shape in SHAPES}
     names = []
-    for body in model.bodies:
+    for scoped, body in model.scoped_bodies():
         for position, geometry in enumerate(body.geometries):
             if not geometry.collision and not visual:
                 continue
@@ -225,7 +238,7 @@ def geometry_names(model: Model, fmt: str, *, visual: bool = False) -> list[str]
             if name is None and fmt == "sdf":
                 name = _default_name(geometry, position)
             if name is not None and name not in defaults:
-                names.append(f"{model.name}::{body.name}/{name}")
+                names.append(f"{model.name}::{scoped}/{name}")
     return names
 
 
@@ -259,6 +272,8 @@ def _serialize(root: ET.Element) -> str:
 
 def to_urdf(model: Model) -> str:
     """The model as URDF text (``xmlns:drake`` declared on ``<robot>``)."""
+    if model.nested:
+        raise ValueError("URDF has no nested models")
     robot = ET.Element("robot", {"name": model.name, "xmlns:drake": DRAKE_NAMESPACE})
     for body in model.bodies:
         link = ET.SubElement(robot, "link", {"name": body.name})
@@ -293,13 +308,21 @@ def to_urdf(model: Model) -> str:
 def to_sdf(model: Model) -> str:
     """The model as SDFormat 1.9 text; unnamed elements get ``collision<k>``/``visual<k>``."""
     sdf = ET.Element("sdf", {"version": "1.9", "xmlns:drake": DRAKE_NAMESPACE})
-    root = ET.SubElement(sdf, "model", {"name": model.name})
+    _sdf_model(sdf, model)
+    return _serialize(sdf)
+
+
+def _sdf_model(parent: ET.Element, model: Model) -> None:
+    """``<model>``: its links, nested models, joints, then groups."""
+    root = ET.SubElement(parent, "model", {"name": model.name})
     for body in model.bodies:
         link = ET.SubElement(root, "link", {"name": body.name})
         for position, geometry in enumerate(body.geometries):
             tag = "collision" if geometry.collision else "visual"
             name = geometry.name if geometry.name is not None else _default_name(geometry, position)
             _sdf_shape(ET.SubElement(link, tag, {"name": name}), geometry.shape)
+    for inner in model.nested:
+        _sdf_model(root, inner)
     for joint in model.joints:
         kind = JOINT_KINDS[joint.kind]
         if kind.sdf is None:
@@ -320,7 +343,6 @@ def to_sdf(model: Model) -> str:
             _text(element, "drake:member_group", name)
         for name in group.ignored:
             _text(element, "drake:ignored_collision_filter_group", name)
-    return _serialize(sdf)
 
 
 def render(model: Model, fmt: str) -> str:
@@ -421,16 +443,22 @@ def _group_specs(
     )
 
 
+def _kept(groups: Iterable[Group], formats: Sequence[str]) -> list[str]:
+    """The names of the groups that no format of ``formats`` drops."""
+    return [g.name for g in groups if not any(drops(g, fmt) for fmt in formats)]
+
+
 def _groups(
-    specs: Sequence[_GroupSpec], bodies: Sequence[str], formats: Sequence[str]
+    specs: Sequence[_GroupSpec],
+    bodies: Sequence[str],
+    formats: Sequence[str],
+    nested: Sequence[Model] = (),
 ) -> list[Group]:
-    """The groups of ``specs`` over ``bodies``, valid in every format of ``formats``."""
+    """The groups of ``specs`` over ``bodies``, valid in every format of ``formats``; their
+    member and ignored groups may be the kept groups of ``nested`` models too."""
     names = [f"g{i}" for i in range(len(specs))]
-    kept = [
-        name
-        for name, (ignore, *_) in zip(names, specs, strict=True)
-        if not any(drops(Group(name, ignore=ignore), fmt) for fmt in formats)
-    ]
+    kept = _kept((Group(n, ignore=spec[0]) for n, spec in zip(names, specs, strict=True)), formats)
+    kept += [f"{inner.name}::{name}" for inner in nested for name in _kept(inner.groups, formats)]
 
     def resolve(picks: Sequence[int], among: Sequence[str]) -> tuple[str, ...]:
         return tuple(among[pick % len(among)] for pick in picks) if among else ()
@@ -479,6 +507,41 @@ def collision_filter_groups(
 _BodySpec = tuple[tuple[Geometry, ...], int, int, bool, _Root]
 
 
+def _joints(specs: Sequence[_BodySpec], bodies: Sequence[str], kinds: Sequence[str]) -> list[Joint]:
+    """The joints of the tree the body specs describe (see ``_BodySpec``).
+
+    N.B. A joint is reversed only in a tree joined to the world (through no URDF
+    floating joint, which Drake drops). Finalize walks such a tree from the
+    world, so exactly the reversed joints are walked child to parent, and their
+    kinds are ones Drake reverses. A free tree is walked from a base body Drake
+    chooses (the parent of the most joints among the bodies that are no joint's
+    child), which a reversed joint could make a body whose walk reverses a
+    ball or planar joint: Finalize then throws (measured).
+    """
+    reversible = [k for k in kinds if JOINT_KINDS[k].reversible]
+    joints: list[Joint] = []
+    anchored: list[bool] = []  # joined to the world, walked from it
+    for i, (_, parent, kind_pick, reverse, root) in enumerate(specs):
+        body, name, kind = bodies[i], f"j{len(joints)}", kinds[kind_pick]
+        if parent and i:
+            at = (parent - 1) % i
+            other = bodies[at]
+            anchored.append(anchored[at] and kind != "floating")
+            if reverse and kind in reversible and anchored[at]:
+                joints.append(Joint(name, kind, body, other))
+            else:
+                joints.append(Joint(name, kind, other, body))
+            continue
+        anchored.append(root is not _Root.FREE and kind != "floating")
+        if root is _Root.PARENT_WORLD:
+            joints.append(Joint(name, kind, WORLD, body))
+        elif root is _Root.CHILD_WORLD:
+            kind = kind if kind in reversible else reversible[kind_pick % len(reversible)]
+            anchored[-1] = True
+            joints.append(Joint(name, kind, body, WORLD))
+    return joints
+
+
 @st.composite
 def kinematic_trees(
     draw: st.DrawFn,
@@ -492,6 +555,8 @@ def kinematic_trees(
     max_groups: int = 4,
     ignore_values: Sequence[str | None] = IGNORE_VALUES,
     invalid: bool = False,
+    max_nested: int = 0,
+    attach_to_world: bool = True,
 ) -> Model:
     """A random tree that renders in every format of ``formats`` (see the module doc).
 
@@ -502,11 +567,46 @@ def kinematic_trees(
     """
     if min_bodies < 1:
         raise ValueError("a model needs a body (SDFormat: 'A model must have at least one link')")
+    if max_nested and "urdf" in formats:
+        raise ValueError("URDF has no nested models")
     kinds = _kinds_for(formats, joint_kinds)
     reversible = [k for k in kinds if JOINT_KINDS[k].reversible]
-    roots = [_Root.FREE, _Root.PARENT_WORLD]
-    if "sdf" not in formats and reversible:  # SDFormat: "specified invalid child link [world]"
+    roots = [_Root.FREE]
+    if attach_to_world:
+        roots.append(_Root.PARENT_WORLD)
+    if attach_to_world and "sdf" not in formats and reversible:  # SDFormat: "invalid child"
         roots.append(_Root.CHILD_WORLD)
+    # Nested models first, each with the pick of the body whose joint holds its first
+    # link (0: none) and that joint's kind.
+    nested_specs = draw(
+        st.lists(
+            st.tuples(
+                kinematic_trees(
+                    formats=formats,
+                    min_bodies=1,
+                    max_bodies=3,
+                    max_geometries=max_geometries,
+                    joint_kinds=kinds,
+                    max_groups=2,
+                    ignore_values=ignore_values,
+                    attach_to_world=False,
+                ),
+                st.integers(0, max_bodies),
+                st.integers(0, len(kinds) - 1),
+            ),
+            max_size=max_nested,
+        )
+    )
+    # Joint names differ from the parent model's: Drake adds a frame '<joint>_child' to the
+    # child's model instance, so a joint j0 into n0 would clash with n0's own j0 (measured).
+    nested = tuple(
+        replace(
+            inner,
+            name=f"n{i}",
+            joints=tuple(replace(j, name=f"n{i}{j.name}") for j in inner.joints),
+        )
+        for i, (inner, _, _) in enumerate(nested_specs)
+    )
     # The groups' picks first: drawn after the bodies, they would keep the shrinker
     # from deleting bodies (see conformance.fuzz.model_campaign).
     group_specs = draw(_group_specs(max_groups, 3, ignore_values))
@@ -524,21 +624,16 @@ def kinematic_trees(
         )
     )
     bodies = tuple(Body(f"l{i}", spec[0]) for i, spec in enumerate(specs))
-    joints: list[Joint] = []
-    for i, (_, parent, kind_pick, reverse, root) in enumerate(specs):
-        body, name, kind = bodies[i].name, f"j{len(joints)}", kinds[kind_pick]
-        if parent and i:
-            other = bodies[(parent - 1) % i].name
-            if reverse and kind in reversible:
-                joints.append(Joint(name, kind, body, other))
-            else:
-                joints.append(Joint(name, kind, other, body))
-        elif root is _Root.PARENT_WORLD:
-            joints.append(Joint(name, kind, WORLD, body))
-        elif root is _Root.CHILD_WORLD:
-            kind = kind if kind in reversible else reversible[kind_pick % len(reversible)]
-            joints.append(Joint(name, kind, body, WORLD))
-    groups = _groups(group_specs, [b.name for b in bodies], formats)
+    joints = _joints(specs, [b.name for b in bodies], kinds)
+    for inner, (_, parent, kind_pick) in zip(nested, nested_specs, strict=True):
+        if parent:
+            other = bodies[(parent - 1) % len(bodies)].name
+            child = f"{inner.name}::{inner.bodies[0].name}"
+            joints.append(Joint(f"j{len(joints)}", kinds[kind_pick], other, child))
+    model = Model("", bodies, tuple(joints), nested=nested)
+    names = [name for name, _ in model.scoped_bodies()]
+    groups = _groups(group_specs, names, formats, nested)
     if invalid:
-        groups = _fault(draw, groups, [b.name for b in bodies])
-    return Model(draw(st.sampled_from(model_names)), bodies, tuple(joints), tuple(groups))
+        groups = _fault(draw, groups, names)
+    name = draw(st.sampled_from(model_names))
+    return replace(model, name=name, groups=tuple(groups))
