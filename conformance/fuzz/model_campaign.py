@@ -8,19 +8,19 @@ Each example is one case (``model_cases``), in the scenario grammar:
 2. now and then ``set_adjacent_filters`` (when both backends have the op);
 3. ``add_models``: a tree from ``conformance.fuzz.models``, rendered as URDF
    or SDFormat (with up to two nested models), sometimes with a model name
-   prefix; one in eight examples is
-   a model with a broken group (``kinematic_trees(invalid=True)``), for the
-   parse errors. Now and then the same text is parsed again (under the
-   prefix ``q``, with ``auto_renaming``, or as it is: a name clash), and the
-   last Parser's ``collision_filter_groups`` report is compared (both
-   backends having the op);
+   prefix; one in eight examples is a model with a broken group
+   (``kinematic_trees(invalid=True)``), for the parse errors. Now and then
+   the same text is parsed again (under the prefix ``q``, with
+   ``auto_renaming``, or as it is: a name clash), and the last Parser's
+   ``collision_filter_groups`` report is compared (both backends having the
+   op);
 4. for a valid model, up to two bodies the case adds (``add_rigid_body``,
    ``register_collision_geometry``: ``B0`` with ``b0``, ``B1`` with ``b1``),
    each on a joint of any ``add_joint`` type from the world, a parsed body
-   or the other added body, and up to two
-   ``apply`` steps, before or after Finalize, whose declarations name the
-   parsed bodies' frames (``m::l1``), their collision geometry
-   (``m::l1/c0``), the world and the anchored geometry;
+   or the other added body; and up to two ``apply`` steps, before or after
+   Finalize, whose declarations name the parsed bodies' frames (``m::l1``),
+   their collision geometry (``m::l1/c0``), the added bodies, the world and
+   the anchored geometry;
 5. ``finalize``, then ``check``.
 
 The case runs through ``conformance.run.runner.run_case``, the corpus
@@ -91,7 +91,8 @@ __all__ = [
 
 #: What a backend needs for ``fuzz --models`` at all.
 MODEL_FEATURES = frozenset({"multibody", "parsing"})
-#: The body a case adds to a parsed model, its collision geometry and its joint.
+#: The names of the bodies a case adds, their collision geometries and joints, before the
+#: index: B0, b0, J0.
 ADDED_BODY, _ADDED_GEOMETRY, _ADDED_JOINT = "B", "b", "J"
 #: Up to two bodies a case adds to a parsed model: each in the default model instance or in
 #: ``extra``, on a joint of any ``add_joint`` type (None: Finalize floats it), whose parent
