@@ -60,6 +60,7 @@ def test_the_model_corpus_has_at_least_forty_cases_in_its_topics() -> None:
         "models/directives",
         "models/model_errors",
         "models/on_top",
+        "models/fuzz_findings",
     }
 
 

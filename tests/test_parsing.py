@@ -1287,3 +1287,19 @@ def test_parser_with_a_scene_graph_registers_the_plant(mb: Modules) -> None:
     parser = mb.parsing.Parser(plant=plant, scene_graph=scene_graph)
     assert plant.geometry_source_is_registered()
     assert parser.scene_graph() is scene_graph
+
+
+@pytest.mark.parametrize("mod", ["pydrake", "reimpl"])
+def test_urdf_joints_and_drake_joints_are_added_in_document_order(mod: str) -> None:
+    urdf = """<robot name="m" xmlns:drake="http://drake.mit.edu">
+<link name="l0"/><link name="l1"/><link name="l2"/><link name="l3"/>
+<joint name="a" type="revolute"><parent link="l0"/><child link="l1"/><axis xyz="0 0 1"/></joint>
+<drake:joint name="b" type="ball"><parent link="l1"/><child link="l2"/></drake:joint>
+<joint name="c" type="revolute"><parent link="l2"/><child link="l3"/><axis xyz="0 0 1"/></joint>
+</robot>"""
+    plant_module = importlib.import_module(f"{mod}.multibody.plant")
+    parsing = importlib.import_module(f"{mod}.multibody.parsing")
+    framework = importlib.import_module(f"{mod}.systems.framework")
+    plant, _ = plant_module.AddMultibodyPlantSceneGraph(framework.DiagramBuilder(), 0.0)
+    parsing.Parser(plant).AddModelsFromString(urdf, "urdf")
+    assert [plant.get_joint(j).name() for j in plant.GetJointIndices()] == ["a", "b", "c"]
