@@ -37,7 +37,7 @@ from typing import TYPE_CHECKING, Any
 from conformance.protocol import UnknownNameError
 
 if TYPE_CHECKING:
-    from conformance.backends.scene_graph import Api
+    from conformance.backends.api import Api
 
 __all__ = ["JOINT_CLASSES", "PACKAGE", "PLANT_SOURCE", "MultibodyCommands", "model_features"]
 

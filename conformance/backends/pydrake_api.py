@@ -10,7 +10,7 @@ import importlib
 import importlib.metadata
 from types import ModuleType
 
-from conformance.backends.scene_graph import Api
+from conformance.backends.api import Api
 
 __all__ = ["PydrakeUnavailableError", "pydrake_api"]
 

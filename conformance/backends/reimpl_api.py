@@ -7,7 +7,7 @@ from types import ModuleType
 
 import reimpl.geometry
 import reimpl.math
-from conformance.backends.scene_graph import Api
+from conformance.backends.api import Api
 
 __all__ = ["REIMPL_DRAKE_VERSION", "reimpl_api"]
 

@@ -16,9 +16,9 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from types import ModuleType
 from typing import Any
 
+from conformance.backends.api import Api
 from conformance.backends.multibody import MultibodyCommands, model_features
 from conformance.grammar import GRAMMAR
 from conformance.policy.guards import GUARDS, armed_guards
@@ -58,25 +58,6 @@ BASE_FEATURES = frozenset({"core", "transient", "contexts", "errors", "roles", "
 
 class RefusedCallError(Exception):
     """Raised (and reported as ErrorKind.REFUSED) for a call the harness will not make."""
-
-
-@dataclass(frozen=True)
-class Api:
-    """The modules of a pydrake-compatible implementation.
-
-    The multibody modules (``pydrake.multibody.plant``, ``.tree``,
-    ``.parsing``) are optional: without them the model feature tags are
-    missing and model cases are skipped.
-    """
-
-    name: str
-    #: The Drake release whose behaviour this implementation has (for since/until).
-    version: str
-    geometry: ModuleType
-    math: ModuleType
-    plant: ModuleType | None = None
-    tree: ModuleType | None = None
-    parsing: ModuleType | None = None
 
 
 @dataclass

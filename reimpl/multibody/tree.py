@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
@@ -26,9 +26,6 @@ import numpy.typing as npt
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl.math import RigidTransform
 from reimpl.multibody._errors import MultibodyPlantError
-
-if TYPE_CHECKING:
-    from reimpl.multibody.plant import MultibodyPlant
 
 __all__ = [
     "BallRpyJoint",
@@ -339,7 +336,8 @@ class _Element:
     """What every element of a plant has: a plant, an index, a model instance."""
 
     _index_type: ClassVar[type[_TypeSafeIndex]] = _TypeSafeIndex
-    _plant: MultibodyPlant | None
+    #: The MultibodyPlant that added it (typed Any: the plant module imports this one).
+    _plant: Any
     _index: int
     _model_instance: ModelInstanceIndex
     _name: str
@@ -350,7 +348,7 @@ class _Element:
         self._name = str(name)
         self._model_instance = ModelInstanceIndex(int(model_instance))
 
-    def _adopt(self, plant: MultibodyPlant, index: int) -> None:
+    def _adopt(self, plant: Any, index: int) -> None:
         self._plant = plant
         self._index = index
 
@@ -363,7 +361,7 @@ class _Element:
     def model_instance(self) -> ModelInstanceIndex:
         return ModelInstanceIndex(int(self._model_instance))
 
-    def GetParentPlant(self) -> MultibodyPlant:
+    def GetParentPlant(self) -> Any:
         if self._plant is None:
             raise MultibodyPlantError(
                 f"{type(self).__name__} '{self._name}' was not added to a plant"
