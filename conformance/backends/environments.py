@@ -22,8 +22,12 @@ works either way. 1.31 and later run under numpy 2 (all measured).
 and in pyenv's versions, and checks each candidate by running it; a given
 ``python`` overrides the search. ``ensure_environment`` builds
 ``<cache>/drake-<version>-py<X.Y>`` once (``uv`` if it is on PATH, else
-``venv`` and ``pip``) and marks it complete; later runs reuse it. The cache
-is ``$DRAKE_FILTER_CONFORMANCE_CACHE``, else ``~/.cache/drake-filter-conformance``.
+``venv`` and ``pip``) and marks it complete; later runs reuse it. It holds a
+lock file (``<env>.lock``, ``fcntl.flock``) while it checks and builds, so
+processes that want the same environment at once (pytest-xdist workers, a
+matrix's jobs) wait for one build instead of removing it under each other.
+The cache is ``$DRAKE_FILTER_CONFORMANCE_CACHE``, else
+``~/.cache/drake-filter-conformance``.
 
 The worker imports only this harness's pure-Python modules plus the
 release's pydrake: the harness reaches it through a folder that links to the
@@ -33,6 +37,8 @@ environment (its own pydrake included) can leak in.
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import os
 import shutil
 import subprocess
@@ -187,6 +193,26 @@ def ensure_environment(
     python_version, interpreter = find_python(version, override=python)
     path = (cache or cache_dir()) / f"drake-{version}-py{python_version}"
     environment = DrakeEnvironment(version, python_version, path)
+    with _locked(path):
+        _build(environment, interpreter, log)
+    return environment
+
+
+@contextlib.contextmanager
+def _locked(path: Path) -> Iterator[None]:
+    """Holds an exclusive lock on ``<path>.lock`` (one builder of ``path`` at a time)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with path.with_name(path.name + ".lock").open("w") as handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
+
+
+def _build(environment: DrakeEnvironment, interpreter: str, log: Callable[[str], None]) -> None:
+    """Makes ``environment`` complete: builds it, or adds requirements it lacks."""
+    version, python_version, path = environment.version, environment.python, environment.path
     requirements = requirements_for(version)
     marker = path / _COMPLETE
     if marker.exists():
@@ -195,7 +221,7 @@ def ensure_environment(
             log(f"adding {' '.join(missing)} to the environment for drake=={version}")
             _install(environment, missing, log)
             marker.write_text("\n".join(requirements) + "\n")
-        return environment
+        return
     log(f"building the environment for drake=={version} (Python {python_version}) in {path}")
     shutil.rmtree(path, ignore_errors=True)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -206,7 +232,6 @@ def ensure_environment(
         _run([interpreter, "-m", "venv", str(path)], log)
     _install(environment, requirements, log)
     marker.write_text("\n".join(requirements) + "\n")
-    return environment
 
 
 def _install(
