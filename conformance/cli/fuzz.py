@@ -30,7 +30,7 @@ from conformance.cli.run import PROG
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
 from conformance.fuzz.lockstep import FuzzStats, HarnessError
-from conformance.fuzz.model_campaign import ModelCampaign, write_model_regression
+from conformance.fuzz.model_campaign import ModelCampaign
 from conformance.fuzz.regression import drake_release, write_regression, write_reproducer
 from conformance.protocol import Backend, backend_id
 from conformance.run.outputs import unwritable_dir
@@ -133,9 +133,8 @@ def _report(
         return
     backend, reference = backends
     release = cross_release(backend, reference)
-    write = write_model_regression if args.models else write_regression
     path = _write_finding(
-        lambda folder: write(
+        lambda folder: write_regression(
             divergence,
             folder,
             backend=args.backend,
@@ -143,6 +142,7 @@ def _report(
             reference_version=reference.version(),
             seed=args.seed,
             backend_version=release,
+            models=args.models,
         ),
         args.out,
         out,

@@ -72,7 +72,6 @@ from conformance.fuzz.models import (
     kinematic_trees,
     render,
 )
-from conformance.fuzz.regression import _slug, _write_checked, regression_scenario
 from conformance.grammar import GRAMMAR, features_of
 from conformance.grammar.multibody import JOINT_TYPES
 from conformance.policy.divergences import match_step
@@ -86,7 +85,6 @@ __all__ = [
     "model_case",
     "model_cases",
     "run_model_case",
-    "write_model_regression",
 ]
 
 #: What a backend needs for ``fuzz --models`` at all.
@@ -377,28 +375,3 @@ class ModelCampaign(Campaign):
         except HarnessAbort as abort:
             raise abort.error from None
         return None
-
-
-def write_model_regression(
-    divergence: Divergence,
-    out_dir: Path,
-    *,
-    backend: str,
-    reference: str,
-    reference_version: str,
-    seed: int | None = None,
-    backend_version: str | None = None,
-) -> Path:
-    """``fuzz.regression.write_regression`` for a ``fuzz --models`` finding: the same file,
-    whose comment gives the command with ``--models``."""
-    scenario = regression_scenario(
-        divergence,
-        backend=backend,
-        reference=reference,
-        reference_version=reference_version,
-        seed=seed,
-        backend_version=backend_version,
-    )
-    scenario["description"] = f"Fuzz --models finding: {backend} vs {reference}"[:150]
-    scenario["comment"] = scenario["comment"].replace("fuzz --backend", "fuzz --models --backend")
-    return _write_checked(scenario, out_dir, f"models-{_slug(backend)}-vs-{_slug(reference)}")

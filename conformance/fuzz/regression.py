@@ -155,8 +155,12 @@ def regression_scenario(
     reference_version: str,
     seed: int | None = None,
     backend_version: str | None = None,
+    models: bool = False,
 ) -> dict[str, Any]:
     """The scenario file (a JSON-able dict) for ``divergence``.
+
+    ``models``: found by ``fuzz --models``; the description and the command in
+    the comment say so.
 
     ``backend_version``: the Drake release the backend *is* (``drake_release``;
     None for reimpl and other implementations). When it differs from
@@ -191,7 +195,8 @@ def regression_scenario(
         features.append("errors")
     seeded = f" --seed {seed}" if seed is not None else ""
     found = (
-        f"Found by `python -m conformance fuzz --backend {backend} --against {reference}"
+        f"Found by `python -m conformance fuzz{' --models' if models else ''} "
+        f"--backend {backend} --against {reference}"
         f"{seeded}` and shrunk by Hypothesis."
     )
     if releases is None:
@@ -213,7 +218,9 @@ def regression_scenario(
             f"disagreement ({reference} {reference_version} as reference): {divergence.detail}"
         )
     return {
-        "description": f"Fuzz finding: {backend} vs {reference}"[:150],
+        "description": f"Fuzz{' --models' if models else ''} finding: {backend} vs {reference}"[
+            :150
+        ],
         "comment": comment,
         "features": sorted(set(features)),
         "cases": [{"description": description[:150], "steps": steps}],
@@ -252,8 +259,11 @@ def write_regression(
     reference_version: str,
     seed: int | None = None,
     backend_version: str | None = None,
+    models: bool = False,
 ) -> Path:
-    """Writes the scenario for ``divergence`` into ``out_dir``; returns its path."""
+    """Writes the scenario for ``divergence`` into ``out_dir``; returns its path.
+
+    A ``models`` finding's file name starts with ``models-``."""
     scenario = regression_scenario(
         divergence,
         backend=backend,
@@ -261,8 +271,10 @@ def write_regression(
         reference_version=reference_version,
         seed=seed,
         backend_version=backend_version,
+        models=models,
     )
-    return _write_checked(scenario, out_dir, f"{_slug(backend)}-vs-{_slug(reference)}")
+    stem = f"{'models-' if models else ''}{_slug(backend)}-vs-{_slug(reference)}"
+    return _write_checked(scenario, out_dir, stem)
 
 
 def reproducer_scenario(
