@@ -235,6 +235,10 @@ class InputPort:
         context._fixed_inputs[self._index] = value
         return FixedInputPortValue(value)
 
+    def _eval(self, context: Context) -> Any:
+        """The port's value in ``context``: its fixed value, else ``None``."""
+        return context._fixed_inputs.get(self._index)
+
     def HasValue(self, context: Context) -> bool:
         _check_port_context("InputPort", self._system, self._index, self._name, context)
         return self._index in context._fixed_inputs
