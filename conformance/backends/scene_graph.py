@@ -9,7 +9,8 @@ Names in commands resolve as follows: ``world`` is the world frame;
 ``@unknown`` is an id this SceneGraph never issued; ``@foreign`` is an id
 issued by another SceneGraph; a removed geometry's name still resolves to its
 (now stale) id. The model ops (a MultibodyPlant and its parsers) and their
-names are ``backends.multibody``'s.
+names are ``backends.multibody``'s; the posed scenes and proximity queries
+are ``backends.queries``'s.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from typing import Any
 
 from conformance.backends.api import Api
 from conformance.backends.multibody import MultibodyCommands, model_features
+from conformance.backends.queries import QueryCommands, query_features
 from conformance.grammar import GRAMMAR
 from conformance.policy.guards import GUARDS, armed_guards
 from conformance.protocol import (
@@ -66,9 +68,10 @@ class _Label:
     location: str
 
 
-class SceneGraphBackend(MultibodyCommands):
-    """Executes scenario commands on ``api.geometry.SceneGraph`` (and the model commands on a
-    MultibodyPlant registered with it: ``MultibodyCommands``)."""
+class SceneGraphBackend(QueryCommands, MultibodyCommands):
+    """Executes scenario commands on ``api.geometry.SceneGraph`` (the model commands on a
+    MultibodyPlant registered with it: ``MultibodyCommands``; the poses and proximity
+    queries: ``QueryCommands``)."""
 
     def __init__(self, api: Api) -> None:
         self.api = api
@@ -92,7 +95,7 @@ class SceneGraphBackend(MultibodyCommands):
             features.add("activation")
         if hasattr(g, "CollisionFilterScope"):
             features.add("scope")
-        return frozenset(features) | model_features(self.api)
+        return frozenset(features) | model_features(self.api) | query_features(self.api)
 
     def reset(self) -> None:
         g = self.api.geometry
@@ -106,6 +109,7 @@ class SceneGraphBackend(MultibodyCommands):
         self._unknown: dict[str, Any] = {}
         self._foreign: dict[str, Any] = {}
         self._reset_models()
+        self._reset_queries()
 
     def execute(self, command: Command) -> Result:
         op = GRAMMAR.get(command.op)
@@ -291,12 +295,12 @@ class SceneGraphBackend(MultibodyCommands):
         self.frames[args["name"]] = frame_id
 
     def register_geometry(self, args: Mapping[str, Any]) -> None:
-        g, m = self.api.geometry, self.api.math
+        g = self.api.geometry
         source = self._source(args)
         name = args["name"]
         instance = g.GeometryInstance(
-            X_PG=m.RigidTransform(),
-            shape=g.Sphere(radius=0.1),
+            X_PG=self.rigid_transform(args.get("pose")),
+            shape=self.shape(args.get("shape")),
             name=args.get("drake_name", name),
         )
         frame = args.get("frame", WORLD)
@@ -431,7 +435,10 @@ class SceneGraphBackend(MultibodyCommands):
         self.contexts[args["name"]] = self.scene_graph.CreateDefaultContext()
 
     def clone_context(self, args: Mapping[str, Any]) -> None:
-        """Clones a context, after fixing identity poses for every source's frames.
+        """Clones a context, after fixing its poses on every source's pose port.
+
+        The poses are those ``set_poses`` stored for it (identity for the
+        rest: ``QueryCommands._fix_poses``), and the clone inherits them.
 
         N.B. pydrake refuses to clone a context whose query port was evaluated
         (the harness observes after every step) unless each source with frames
@@ -441,23 +448,9 @@ class SceneGraphBackend(MultibodyCommands):
         pydrake, so the guard "older-context-pose-port-aborts" refuses it.
         """
         source = self._context({"context": args["from"]})
-        g, m = self.api.geometry, self.api.math
-        inspector = self._inspector(source)
-        for source_id in self.sources.values():
-            if not inspector.SourceIsRegistered(source_id=source_id):
-                continue
-            frames = inspector.FramesForSource(source_id=source_id)
-            if frames:
-                port = self.scene_graph.get_source_pose_port(source_id)
-                if int(port.get_index()) >= source.num_input_ports():
-                    self._refuse("older-context-pose-port-aborts")
-                poses = g.FramePoseVector()
-                for frame_id in frames:
-                    poses.set_value(id=frame_id, value=m.RigidTransform())
-                self.scene_graph.get_source_pose_port(source_id).FixValue(
-                    context=source, value=poses
-                )
+        self._fix_poses(source, args["from"])
         self.contexts[args["name"]] = source.Clone()
+        self.poses[args["name"]] = dict(self.poses.get(args["from"], {}))
 
     def set_default_context(self, args: Mapping[str, Any]) -> None:
         self.scene_graph.SetDefaultContext(context=self._context(args))

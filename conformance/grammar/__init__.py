@@ -5,23 +5,26 @@ schema's step rules and feature tags (``grammar.schema``), the corpus's name
 check, the feature tags a case needs, the backend's dispatch (one method per
 op), the fuzzer's coverage check and the feature tags of regression files. A
 new kind of work adds one table module here (``scene_graph``, ``multibody``)
-and one handler module on the backend side.
+and one handler module on the backend side (``queries``: posed scenes and
+proximity queries, ``backends.queries``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
 from conformance.grammar.multibody import MODEL_COMMANDS
+from conformance.grammar.queries import QUERY_COMMANDS
 from conformance.grammar.scene_graph import SCENE_GRAPH_COMMANDS
-from conformance.grammar.spec import Arg, ArgKind, CommandSpec, NameKind
+from conformance.grammar.spec import Arg, ArgKind, CommandSpec, Comparison, NameKind
 
 __all__ = [
     "GRAMMAR",
     "Arg",
     "ArgKind",
     "CommandSpec",
+    "Comparison",
     "NameKind",
     "UnknownOpError",
     "declared_names",
@@ -33,7 +36,7 @@ __all__ = [
 
 #: Every op of the scenario grammar, in the order the schema lists them.
 GRAMMAR: Mapping[str, CommandSpec] = {
-    command.op: command for command in (*SCENE_GRAPH_COMMANDS, *MODEL_COMMANDS)
+    command.op: command for command in (*SCENE_GRAPH_COMMANDS, *MODEL_COMMANDS, *QUERY_COMMANDS)
 }
 
 
@@ -53,7 +56,7 @@ def spec(op: str) -> CommandSpec:
 
 
 def ops_of(domain: str) -> tuple[str, ...]:
-    """The ops of ``domain`` (``scene_graph`` or ``model``), in grammar order."""
+    """The ops of ``domain`` (``scene_graph``, ``model`` or ``queries``), in grammar order."""
     return tuple(op for op, command in GRAMMAR.items() if command.domain == domain)
 
 
@@ -69,6 +72,32 @@ def _set_names(value: Mapping[str, Sequence[str]]) -> Iterator[tuple[NameKind, s
         yield NameKind.FRAME, name, "frames"
 
 
+def _pair_names(value: Sequence[str]) -> Iterator[tuple[NameKind, str, str]]:
+    for name in value:
+        yield NameKind.GEOMETRY, name, ""
+
+
+def _pose_names(value: Mapping[str, Any]) -> Iterator[tuple[NameKind, str, str]]:
+    for name in value:
+        yield NameKind.FRAME, name, f".{name}"
+
+
+def _statement_names(value: Mapping[str, Any]) -> Iterator[tuple[NameKind, str, str]]:
+    for i, statement in enumerate(value.get("statements", ()), 1):
+        for part in ("set", "a", "b"):
+            for name_kind, name, _ in _set_names(statement.get(part, {})):
+                yield name_kind, name, f".statements[{i}].{part}"
+
+
+#: Argument kinds that hold names inside them → (kind, name, field suffix) of each.
+_NAMES_INSIDE: Mapping[ArgKind, Callable[[Any], Iterator[tuple[NameKind, str, str]]]] = {
+    ArgKind.PAIR: _pair_names,
+    ArgKind.POSES: _pose_names,
+    ArgKind.SET: lambda value: ((kind, name, "") for kind, name, _ in _set_names(value)),
+    ArgKind.DECLARATION: _statement_names,
+}
+
+
 def referenced_names(op: str, args: Mapping[str, Any]) -> Iterator[tuple[NameKind, str, str]]:
     """(kind, name, field) for every name the command's arguments refer to (not declare)."""
     for key, kind in spec(op).arg_kinds.items():
@@ -77,17 +106,9 @@ def referenced_names(op: str, args: Mapping[str, Any]) -> Iterator[tuple[NameKin
         value = args[key]
         if kind.refers is not None:
             yield kind.refers, value, key
-        elif kind is ArgKind.PAIR:
-            for name in value:
-                yield NameKind.GEOMETRY, name, key
-        elif kind is ArgKind.SET:
-            for name_kind, name, _ in _set_names(value):
-                yield name_kind, name, key
-        elif kind is ArgKind.DECLARATION:
-            for i, statement in enumerate(value.get("statements", ()), 1):
-                for part in ("set", "a", "b"):
-                    for name_kind, name, _ in _set_names(statement.get(part, {})):
-                        yield name_kind, name, f"{key}.statements[{i}].{part}"
+        elif kind in _NAMES_INSIDE:
+            for name_kind, name, suffix in _NAMES_INSIDE[kind](value):
+                yield name_kind, name, f"{key}{suffix}"
 
 
 def declared_names(op: str, args: Mapping[str, Any]) -> Iterator[tuple[NameKind, str, str]]:

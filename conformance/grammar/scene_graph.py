@@ -47,9 +47,12 @@ SCENE_GRAPH_COMMANDS: tuple[CommandSpec, ...] = (
             _SOURCE,
             _CONTEXT,
             Arg("roles", K.ROLES),
+            Arg("shape", K.SHAPE),
+            Arg("pose", K.POSE),
         ),
         "core",
-        "RegisterGeometry (RegisterAnchoredGeometry on the world frame), then AssignRole per role",
+        "RegisterGeometry (RegisterAnchoredGeometry on the world frame) of a GeometryInstance("
+        "X_PG=pose, shape=shape (default: a sphere of radius 0.1)), then AssignRole per role",
     ),
     CommandSpec(
         "assign_role",

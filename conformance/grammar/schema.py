@@ -5,7 +5,9 @@ schema. Its shared definitions (names, sets, declarations, expectations,
 cases) are written by hand; its ``$defs.step`` is generated here from the
 grammar table: the op enum, and per op an ``if``/``then`` rule listing the
 op's arguments, the required ones, the one-of groups and the keys that need
-others. The feature tags (``$defs.features``) are the hand-written ones
+others. The value kinds of ``grammar.queries`` (``$defs.shape``, ``pose``,
+``poses``) are generated from its tables too. The feature tags
+(``$defs.features``) are the hand-written ones
 (``scope``, ``errors``, ``quirk``: what a case is about) followed by every
 op's tag that is not among them. ``scenario_schema()``
 is what the corpus validates against; ``python -m conformance schema --write``
@@ -21,6 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from conformance.grammar import GRAMMAR, CommandSpec
+from conformance.grammar.queries import DEFINITIONS
 
 __all__ = [
     "SCHEMA_FILE",
@@ -87,6 +90,7 @@ def feature_tags(written: list[str]) -> list[str]:
 def scenario_schema() -> dict[str, Any]:
     """The whole schema: the published file's definitions with the generated step rules."""
     schema: dict[str, Any] = json.loads(schema_path().read_text(encoding="utf-8"))
+    schema["$defs"].update(DEFINITIONS)
     schema["$defs"]["step"] = step_schema()
     features = schema["$defs"]["features"]["items"]
     features["enum"] = feature_tags(features["enum"])

@@ -15,7 +15,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["Arg", "ArgKind", "CommandSpec", "NameKind"]
+__all__ = ["Arg", "ArgKind", "CommandSpec", "Comparison", "NameKind"]
 
 
 class NameKind(enum.Enum):
@@ -94,6 +94,11 @@ class ArgKind(enum.Enum):
     )
     PATH = ({**_RELATIVE_PATH, "description": "A path below the package 'pkg'."}, None, None)
     BOOL = ({"type": "boolean"}, None, None)
+    # Posed scenes and proximity queries (grammar.queries).
+    SHAPE = ({"$ref": "#/$defs/shape"}, None, None)
+    POSE = ({"$ref": "#/$defs/pose"}, None, None)
+    POSES = ({"$ref": "#/$defs/poses"}, None, None)
+    DISTANCE = ({"type": "number", "description": "A distance (m)."}, None, None)
     JOINT_TYPE = (
         {
             "enum": [
@@ -130,6 +135,21 @@ class ArgKind(enum.Enum):
         return also
 
 
+class Comparison(enum.Enum):
+    """How two values of an op compare (``compare.value_differences``).
+
+    - ``EXACT``: equal JSON values;
+    - ``PROXIMITY``: query records (``{"pair", "shapes", ...}``, one or a
+      sorted list): the pairs and shapes equal, every number within the
+      tolerance of its shape pair (``conformance.tolerances``);
+    - ``POSE``: ``{"xyz", "rotation"}`` within ``tolerances.POSE_TOLERANCE``.
+    """
+
+    EXACT = "exact"
+    PROXIMITY = "proximity"
+    POSE = "pose"
+
+
 @dataclass(frozen=True)
 class Arg:
     """One argument of a command: its key in the step, its kind, whether it is required."""
@@ -152,8 +172,11 @@ class CommandSpec:
       expectations); every other op is executed by the backend method of the
       same name;
     - ``doc``: one line for the schema and the README;
-    - ``domain``: what it drives, ``scene_graph`` or ``model`` (a plant and
-      its parsers); the lockstep fuzzer drives the SceneGraph ops;
+    - ``domain``: what it drives: ``scene_graph``, ``model`` (a plant and
+      its parsers) or ``queries`` (poses and QueryObject queries); the
+      lockstep fuzzer drives the SceneGraph ops;
+    - ``compare``: how two of its values compare (``Comparison``: exact by
+      default; the proximity queries and poses within tolerances);
     - ``scoped_names``: from this step on, a case may refer to model-scoped
       names (``m::l1``, ``m::l1/Sphere``) that the corpus cannot see
       statically (the model text holds them).
@@ -170,6 +193,7 @@ class CommandSpec:
     harness_only: bool = False
     domain: str = "scene_graph"
     scoped_names: bool = False
+    compare: Comparison = Comparison.EXACT
 
     @property
     def handler(self) -> str | None:

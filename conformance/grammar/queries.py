@@ -1,0 +1,162 @@
+"""Posed scenes and proximity queries: shapes, poses, ``set_poses`` and the QueryObject ops.
+
+One row per op, as in ``grammar.scene_graph``; ``backends.queries`` has one
+method per op. Every op has the feature tag ``queries`` and the domain
+``queries`` (the lockstep fuzzer adds them on its own terms).
+
+Values:
+
+- a shape (``SHAPES``): ``{"type": "sphere", "radius": r}``, ``box``
+  (``width, depth, height``), ``cylinder`` and ``capsule`` (``radius,
+  length``), ``ellipsoid`` (``a, b, c``), ``{"type": "halfspace"}``: the
+  pydrake class called with these keywords;
+- a pose: ``{"xyz": [x, y, z], "rpy": [r, p, y]}``, both optional (zero), is
+  ``RigidTransform(rpy=RollPitchYaw(rpy=rpy), p=xyz)``;
+- poses: ``{frame name: pose}``, each the frame's pose in its parent frame,
+  ``X_PF``, as a ``FramePoseVector`` holds it; SceneGraph composes
+  ``X_WF = X_WP · X_PF``, and a geometry's ``X_WG = X_WF · X_FG``.
+
+Queries at a location (the model, or a context): before each one the
+backend fixes, on every source with frames, a ``FramePoseVector`` with the
+location's stored pose of each frame (identity if none), then evaluates
+the query output port. At the model each query uses a fresh
+``CreateDefaultContext()``. Results name geometries, never ids; a pair's
+names are sorted (A < B): where Drake's ``id_A`` has the larger name the
+record swaps its points (``p_WCa`` ↔ ``p_WCb``, ``p_ACa`` ↔ ``p_BCb``) and
+negates ``nhat_BA_W``. ``compute_signed_distance_pair_closest_points`` keeps
+the order it was given.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from conformance.grammar.spec import Arg, ArgKind, CommandSpec, Comparison
+
+__all__ = [
+    "DEFAULT_SHAPE",
+    "DEFINITIONS",
+    "QUERY_COMMANDS",
+    "SHAPES",
+    "SHAPE_OF_CLASS",
+]
+
+K = ArgKind
+
+#: Shape type → (the pydrake.geometry class, its constructor's keyword names, in order).
+SHAPES: Mapping[str, tuple[str, tuple[str, ...]]] = {
+    "sphere": ("Sphere", ("radius",)),
+    "box": ("Box", ("width", "depth", "height")),
+    "cylinder": ("Cylinder", ("radius", "length")),
+    "capsule": ("Capsule", ("radius", "length")),
+    "ellipsoid": ("Ellipsoid", ("a", "b", "c")),
+    "halfspace": ("HalfSpace", ()),
+}
+
+#: The shape type of each class name (how query results name a geometry's shape).
+SHAPE_OF_CLASS: Mapping[str, str] = {cls: shape for shape, (cls, _) in SHAPES.items()}
+
+#: A geometry registered without a ``shape``.
+DEFAULT_SHAPE: Mapping[str, Any] = {"type": "sphere", "radius": 0.1}
+
+_MEASURE = {"type": "number", "exclusiveMinimum": 0, "description": "A length (m), positive."}
+_VECTOR = {"type": "array", "items": {"type": "number"}, "minItems": 3, "maxItems": 3}
+
+
+def _shape_schema() -> dict[str, Any]:
+    """One object per shape type: ``type`` and exactly that type's measures."""
+    return {
+        "description": "A shape: its pydrake class's keyword arguments, and its type. "
+        "Generated from conformance.grammar.queries.SHAPES.",
+        "type": "object",
+        "required": ["type"],
+        "properties": {"type": {"enum": list(SHAPES)}},
+        "allOf": [
+            {
+                "if": {"properties": {"type": {"const": shape}}},
+                "then": {
+                    "required": list(keys),
+                    "properties": {"type": True, **{key: _MEASURE for key in keys}},
+                    "additionalProperties": False,
+                },
+            }
+            for shape, (_, keys) in SHAPES.items()
+        ],
+    }
+
+
+#: The schema's ``$defs`` for the value kinds of this module (``grammar.schema`` adds them).
+DEFINITIONS: Mapping[str, Mapping[str, Any]] = {
+    "shape": _shape_schema(),
+    "pose": {
+        "description": "RigidTransform(rpy=RollPitchYaw(rpy=rpy), p=xyz); each defaults to zero.",
+        "type": "object",
+        "additionalProperties": False,
+        "properties": {"xyz": _VECTOR, "rpy": {**_VECTOR, "description": "radians"}},
+    },
+    "poses": {
+        "description": "Frame name → its pose in its parent frame (X_PF). The world frame "
+        "has no pose to set.",
+        "type": "object",
+        "propertyNames": {
+            "pattern": "^[A-Za-z_][A-Za-z0-9_.:/-]*$",
+            "not": {"const": "world"},
+        },
+        "additionalProperties": {"$ref": "#/$defs/pose"},
+    },
+}
+
+_CONTEXT = Arg("context", K.CONTEXT)
+
+
+def _query(op: str, doc: str, *args: Arg, compare: Comparison = Comparison.EXACT) -> CommandSpec:
+    return CommandSpec(op, (*args, _CONTEXT), "queries", doc, domain="queries", compare=compare)
+
+
+QUERY_COMMANDS: tuple[CommandSpec, ...] = (
+    _query(
+        "set_poses",
+        "Stores each frame's pose X_PF at the location (merged with earlier ones); the "
+        "queries there fix them on the sources' pose ports (FramePoseVector.set_value(id=, "
+        "value=), FixValue(context=, value=))",
+        Arg("poses", K.POSES, True),
+    ),
+    _query(
+        "compute_point_pair_penetration",
+        "QueryObject.ComputePointPairPenetration(); returns the sorted list of "
+        '{"pair", "shapes", "depth", "p_WCa", "p_WCb", "nhat_BA_W"}',
+        compare=Comparison.PROXIMITY,
+    ),
+    _query("has_collisions", "QueryObject.HasCollisions(); returns a bool"),
+    _query(
+        "find_collision_candidates",
+        "QueryObject.FindCollisionCandidates(); returns the sorted list of sorted name pairs",
+    ),
+    _query(
+        "compute_signed_distance_pairwise_closest_points",
+        "QueryObject.ComputeSignedDistancePairwiseClosestPoints([max_distance=]); returns the "
+        'sorted list of {"pair", "shapes", "distance", "p_ACa", "p_BCb", "nhat_BA_W"}',
+        Arg("max_distance", K.DISTANCE),
+        compare=Comparison.PROXIMITY,
+    ),
+    _query(
+        "compute_signed_distance_pair_closest_points",
+        "QueryObject.ComputeSignedDistancePairClosestPoints(geometry_id_A=, geometry_id_B=) "
+        "(filters ignored); returns one record, in the pair's order",
+        Arg("pair", K.PAIR, True),
+        compare=Comparison.PROXIMITY,
+    ),
+    _query(
+        "x_wg",
+        'QueryObject.GetPoseInWorld(geometry_id=); returns {"xyz": [3], "rotation": [3][3]}',
+        Arg("geometry", K.GEOMETRY, True),
+        compare=Comparison.POSE,
+    ),
+    _query(
+        "x_wf",
+        'QueryObject.GetPoseInWorld(frame_id=); returns {"xyz": [3], "rotation": [3][3]}',
+        Arg("frame", K.FRAME, True),
+        compare=Comparison.POSE,
+    ),
+)
