@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
-from conformance.compare import Difference, diff, diff_observations, diff_results
+from typing import Any
+
+from conformance.compare import Difference, diff, diff_observations, diff_results, value_differences
 from conformance.protocol import ErrorInfo, ErrorKind, LocationState, Observation, Result
+from conformance.tolerances import POSE_TOLERANCE, TOLERANCES, shape_pair, tolerance
 
 
 def state(*pairs: tuple[str, str], history: bool = False, **active: bool) -> Observation:
@@ -53,3 +56,122 @@ def test_history_activity_and_locations_are_compared() -> None:
 def test_diff_lists_the_result_before_the_state() -> None:
     whats = [d.what for d in diff((Result(value=1), state()), (Result(value=2), state(("a", "b"))))]
     assert whats == ["command result", "candidates at model (only in one side)"]
+
+
+# ------------------------------------------------------- query values (within tolerances)
+#: ComputePointPairPenetration on pydrake 1.51.1: a unit box (a) posed at xyz (0.8, 0.05, 0.12),
+#: rpy (0.1, 0.2, 0.3), and a sphere of radius 0.5 (b) at the origin.
+BOX_SPHERE = {
+    "pair": ["a", "b"],
+    "shapes": ["box", "sphere"],
+    "depth": 0.24045722186726592,
+    "p_WCa": [0.24300818073188513, 0.07517123925205882, -0.051563190044321416],
+    "p_WCb": [0.4681466817920996, 0.14481473881275778, -0.09933466539753061],
+    "nhat_BA_W": [0.9362933635841992, 0.28962947762551555, -0.19866933079506122],
+}
+#: Two unit spheres 1.5 apart on x (exact values: depth 0.5, witnesses on the x axis).
+SPHERES = {
+    "pair": ["s1", "s2"],
+    "shapes": ["sphere", "sphere"],
+    "depth": 0.5,
+    "p_WCa": [1.0, 0.0, 0.0],
+    "p_WCb": [0.5, 0.0, 0.0],
+    "nhat_BA_W": [-1.0, 0.0, 0.0],
+}
+PENETRATION = "compute_point_pair_penetration"
+
+
+def shifted(record: dict[str, Any], key: str, by: float) -> dict[str, Any]:
+    value = record[key]
+    moved = value + by if isinstance(value, float) else [value[0] + by, *value[1:]]
+    return {**record, key: moved}
+
+
+def test_query_numbers_12_orders_below_the_tolerance_agree() -> None:
+    for key in ("depth", "p_WCa", "p_WCb", "nhat_BA_W"):
+        near = [shifted(BOX_SPHERE, key, 1e-12)]
+        assert value_differences(PENETRATION, [BOX_SPHERE], near) == []
+        assert diff_results(Result(value=[BOX_SPHERE]), Result(value=near), op=PENETRATION) == []
+
+
+def test_a_sphere_sphere_depth_1e_3_off_disagrees_and_says_by_how_much() -> None:
+    off = shifted(SPHERES, "depth", 1e-3)
+    assert value_differences(PENETRATION, [SPHERES], [off]) == [
+        "s1-s2 depth: |Δ| = 0.001 > 1e-09 (sphere-sphere distance tolerance)"
+    ]
+    (difference,) = diff_results(Result(value=[SPHERES]), Result(value=[off]), op=PENETRATION)
+    assert difference.what.startswith(f"{PENETRATION} result (s1-s2 depth: |Δ| = 0.001")
+
+
+def test_a_swapped_pair_disagrees_even_with_its_points_and_normal_swapped() -> None:
+    swapped = {
+        **SPHERES,
+        "pair": ["s2", "s1"],
+        "p_WCa": SPHERES["p_WCb"],
+        "p_WCb": SPHERES["p_WCa"],
+        "nhat_BA_W": [1.0, 0.0, 0.0],
+    }
+    assert value_differences(PENETRATION, [SPHERES], [swapped]) == [
+        "pairs [['s1', 's2']] vs [['s2', 's1']]"
+    ]
+
+
+def test_pair_lists_are_compared_exactly_whatever_the_numbers() -> None:
+    assert value_differences(PENETRATION, [SPHERES], []) == ["pairs [['s1', 's2']] vs []"]
+    assert value_differences(PENETRATION, [], []) == []
+    shapes = {**SPHERES, "shapes": ["sphere", "box"]}
+    assert value_differences(PENETRATION, [SPHERES], [shapes]) != []
+
+
+def test_an_ellipsoid_pair_is_compared_within_the_gjk_tolerance() -> None:
+    ellipsoid = {**SPHERES, "shapes": ["ellipsoid", "sphere"]}
+    assert tolerance("sphere", "ellipsoid").distance == tolerance("ellipsoid", "sphere").distance
+    allowed = tolerance("ellipsoid", "sphere").distance
+    assert allowed > 1e-9
+    assert (
+        value_differences(PENETRATION, [ellipsoid], [shifted(ellipsoid, "depth", allowed / 2)])
+        == []
+    )
+    assert value_differences(PENETRATION, [ellipsoid], [shifted(ellipsoid, "depth", 2 * allowed)])
+
+
+def test_a_signed_distance_pair_record_is_compared_alone() -> None:
+    op = "compute_signed_distance_pair_closest_points"
+    record = {
+        "pair": ["b", "a"],
+        "shapes": ["sphere", "box"],
+        "distance": -0.24045722186726592,
+        "p_ACa": [0.4681466817920996, 0.14481473881275778, -0.09933466539753061],
+        "p_BCb": [-0.5, 0.17029855566198823, -0.2923360863848727],
+        "nhat_BA_W": [-0.9362933635841992, -0.28962947762551555, 0.19866933079506122],
+    }
+    assert value_differences(op, record, shifted(record, "p_BCb", 1e-12)) == []
+    assert value_differences(op, record, shifted(record, "p_BCb", 1e-6)) == [
+        "b-a p_BCb: |Δ| = 1e-06 > 1e-09 (sphere-box witness tolerance)"
+    ]
+
+
+def test_poses_agree_within_the_pose_tolerance_only() -> None:
+    pose = {
+        "xyz": [0.8, 0.05, 0.02],
+        "rotation": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+    }
+    near = {**pose, "xyz": [0.8 + 1e-15, 0.05, 0.02]}
+    far = {**pose, "rotation": [[1.0, 1e-6, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]}
+    assert value_differences("x_wg", pose, near) == []
+    assert value_differences("x_wf", pose, far) == [
+        f"pose entries differ by up to 1e-06 > {POSE_TOLERANCE:g}"
+    ]
+
+
+def test_bools_and_candidate_lists_stay_exact() -> None:
+    assert value_differences("has_collisions", True, False) == ["values differ"]
+    assert value_differences("find_collision_candidates", [["a", "b"]], [["a", "b"]]) == []
+    assert diff_results(Result(value=1.0), Result(value=1.0 + 1e-15), op="is_active") != []
+
+
+def test_every_pair_of_the_six_shapes_has_a_tolerance_row_with_a_reason() -> None:
+    shapes = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "halfspace")
+    rows = {shape_pair(a, b) for a in shapes for b in shapes}
+    assert rows == set(TOLERANCES)
+    assert all(row.reason for row in TOLERANCES.values())

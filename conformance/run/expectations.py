@@ -3,7 +3,9 @@
 An expectation holds for a backend only if the backend's Drake release lies
 in its ``since``/``until`` range. ``check`` yields ``(what, expected,
 actual)`` for every part that does not hold: the error kind and message
-prefix, the return value, and at the location ``at`` (default: the step's
+prefix, the return value (compared as the op's ``CommandSpec.compare`` says:
+``compare.value_differences``, within tolerances for query values), and at
+the location ``at`` (default: the step's
 context, else the model) the exact candidate set, pairs that must be
 filtered or unfiltered, IsActive per label and ``has_transient_history``.
 """
@@ -13,7 +15,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
-from conformance.compare import format_pairs
+from conformance.compare import format_pairs, value_differences
 from conformance.corpus.loader import Step
 from conformance.protocol import MODEL, LocationState, Observation, Pair, Result, normalise_message
 
@@ -24,7 +26,9 @@ def _pairs(raw: Iterable[Sequence[str]]) -> frozenset[Pair]:
     return frozenset((a, b) if a < b else (b, a) for a, b in raw)
 
 
-def _check_result(expectation: Mapping[str, Any], result: Result) -> Iterator[tuple[str, Any, Any]]:
+def _check_result(
+    op: str, expectation: Mapping[str, Any], result: Result
+) -> Iterator[tuple[str, Any, Any]]:
     error = expectation.get("error")
     if error is not None:
         actual = result.error.to_json() if result.error else "no error"
@@ -34,8 +38,11 @@ def _check_result(expectation: Mapping[str, Any], result: Result) -> Iterator[tu
             yield "error message prefix", error, actual
     elif result.error is not None:
         yield "no error", None, result.error.to_json()
-    if "returns" in expectation and result.error is None and result.value != expectation["returns"]:
-        yield "return value", expectation["returns"], result.value
+    if "returns" in expectation and result.error is None:
+        details = value_differences(op, expectation["returns"], result.value)
+        if details:
+            shown = "" if details == ["values differ"] else f" ({'; '.join(details)})"
+            yield f"return value{shown}", expectation["returns"], result.value
 
 
 def _check_state(
@@ -60,7 +67,7 @@ def check(
     step: Step, expectation: Mapping[str, Any], result: Result, observation: Observation
 ) -> Iterator[tuple[str, Any, Any]]:
     """(what, expected, actual) for every part of ``expectation`` that does not hold."""
-    yield from _check_result(expectation, result)
+    yield from _check_result(step.op, expectation, result)
     at = expectation.get("at", step.args.get("context", MODEL))
     state = observation.locations.get(at)
     if state is None:
