@@ -6,10 +6,18 @@ copy of the model's GeometryState, taken when the context is created; ports
 give access to it (query output) or feed it (pose input). A Diagram holds
 subsystems; its context holds one subcontext per subsystem. Passing a System
 a context that is not its own raises Drake's context-system mismatch error.
+
+Ports: ``DiagramBuilder.Connect(output, input)`` wires an output port of one
+subsystem to an input port of another. In a context, an input port's value is
+its fixed value if ``FixValue`` gave one (measured on pydrake 1.51.1: a fixed
+value overrides the connection), else, when the context sits in a Diagram's
+context that connects the port, the output port's value evaluated on the
+sibling subcontext ``Eval(u, C) = Eval(y, C_sibling)``; else it has no value.
 """
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -132,6 +140,8 @@ class Context:
     _fixed_inputs: dict[int, Any]
     _clone_check: Callable[[Context], None] | None
     _num_input_ports: int
+    #: A system's own values in this context (a plant's positions), copied by Clone.
+    _values: dict[str, Any]
 
     @classmethod
     def _for(cls, system: System, num_input_ports: int = 0) -> Context:
@@ -143,6 +153,7 @@ class Context:
         context._subcontexts = {}
         context._fixed_inputs = {}
         context._clone_check = None
+        context._values = {}
         # N.B. Fixed at creation: ports of sources registered later are missing.
         context._num_input_ports = num_input_ports
         return context
@@ -165,6 +176,7 @@ class Context:
         clone = type(self)._for(self._system, self._num_input_ports)
         clone._pathname = self._pathname
         clone._fixed_inputs = dict(self._fixed_inputs)
+        clone._values = copy.deepcopy(self._values)
         if hasattr(self, "_geometry_state"):
             clone._geometry_state = self._geometry_state.clone()
         for subcontext in self._subcontexts.values():
@@ -235,13 +247,41 @@ class InputPort:
         context._fixed_inputs[self._index] = value
         return FixedInputPortValue(value)
 
+    def _source(self, context: Context) -> tuple[OutputPort, Context] | None:
+        """The output port wired to this port in ``context``'s diagram, and its subcontext."""
+        parent = context._parent
+        if parent is None or not isinstance(parent._system, Diagram):
+            return None
+        output = parent._system._connections.get((self._system, self._index))
+        if output is None:
+            return None
+        return output, parent._subcontexts[output.get_system()]
+
     def _eval(self, context: Context) -> Any:
-        """The port's value in ``context``: its fixed value, else ``None``."""
-        return context._fixed_inputs.get(self._index)
+        """The value in ``context``: the fixed one, else the connected output's, else None."""
+        if self._index in context._fixed_inputs:
+            return context._fixed_inputs[self._index]
+        source = self._source(context)
+        if source is None:
+            return None
+        output, sibling = source
+        return output._calc(sibling)
+
+    def Eval(self, context: Context) -> Any:
+        """The port's value; Drake's error when it is neither fixed nor connected."""
+        _check_port_context("InputPort", self._system, self._index, self._name, context)
+        value = self._eval(context)
+        if value is None:
+            short_type = self._system._cpp_type.rsplit("::", 1)[-1]
+            raise RuntimeError(
+                f"InputPort::Eval(): required InputPort[{self._index}] ({self._name}) of System "
+                f"{self._system.GetSystemPathname()} ({short_type}) is not connected"
+            )
+        return value
 
     def HasValue(self, context: Context) -> bool:
         _check_port_context("InputPort", self._system, self._index, self._name, context)
-        return self._index in context._fixed_inputs
+        return self._index in context._fixed_inputs or self._source(context) is not None
 
 
 def _check_port_context(kind: str, system: System, index: int, name: str, context: Context) -> None:
@@ -262,12 +302,17 @@ class Diagram(System):
         raise TypeError("reimpl.systems.framework.Diagram: No constructor defined!")
 
     _systems: list[System]
+    #: (input system, input index) -> the output port wired to it.
+    _connections: dict[tuple[System, int], OutputPort]
 
     @classmethod
-    def _build(cls, systems: list[System]) -> Diagram:
+    def _build(
+        cls, systems: list[System], connections: dict[tuple[System, int], OutputPort]
+    ) -> Diagram:
         diagram = object.__new__(cls)
         System.__init__(diagram)
         diagram._systems = list(systems)
+        diagram._connections = dict(connections)
         for system in systems:
             system._parent = diagram
         return diagram
@@ -318,6 +363,7 @@ class DiagramBuilder:
 
     def __init__(self) -> None:
         self._systems: list[System] = []
+        self._connections: dict[tuple[System, int], OutputPort] = {}
         self._built = False
 
     def _check_not_built(self) -> None:
@@ -343,6 +389,39 @@ class DiagramBuilder:
     def GetSystems(self) -> list[System]:
         return list(self._systems)
 
+    def Connect(self, arg0: OutputPort, arg1: InputPort, /) -> None:
+        """Wires output port ``arg0`` to input port ``arg1`` (pybind names them arg0, arg1).
+
+        Both systems must have been added to this builder; an input port is
+        wired once (pydrake 1.51.1 ends the program with SystemExit then).
+        """
+        self._check_not_built()
+        for port in (arg0, arg1):
+            self._check_registered(port.get_system())
+        key = (arg1.get_system(), arg1.get_index())
+        if key in self._connections:
+            raise SystemExit(
+                "Failure at external/drake+/systems/framework/diagram_builder.cc:490 in "
+                "ThrowIfInputAlreadyWired(): condition 'iter != input_port_ids_.end()' failed."
+            )
+        self._connections[key] = arg0
+
+    def IsConnectedOrExported(self, port: InputPort) -> bool:
+        return (port.get_system(), port.get_index()) in self._connections
+
+    def _check_registered(self, system: System) -> None:
+        if any(s is system for s in self._systems):
+            return
+        name = system.get_name()
+        known = ", ".join(f"'{s.get_name()}'" for s in self._systems) or "NONE"
+        raise RuntimeError(
+            f"DiagramBuilder: System '{name}' has not been registered to this DiagramBuilder "
+            f"using AddSystem nor AddNamedSystem.\n\nThe systems currently registered to this "
+            f"builder are: {known}.\n\nIf '{name}' was registered as a subsystem to one of "
+            "these, you must export the input or output port using ExportInput/ExportOutput "
+            "and then connect to the exported port."
+        )
+
     def empty(self) -> bool:
         return not self._systems
 
@@ -354,7 +433,7 @@ class DiagramBuilder:
         if not self._systems:
             raise RuntimeError("Cannot Compile an empty DiagramBuilder.")
         self._built = True
-        return Diagram._build(self._systems)
+        return Diagram._build(self._systems, self._connections)
 
 
 System_ = scalar_template("reimpl.systems.framework", "System_", System)
