@@ -15,7 +15,13 @@ need:
   world and default instances.
 - ``Finalize()`` gives every tree not connected to the world a
   QuaternionFloatingJoint named after its base body (see _link_joint_graph),
-  then declares the default collision filters (see _default_filters).
+  then declares the default collision filters (see _default_filters), and
+  lays out the positions q (see kinematics: depth first from the world).
+- A plant context holds q (initially the joints' default positions). The
+  ``geometry_pose`` output port gives, for every body with a SceneGraph frame
+  but the world, X_WB at the context's q (the FramePoseVector SceneGraph reads
+  from its source pose port); the ``geometry_query`` input port reads the
+  SceneGraph's QueryObject. ``AddMultibodyPlantSceneGraph`` connects both.
 """
 
 from __future__ import annotations
@@ -41,10 +47,12 @@ from reimpl.geometry.geometry_roles import (
 )
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
+from reimpl.geometry.query_object import FramePoseVector
 from reimpl.geometry.scene_graph import SceneGraph
 from reimpl.geometry.shape import Shape
-from reimpl.math import RigidTransform
+from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody import _link_joint_graph as graph
+from reimpl.multibody import kinematics
 from reimpl.multibody._default_filters import default_collision_filters
 from reimpl.multibody._errors import (
     DemandFailedError,
@@ -69,7 +77,14 @@ from reimpl.multibody.tree import (
     default_model_instance,
     world_model_instance,
 )
-from reimpl.systems.framework import Context, DiagramBuilder, LeafContext, LeafSystem
+from reimpl.systems.framework import (
+    Context,
+    DiagramBuilder,
+    InputPort,
+    LeafContext,
+    LeafSystem,
+    OutputPort,
+)
 
 __all__ = [
     "AddMultibodyPlant",
@@ -92,6 +107,17 @@ _E = TypeVar("_E", RigidBody, Frame, Joint)
 
 #: Joint types a tree may model from child to parent (measured, from Finalize's message).
 _REVERSIBLE_JOINT_TYPES = frozenset({"prismatic", "revolute", "weld"})
+
+#: Where a plant context keeps its positions q and its cached body poses (Context._values).
+_POSITIONS = "q"
+_BODY_POSES = "X_WB"
+
+#: Where pydrake 1.51.1 reports its DRAKE_DEMAND failures (SystemExit, measured).
+_PLANT_H = (
+    "bazel-out/k8-opt/bin/external/drake+/tools/install/libdrake/_virtual_includes/"
+    "drake_shared_library/drake/multibody/plant/multibody_plant.h"
+)
+_PLANT_CC = "external/drake+/multibody/plant/multibody_plant.cc"
 
 
 class CoulombFriction:
@@ -181,6 +207,11 @@ class MultibodyPlant(LeafSystem):
         self._visual_geometries: dict[int, list[GeometryId]] = {}
         self._adjacent_bodies_collision_filters = True
         self._finalized = False
+        #: body index -> X_PB given by SetDefaultFreeBodyPose.
+        self._default_free_body_poses: dict[int, RigidTransform] = {}
+        self._forest: kinematics.Forest | None = None
+        self._geometry_query_port = InputPort(self, "geometry_query", 0)
+        self._geometry_pose_port = OutputPort(self, "geometry_pose", 0, self._calc_frame_poses)
         world = RigidBody(_WORLD_BODY_NAME, world_model_instance())
         self._add_body(world)
 
@@ -201,7 +232,9 @@ class MultibodyPlant(LeafSystem):
                 "MultibodyPlant cannot SetDefaultParameters or CreateDefaultContext until "
                 "after MultibodyPlant::Finalize() has been called."
             )
-        return LeafContext._for(self)
+        context = LeafContext._for(self)
+        context._values[_POSITIONS] = self.GetDefaultPositions()
+        return context
 
     # --------------------------------------------------------- SceneGraph
     def RegisterAsSourceForSceneGraph(self, scene_graph: SceneGraph) -> SourceId:
@@ -850,6 +883,370 @@ class MultibodyPlant(LeafSystem):
             declaration.ExcludeBetween(set_A, set_B)
         scene_graph.collision_filter_manager().Apply(declaration=declaration)
 
+    # ------------------------------------------------------------- ports
+    def get_geometry_query_input_port(self) -> InputPort:
+        return self._geometry_query_port
+
+    def get_geometry_pose_output_port(self) -> OutputPort:
+        return self._geometry_pose_port
+
+    def _calc_frame_poses(self, context: Context) -> FramePoseVector:
+        """{F(B): X_WB} for every body B but the world that has a SceneGraph frame."""
+        poses = FramePoseVector()
+        world_poses = self._body_poses(context)
+        for index, frame_id in self._body_frame_ids.items():
+            if index != graph.WORLD:
+                poses.set_value(frame_id, _transform(world_poses[index]))
+        return poses
+
+    # ---------------------------------------------------------- positions
+    def _lay_out_positions(self) -> None:
+        """Walks the finalized tree: each joint's position and velocity start, and
+        the fixed poses X_PF, X_MC kinematics composes."""
+        edges = [
+            (
+                int(j.parent_body().index()),
+                int(j.child_body().index()),
+                j.num_positions(),
+                j.num_velocities(),
+            )
+            for j in self._joints
+        ]
+        self._forest = kinematics.build_forest(len(self._bodies), edges)
+        for index, joint in enumerate(self._joints):
+            joint._starts = (
+                self._forest.position_start[index],
+                self._forest.velocity_start[index],
+            )
+        self._X_PF = [_pose(j.frame_on_parent().GetFixedPoseInBodyFrame()) for j in self._joints]
+        self._X_MC = [
+            kinematics.invert(_pose(j.frame_on_child().GetFixedPoseInBodyFrame()))
+            for j in self._joints
+        ]
+
+    def _check_finalized(self, method: str) -> None:
+        if not self._finalized:
+            raise NotFinalizedError(
+                f"Pre-finalize calls to '{method}()' are not allowed; you must call Finalize() "
+                "first."
+            )
+
+    def _joints_in_position_order(self, model_instance: ModelInstanceIndex | None) -> list[Joint]:
+        joints = self._joints_of(model_instance)
+        return sorted(joints, key=lambda j: j.position_start())
+
+    def _context_positions(self, context: Context) -> Any:
+        """The q held by ``context`` (mutable), after Drake's context check."""
+        self.ValidateContext(context)
+        return context._values[_POSITIONS]
+
+    def _instance_slices(self, model_instance: ModelInstanceIndex) -> list[slice]:
+        return [
+            slice(j.position_start(), j.position_start() + j.num_positions())
+            for j in self._joints_in_position_order(model_instance)
+        ]
+
+    def GetPositions(self, *args: Any, **kwargs: Any) -> Any:
+        """q, or the positions of one model instance's joints in position order."""
+
+        def all_positions(context: Context) -> Any:
+            return self._context_positions(context).copy()
+
+        def of_instance(context: Context, model_instance: ModelInstanceIndex) -> Any:
+            q = self._context_positions(context)
+            slices = self._instance_slices(model_instance)
+            return np.concatenate([q[s] for s in slices]) if slices else np.zeros(0)
+
+        context = Param("context", instance_of(Context))
+        return dispatch(
+            _OWNER,
+            "GetPositions",
+            (
+                Overload((context,), all_positions),
+                Overload(
+                    (context, Param("model_instance", instance_of(ModelInstanceIndex))),
+                    of_instance,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def SetPositions(self, *args: Any, **kwargs: Any) -> None:
+        """Sets q, or one model instance's positions; sizes and finiteness as Drake demands."""
+
+        def all_positions(context: Context, q: Any) -> None:
+            positions = self._context_positions(context)
+            values = _positions_vector(q)
+            _demand(
+                values.size == positions.size, 2896, "SetPositions", "q.size() == num_positions()"
+            )
+            _demand(bool(np.isfinite(values).all()), 2897, "SetPositions", "AllFinite(q)")
+            positions[:] = values
+
+        def of_instance(context: Context, model_instance: ModelInstanceIndex, q: Any) -> None:
+            positions = self._context_positions(context)
+            values = _positions_vector(q)
+            slices = self._instance_slices(model_instance)
+            size = sum(s.stop - s.start for s in slices)
+            _demand(
+                values.size == size,
+                2912,
+                "SetPositions",
+                "q_instance.size() == num_positions(model_instance)",
+            )
+            _demand(bool(np.isfinite(values).all()), 2913, "SetPositions", "AllFinite(q_instance)")
+            first = 0
+            for s in slices:
+                positions[s] = values[first : first + s.stop - s.start]
+                first += s.stop - s.start
+
+        context = Param("context", instance_of(Context))
+        q = Param("q", _is_vector)
+        dispatch(
+            _OWNER,
+            "SetPositions",
+            (
+                Overload((context, q), all_positions),
+                Overload(
+                    (context, Param("model_instance", instance_of(ModelInstanceIndex)), q),
+                    of_instance,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def GetDefaultPositions(self, *args: Any, **kwargs: Any) -> Any:
+        """The joints' default positions, laid out as q (after Finalize)."""
+
+        def of(model_instance: ModelInstanceIndex | None = None) -> Any:
+            self._check_finalized("GetDefaultPositions")
+            joints = self._joints_in_position_order(model_instance)
+            if model_instance is None:
+                q = np.zeros(self.num_positions())
+                for joint in joints:
+                    start = joint.position_start()
+                    q[start : start + joint.num_positions()] = joint.default_positions()
+                return q
+            parts = [j.default_positions() for j in joints]
+            return np.concatenate(parts) if parts else np.zeros(0)
+
+        return dispatch(
+            _OWNER,
+            "GetDefaultPositions",
+            (
+                Overload((), of),
+                Overload((Param("model_instance", instance_of(ModelInstanceIndex)),), of),
+            ),
+            args,
+            kwargs,
+        )
+
+    def SetDefaultPositions(self, *args: Any, **kwargs: Any) -> None:
+        """Sets every joint's default positions from q (or one instance's, in position order)."""
+
+        def all_positions(q: Any) -> None:
+            self._check_finalized("SetDefaultPositions")
+            values = _positions_vector(q)
+            _demand_cc(
+                values.size == self.num_positions(),
+                1881,
+                "SetDefaultPositions",
+                "q.size() == num_positions()",
+            )
+            for joint in self._joints:
+                start = joint.position_start()
+                joint._set_default(0, values[start : start + joint.num_positions()])
+
+        def of_instance(model_instance: ModelInstanceIndex, q_instance: Any) -> None:
+            self._check_finalized("SetDefaultPositions")
+            values = _positions_vector(q_instance)
+            joints = self._joints_in_position_order(model_instance)
+            _demand_cc(
+                values.size == sum(j.num_positions() for j in joints),
+                1895,
+                "SetDefaultPositions",
+                "q_instance.size() == num_positions(model_instance)",
+            )
+            first = 0
+            for joint in joints:
+                joint._set_default(0, values[first : first + joint.num_positions()])
+                first += joint.num_positions()
+
+        dispatch(
+            _OWNER,
+            "SetDefaultPositions",
+            (
+                Overload((Param("q", _is_vector),), all_positions),
+                Overload(
+                    (
+                        Param("model_instance", instance_of(ModelInstanceIndex)),
+                        Param("q_instance", _is_vector),
+                    ),
+                    of_instance,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def GetPositionNames(self, *args: Any, **kwargs: Any) -> list[str]:
+        """``[instance_]joint[_suffix]`` for each position, in q's order.
+
+        Without ``always_add_suffix``, a one-position joint's name has no suffix.
+        For one model instance, Drake writes joint J's names at
+        ``position_start(J) − min_J position_start(J)`` and demands that they
+        fit: an instance whose positions are not contiguous (a free tree's
+        quaternion after another instance's joints) ends the program (SystemExit,
+        measured on pydrake 1.51.1).
+        """
+
+        def names(
+            model_instance: ModelInstanceIndex | None = None,
+            add_model_instance_prefix: bool = True,
+            always_add_suffix: bool = True,
+        ) -> list[str]:
+            self._check_finalized("GetPositionNames")
+            joints = self._joints_in_position_order(model_instance)
+            size = sum(j.num_positions() for j in joints)
+            offset = 0
+            if model_instance is not None:
+                offset = min(
+                    (j.position_start() for j in joints if j.num_positions()),
+                    default=self.num_positions(),
+                )
+            result = [""] * size
+            for joint in joints:
+                _demand_cc(
+                    joint.position_start() + joint.num_positions() - offset <= size,
+                    1955,
+                    "GetPositionNames",
+                    "joint.position_start() + joint.num_positions() - position_offset <= "
+                    "ssize(names)",
+                )
+                prefix = ""
+                if add_model_instance_prefix:
+                    prefix = f"{self.GetModelInstanceName(joint.model_instance())}_"
+                for i in range(joint.num_positions()):
+                    name = f"{prefix}{joint.name()}"
+                    if always_add_suffix or joint.num_positions() > 1:
+                        name = f"{name}_{joint.position_suffix(i)}"
+                    result[joint.position_start() + i - offset] = name
+            return result
+
+        flag = instance_of(bool)
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "GetPositionNames",
+            (
+                Overload(
+                    (
+                        Param("add_model_instance_prefix", flag, True),
+                        Param("always_add_suffix", flag, True),
+                    ),
+                    names,
+                ),
+                Overload(
+                    (
+                        Param("model_instance", instance_of(ModelInstanceIndex)),
+                        Param("add_model_instance_prefix", flag, False),
+                        Param("always_add_suffix", flag, True),
+                    ),
+                    names,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    # -------------------------------------------------------------- poses
+    def _body_poses(self, context: Context) -> list[kinematics.Pose]:
+        """X_WB of every body at the context's q (cached while q is unchanged)."""
+        q = self._context_positions(context)
+        key = q.tobytes()
+        cached = context._values.get(_BODY_POSES)
+        if cached is not None and cached[0] == key:
+            return cached[1]  # type: ignore[no-any-return]
+        assert self._forest is not None
+        joints = self._joints
+
+        def joint_X_FM(j: int) -> kinematics.Pose:
+            joint = joints[j]
+            start = joint.position_start()
+            return kinematics.X_FM(joint, q[start : start + joint.num_positions()])
+
+        poses = kinematics.body_poses(
+            self._forest, len(self._bodies), joint_X_FM, self._X_PF, self._X_MC
+        )
+        context._values[_BODY_POSES] = (key, poses)
+        return poses
+
+    def EvalBodyPoseInWorld(self, context: Context, body_B: RigidBody) -> RigidTransform:
+        """X_WB at the context's positions."""
+        return _transform(self._body_poses(context)[int(body_B.index())])
+
+    def CalcRelativeTransform(
+        self, context: Context, frame_A: Frame, frame_B: Frame
+    ) -> RigidTransform:
+        """X_AB = X_WA⁻¹ · X_WB."""
+        return frame_A.CalcPoseInWorld(context).inverse() @ frame_B.CalcPoseInWorld(context)
+
+    def _free_body_joint(self, body: RigidBody) -> Any:
+        """The floating joint that places ``body`` (Drake's error if none)."""
+        assert self._forest is not None
+        index = self._forest.inboard_joint(int(body.index()))
+        if index is None or self._joints[index].type_name() not in kinematics.FLOATING_TYPES:
+            raise MultibodyPlantError(f"Body '{body.name()}' is not a free body.")
+        return self._joints[index]
+
+    def SetFreeBodyPose(self, *args: Any, **kwargs: Any) -> None:
+        """Sets X_JpJc, the pose of ``body``'s floating joint (X_WB for a free body).
+
+        N.B. pydrake 1.51.1 also takes the deprecated keyword ``X_PB``.
+        """
+
+        def set_pose(context: Context, body: RigidBody, **pose: RigidTransform) -> None:
+            self._context_positions(context)
+            self._free_body_joint(body).SetPose(context, *pose.values())
+
+        context = Param("context", instance_of(Context))
+        body = Param("body", instance_of(RigidBody))
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "SetFreeBodyPose",
+            tuple(
+                Overload((context, body, Param(name, instance_of(RigidTransform))), set_pose)
+                for name in ("X_JpJc", "X_PB")
+            ),
+            args,
+            kwargs,
+        )
+
+    def GetFreeBodyPose(self, context: Context, body: RigidBody) -> RigidTransform:
+        self._context_positions(context)
+        return self._free_body_joint(body).GetPose(context)  # type: ignore[no-any-return]
+
+    def SetDefaultFreeBodyPose(self, body: RigidBody, X_PB: RigidTransform) -> None:
+        """The default X_WB of a free body: its floating joint's default positions."""
+        self._default_free_body_poses[int(body.index())] = RigidTransform(X_PB)
+        if self._forest is not None:
+            index = self._forest.inboard_joint(int(body.index()))
+            joint: Any = None if index is None else self._joints[index]
+            if joint is not None and joint.type_name() in kinematics.FLOATING_TYPES:
+                joint._set_default_pose(X_PB)
+
+    def GetDefaultFreeBodyPose(self, body: RigidBody) -> RigidTransform:
+        return RigidTransform(
+            self._default_free_body_poses.get(int(body.index()), RigidTransform())
+        )
+
+    def SetDefaultFloatingBaseBodyPose(self, body: RigidBody, X_WB: RigidTransform) -> None:
+        self.SetDefaultFreeBodyPose(body, X_WB)
+
+    def GetDefaultFloatingBaseBodyPose(self, body: RigidBody) -> RigidTransform:
+        return self.GetDefaultFreeBodyPose(body)
+
     # ------------------------------------------------------------ Finalize
     def Finalize(self) -> None:
         """Adds the floating joints, then the default collision filters; seals the model."""
@@ -869,6 +1266,7 @@ class MultibodyPlant(LeafSystem):
             self._check_reversible(self._joints[index])
         for base in bases:
             self._add_floating_joint(self._bodies[base])
+        self._lay_out_positions()
         # N.B. Measured: the plant is finalized before its filters are applied, so
         # an Apply that raises (transient history active) leaves it finalized,
         # unfiltered, and refusing a second Finalize.
@@ -907,11 +1305,48 @@ class MultibodyPlant(LeafSystem):
             name = f"_{name}"
         joint = QuaternionFloatingJoint(name, self.world_frame(), body.body_frame())
         joint._ephemeral = True
+        X_WB = self._default_free_body_poses.get(int(body.index()))
+        if X_WB is not None:
+            joint._set_default_pose(X_WB)
         self.AddJoint(joint)
 
 
 def _instance_order(element: RigidBody | Frame | Joint) -> int:
     return int(element.model_instance())
+
+
+def _pose(X: RigidTransform) -> kinematics.Pose:
+    return X.rotation().matrix(), X.translation()
+
+
+def _transform(X: kinematics.Pose) -> RigidTransform:
+    return RigidTransform(RotationMatrix(X[0]), X[1])
+
+
+def _is_vector(value: object) -> bool:
+    try:
+        return np.asarray(value, dtype=float).ndim in {1, 2}
+    except (TypeError, ValueError):
+        return False
+
+
+_is_vector.__name__ = "numpy.ndarray[numpy.float64[m, 1]]"
+
+
+def _positions_vector(q: Any) -> Any:
+    return np.asarray(q, dtype=float).reshape(-1)
+
+
+def _demand(condition: bool, line: int, method: str, text: str) -> None:
+    """pydrake 1.51.1's SystemExit for a failed DRAKE_DEMAND in multibody_plant.h."""
+    if not condition:
+        raise SystemExit(f"Failure at {_PLANT_H}:{line} in {method}(): condition '{text}' failed.")
+
+
+def _demand_cc(condition: bool, line: int, method: str, text: str) -> None:
+    """pydrake 1.51.1's SystemExit for a failed DRAKE_DEMAND in multibody_plant.cc."""
+    if not condition:
+        raise SystemExit(f"Failure at {_PLANT_CC}:{line} in {method}(): condition '{text}' failed.")
 
 
 def _is_rgba(value: object) -> bool:
@@ -928,7 +1363,12 @@ def AddMultibodyPlantSceneGraph(*args: Any, **kwargs: Any) -> tuple[MultibodyPla
     """Adds a plant (given, or made with ``time_step``) and a SceneGraph to ``builder``.
 
     The plant is named ``plant``, the SceneGraph ``scene_graph``, and the
-    plant is registered as its source. Returns ``(plant, scene_graph)``.
+    plant is registered as its source; the plant's ``geometry_pose`` output
+    feeds the source's pose port and the SceneGraph's ``query`` output feeds
+    the plant's ``geometry_query`` input. Returns ``(plant, scene_graph)``.
+
+    N.B. pydrake also connects the deformable configuration ports; reimpl has
+    no deformable bodies and does not.
     """
 
     def add(
@@ -941,7 +1381,11 @@ def AddMultibodyPlantSceneGraph(*args: Any, **kwargs: Any) -> tuple[MultibodyPla
         plant.set_name("plant")
         builder.AddSystem(plant)
         builder.AddSystem(scene_graph)
-        plant.RegisterAsSourceForSceneGraph(scene_graph)
+        source_id = plant.RegisterAsSourceForSceneGraph(scene_graph)
+        builder.Connect(
+            plant.get_geometry_pose_output_port(), scene_graph.get_source_pose_port(source_id)
+        )
+        builder.Connect(scene_graph.get_query_output_port(), plant.get_geometry_query_input_port())
         return plant, scene_graph
 
     def with_time_step(

@@ -9,22 +9,27 @@ and belongs to one model instance:
 - a joint belongs to the instance of its child frame ``frame_on_child``;
 - a FixedOffsetFrame to the instance it was given, else to its parent frame's.
 
-Only what filtering and naming read is kept: a joint's type and its two
-bodies, a body's name and instance. Axes, limits, dampings, masses and poses
-are accepted as pydrake accepts them and are stored, never used.
+Filtering and naming read a joint's type and its two bodies, a body's name
+and instance. Kinematics (reimpl.multibody.kinematics) reads the frames'
+fixed poses, the joints' axes, a screw's pitch and a weld's X_FM; once the
+plant is finalized, a joint's positions start at ``position_start()`` in a
+plant context's q, and the joint's accessors (``set_angle``, ``SetPose``, ...)
+read and write that slice. Limits, dampings and masses are accepted as
+pydrake accepts them and are stored, never used.
 """
 
 from __future__ import annotations
 
 import math
 import numbers
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
-from reimpl.math import RigidTransform
+from reimpl.math import RigidTransform, RotationMatrix
+from reimpl.multibody import kinematics
 from reimpl.multibody._errors import MultibodyPlantError
 
 __all__ = [
@@ -426,6 +431,29 @@ class RigidBody(_Element):
     def default_mass(self) -> float:
         return self._M_BBo_B.get_mass()
 
+    def EvalPoseInWorld(self, context: Any) -> RigidTransform:
+        X_WB: RigidTransform = self.GetParentPlant().EvalBodyPoseInWorld(context, self)
+        return X_WB
+
+    def _inboard_joint(self) -> Joint | None:
+        plant = self.GetParentPlant()
+        index = plant._forest.inboard_joint(self._index) if plant._forest is not None else None
+        return None if index is None else plant.get_joint(JointIndex(index))
+
+    def is_floating_base_body(self) -> bool:
+        """Whether Finalize gave this body its floating joint (measured: a user's
+        RpyFloatingJoint to the world does not count)."""
+        joint = self._inboard_joint()
+        return joint is not None and joint.is_ephemeral()
+
+    def is_floating(self) -> bool:
+        """Deprecated in pydrake 1.51.1 for ``is_floating_base_body``."""
+        return self.is_floating_base_body()
+
+    def has_quaternion_dofs(self) -> bool:
+        joint = self._inboard_joint()
+        return joint is not None and joint.kTypeName == "quaternion_floating"
+
 
 class Frame(_Element):
     """A frame fixed to a body."""
@@ -444,6 +472,30 @@ class Frame(_Element):
 
     def is_body_frame(self) -> bool:
         return False
+
+    def GetFixedPoseInBodyFrame(self) -> RigidTransform:
+        """X_BF, the pose of this frame in its body's frame."""
+        return RigidTransform()
+
+    def GetFixedOffsetPoseInBody(self, X_FQ: RigidTransform) -> RigidTransform:
+        """X_BQ = X_BF · X_FQ."""
+        return self.GetFixedPoseInBodyFrame() @ X_FQ
+
+    def CalcPoseInBodyFrame(self, context: Any) -> RigidTransform:
+        return self.GetFixedPoseInBodyFrame()
+
+    def CalcOffsetPoseInBody(self, context: Any, X_FQ: RigidTransform) -> RigidTransform:
+        return self.GetFixedOffsetPoseInBody(X_FQ)
+
+    def CalcPoseInWorld(self, context: Any) -> RigidTransform:
+        """X_WF = X_WB · X_BF at the context's positions."""
+        X_WB: RigidTransform = self.GetParentPlant().EvalBodyPoseInWorld(context, self._body)
+        return X_WB @ self.GetFixedPoseInBodyFrame()
+
+    def CalcPose(self, context: Any, frame_M: Frame) -> RigidTransform:
+        """X_MF, this frame's pose in ``frame_M``."""
+        X_MF: RigidTransform = self.GetParentPlant().CalcRelativeTransform(context, frame_M, self)
+        return X_MF
 
 
 class RigidBodyFrame(Frame):
@@ -507,24 +559,61 @@ class FixedOffsetFrame(Frame):
     def GetPoseInParentFrame(self) -> RigidTransform:
         return RigidTransform(self._X_PF)
 
+    def GetFixedPoseInBodyFrame(self) -> RigidTransform:
+        """X_BF = X_BP · X_PF."""
+        return self._parent.GetFixedPoseInBodyFrame() @ self._X_PF
+
 
 # ---------------------------------------------------------------- Joints
+
+
+def _no_mobilizer() -> SystemExit:
+    """What pydrake 1.51.1 raises (SystemExit, measured) for a joint's positions before Finalize."""
+    return SystemExit(
+        "Failure at bazel-out/k8-opt/bin/external/drake+/multibody/tree/_virtual_includes/"
+        "multibody_tree_core/drake/multibody/tree/joint.h:970 in get_mobilizer_downcast(): "
+        "condition 'has_mobilizer()' failed."
+    )
+
+
+def _sized(method: str, value: Any, size: int) -> npt.NDArray[np.float64]:
+    """``value`` as a float vector of ``size``; pybind11's TypeError otherwise."""
+    if not _is_vector(size)(value):
+        raise TypeError(
+            f"{method}(): incompatible function arguments. Expected "
+            f"numpy.ndarray[numpy.float64[{size}, 1]], got {value!r}"
+        )
+    return _vector(value)
+
+
+def _pose(R: npt.NDArray[np.float64], p: npt.ArrayLike) -> RigidTransform:
+    return RigidTransform(RotationMatrix(R), np.asarray(p, dtype=float))
 
 
 class Joint(_Element):
     """A joint between the body of ``frame_on_parent`` and that of ``frame_on_child``.
 
     Subclasses differ, for filtering, only in ``kTypeName``; the plant reads
-    that name through a table (see ``reimpl.multibody._default_filters``).
+    that name through a table (see ``reimpl.multibody._default_filters``), and
+    so does kinematics (``X_FM(q)``, see ``reimpl.multibody.kinematics``).
+    Its positions q_J live in a plant context at
+    ``[position_start(), position_start() + num_positions())``.
     """
 
     _index_type = JointIndex
     kTypeName: ClassVar[str] = ""
     #: (positions, velocities)
     _dofs: ClassVar[tuple[int, int]] = (0, 0)
+    #: The positions a new joint defaults to.
+    _zero_positions: ClassVar[tuple[float, ...]] = ()
+    #: GetPositionNames' suffix of each position.
+    _position_suffixes: ClassVar[tuple[str, ...]] = ()
     _frame_on_parent: Frame
     _frame_on_child: Frame
     _ephemeral: bool
+    _default_q: npt.NDArray[np.float64]
+    #: (position_start, velocity_start), set by the plant's Finalize.
+    _starts: tuple[int, int] | None
 
     _parent_param: ClassVar[str] = "frame_on_parent"
     _child_param: ClassVar[str] = "frame_on_child"
@@ -549,6 +638,8 @@ class Joint(_Element):
             self._frame_on_child = child
             self._ephemeral = False
             self._parameters = bound
+            self._default_q = np.array(cls._zero_positions or [0.0] * cls._dofs[0], dtype=float)
+            self._starts = None
 
         overloads = tuple(Overload(frames + extra, make) for extra in cls._overloads())
         dispatch(f"{_OWNER}.{cls.__name__}", "__init__", overloads, args, kwargs)
@@ -583,6 +674,47 @@ class Joint(_Element):
         """True for the floating joints Finalize adds."""
         return self._ephemeral
 
+    # ---------------------------------------------------------- positions
+    def position_start(self) -> int:
+        if self._starts is None:
+            raise _no_mobilizer()
+        return self._starts[0]
+
+    def velocity_start(self) -> int:
+        if self._starts is None:
+            raise _no_mobilizer()
+        return self._starts[1]
+
+    def position_suffix(self, arg0: int) -> str:
+        return self._position_suffixes[arg0]
+
+    def default_positions(self) -> npt.NDArray[np.float64]:
+        return self._default_q.copy()
+
+    def set_default_positions(self, default_positions: npt.ArrayLike) -> None:
+        self._default_q = _sized(
+            "set_default_positions", default_positions, self.num_positions()
+        ).copy()
+
+    def _q(self, context: Any) -> npt.NDArray[np.float64]:
+        """A view of this joint's positions in ``context`` (writes go to the context)."""
+        start = self.position_start()
+        q = self.GetParentPlant()._context_positions(context)
+        return q[start : start + self.num_positions()]  # type: ignore[no-any-return]
+
+    def _set_q(self, context: Any, first: int, values: npt.ArrayLike) -> Any:
+        """Writes ``values`` from this joint's position ``first`` on; returns the joint."""
+        values = np.asarray(values, dtype=float).reshape(-1)
+        self._q(context)[first : first + len(values)] = values
+        return self
+
+    def _set_default(self, first: int, values: npt.ArrayLike) -> None:
+        values = np.asarray(values, dtype=float).reshape(-1)
+        self._default_q[first : first + len(values)] = values
+
+    def GetOnePosition(self, context: Any) -> float:
+        return float(self._q(context)[0])
+
 
 def _real(name: str, default: Any = None) -> Param:
     return Param(name, _is_real) if default is None else Param(name, _is_real, default)
@@ -591,9 +723,17 @@ def _real(name: str, default: Any = None) -> Param:
 _axis = Param("axis", _is_vector(3))
 
 
+def _unit(axis: Any) -> npt.NDArray[np.float64]:
+    vector = _vector(axis)
+    return vector / float(np.linalg.norm(vector))
+
+
 class RevoluteJoint(Joint):
+    """q = [θ]: X_FM = (R_a(θ), 0) about the unit axis a."""
+
     kTypeName = "revolute"
     _dofs = (1, 1)
+    _position_suffixes = ("q",)
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
@@ -602,10 +742,28 @@ class RevoluteJoint(Joint):
             (_axis, _real("pos_lower_limit"), _real("pos_upper_limit"), _real("damping", 0.0)),
         )
 
+    def revolute_axis(self) -> npt.NDArray[np.float64]:
+        return _unit(self._parameters["axis"])
+
+    def get_angle(self, context: Any) -> float:
+        return float(self._q(context)[0])
+
+    def set_angle(self, context: Any, angle: float) -> RevoluteJoint:
+        return self._set_q(context, 0, [angle])  # type: ignore[no-any-return]
+
+    def get_default_angle(self) -> float:
+        return float(self._default_q[0])
+
+    def set_default_angle(self, angle: float) -> None:
+        self._set_default(0, [angle])
+
 
 class PrismaticJoint(Joint):
+    """q = [x]: X_FM = (I, x·a) along the unit axis a."""
+
     kTypeName = "prismatic"
     _dofs = (1, 1)
+    _position_suffixes = ("x",)
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
@@ -617,6 +775,21 @@ class PrismaticJoint(Joint):
                 _real("damping", 0.0),
             ),
         )
+
+    def translation_axis(self) -> npt.NDArray[np.float64]:
+        return _unit(self._parameters["axis"])
+
+    def get_translation(self, context: Any) -> float:
+        return float(self._q(context)[0])
+
+    def set_translation(self, context: Any, translation: float) -> PrismaticJoint:
+        return self._set_q(context, 0, [translation])  # type: ignore[no-any-return]
+
+    def get_default_translation(self) -> float:
+        return float(self._default_q[0])
+
+    def set_default_translation(self, translation: float) -> None:
+        self._set_default(0, [translation])
 
 
 class WeldJoint(Joint):
@@ -633,57 +806,199 @@ class WeldJoint(Joint):
 
 
 class BallRpyJoint(Joint):
+    """q = [r, p, y]: X_FM = (R_rpy(r, p, y), 0)."""
+
     kTypeName = "ball_rpy"
     _dofs = (3, 3)
+    _position_suffixes = ("qx", "qy", "qz")
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
         return ((_real("damping", 0.0),),)
+
+    def get_angles(self, context: Any) -> npt.NDArray[np.float64]:
+        return self._q(context).copy()
+
+    def set_angles(self, context: Any, angles: npt.ArrayLike) -> BallRpyJoint:
+        return self._set_q(context, 0, _sized("set_angles", angles, 3))  # type: ignore[no-any-return]
+
+    def get_default_angles(self) -> npt.NDArray[np.float64]:
+        return self._default_q.copy()
+
+    def set_default_angles(self, angles: npt.ArrayLike) -> None:
+        self._set_default(0, _sized("set_default_angles", angles, 3))
 
 
 class UniversalJoint(Joint):
+    """q = [θ₀, θ₁]: X_FM = (R_x(θ₀)·R_y(θ₁), 0)."""
+
     kTypeName = "universal"
     _dofs = (2, 2)
+    _position_suffixes = ("qx", "qy")
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
         return ((_real("damping", 0.0),),)
 
+    def get_angles(self, context: Any) -> npt.NDArray[np.float64]:
+        return self._q(context).copy()
+
+    def set_angles(self, context: Any, angles: npt.ArrayLike) -> UniversalJoint:
+        return self._set_q(context, 0, _sized("set_angles", angles, 2))  # type: ignore[no-any-return]
+
+    def get_default_angles(self) -> npt.NDArray[np.float64]:
+        return self._default_q.copy()
+
+    def set_default_angles(self, angles: npt.ArrayLike) -> None:
+        self._set_default(0, _sized("set_default_angles", angles, 2))
+
 
 class PlanarJoint(Joint):
+    """q = [x, y, θ]: X_FM = (R_z(θ), [x, y, 0])."""
+
     kTypeName = "planar"
     _dofs = (3, 3)
+    _position_suffixes = ("x", "y", "qz")
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
         return ((Param("damping", _is_vector(3), np.zeros(3)),),)
 
+    def get_translation(self, context: Any) -> npt.NDArray[np.float64]:
+        return self._q(context)[:2].copy()
 
-class QuaternionFloatingJoint(Joint):
-    """6 dofs (7 positions). The one joint type Finalize's adjacency rule skips."""
+    def set_translation(self, context: Any, p_FoMo_F: npt.ArrayLike) -> PlanarJoint:
+        return self._set_q(context, 0, _sized("set_translation", p_FoMo_F, 2))  # type: ignore[no-any-return]
+
+    def get_rotation(self, context: Any) -> float:
+        return float(self._q(context)[2])
+
+    def set_rotation(self, context: Any, theta: float) -> PlanarJoint:
+        return self._set_q(context, 2, [theta])  # type: ignore[no-any-return]
+
+    def set_pose(self, context: Any, p_FoMo_F: npt.ArrayLike, theta: float) -> PlanarJoint:
+        self.set_translation(context, p_FoMo_F)
+        return self.set_rotation(context, theta)
+
+    def get_default_translation(self) -> npt.NDArray[np.float64]:
+        return self._default_q[:2].copy()
+
+    def get_default_rotation(self) -> float:
+        return float(self._default_q[2])
+
+    def set_default_translation(self, p_FoMo_F: npt.ArrayLike) -> None:
+        self._set_default(0, _sized("set_default_translation", p_FoMo_F, 2))
+
+    def set_default_rotation(self, theta: float) -> None:
+        self._set_default(2, [theta])
+
+    def set_default_pose(self, p_FoMo_F: npt.ArrayLike, theta: float) -> None:
+        self.set_default_translation(p_FoMo_F)
+        self.set_default_rotation(theta)
+
+
+class _FloatingPose:
+    """What the two 6-dof joints share: the rotation in the first positions, then
+    p_FM = [x, y, z]. A mixin before Joint (it is no joint type of its own)."""
+
+    _dofs: ClassVar[tuple[int, int]] = (6, 6)
+    #: Where the translation starts in q_J.
+    _translation_start: ClassVar[int] = 3
+
+    if TYPE_CHECKING:  # Provided by Joint.
+        _default_q: npt.NDArray[np.float64]
+
+        def _q(self, context: Any) -> npt.NDArray[np.float64]: ...
+        def _set_q(self, context: Any, first: int, values: npt.ArrayLike) -> Any: ...
+        def _set_default(self, first: int, values: npt.ArrayLike) -> None: ...
+
+    @classmethod
+    def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
+        return ((_real("angular_damping", 0.0), _real("translational_damping", 0.0)),)
+
+    def _rotation_q(self, R: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        raise NotImplementedError
+
+    def get_translation(self, context: Any) -> npt.NDArray[np.float64]:
+        return self._q(context)[self._translation_start :].copy()
+
+    def SetTranslation(self, context: Any, p_FM: npt.ArrayLike) -> Any:
+        return self._set_q(context, self._translation_start, _sized("SetTranslation", p_FM, 3))
+
+    def SetOrientation(self, context: Any, R: RotationMatrix) -> Any:
+        return self._set_q(context, 0, self._rotation_q(R.matrix()))
+
+    def SetPose(self, context: Any, X_FM: RigidTransform) -> Any:
+        self.SetOrientation(context, X_FM.rotation())
+        return self.SetTranslation(context, X_FM.translation())
+
+    def GetPose(self, context: Any) -> RigidTransform:
+        return _pose(*kinematics.X_FM(self, self._q(context)))
+
+    def get_default_translation(self) -> npt.NDArray[np.float64]:
+        return self._default_q[self._translation_start :].copy()
+
+    def _set_default_pose(self, X_FM: RigidTransform) -> None:
+        self._set_default(0, self._rotation_q(X_FM.rotation().matrix()))
+        self._set_default(self._translation_start, X_FM.translation())
+
+
+class QuaternionFloatingJoint(_FloatingPose, Joint):
+    """q = [qw, qx, qy, qz, x, y, z]: X_FM = (R(q/|q|), [x, y, z]).
+
+    The one joint type Finalize's adjacency rule skips.
+    """
 
     kTypeName = "quaternion_floating"
     _dofs = (7, 6)
+    _translation_start = 4
+    _zero_positions = (1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    _position_suffixes = ("qw", "qx", "qy", "qz", "x", "y", "z")
 
-    @classmethod
-    def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
-        return ((_real("angular_damping", 0.0), _real("translational_damping", 0.0)),)
+    def _rotation_q(self, R: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        return kinematics.quaternion_from_rotation(R)
+
+    def set_default_translation(self, translation: npt.ArrayLike) -> None:
+        self._set_default(4, _sized("set_default_translation", translation, 3))
 
 
-class RpyFloatingJoint(Joint):
-    """6 dofs; unlike QuaternionFloatingJoint, its bodies are filtered as adjacent."""
+class RpyFloatingJoint(_FloatingPose, Joint):
+    """q = [r, p, y, x, y, z]: X_FM = (R_rpy(r, p, y), [x, y, z]).
+
+    Unlike QuaternionFloatingJoint, its bodies are filtered as adjacent.
+    """
 
     kTypeName = "rpy_floating"
-    _dofs = (6, 6)
+    _position_suffixes = ("qx", "qy", "qz", "x", "y", "z")
 
-    @classmethod
-    def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
-        return ((_real("angular_damping", 0.0), _real("translational_damping", 0.0)),)
+    def _rotation_q(self, R: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        return kinematics.rpy_from_rotation(R)
+
+    def SetOrientation(self, context: Any, R_FM: RotationMatrix) -> Any:
+        return super().SetOrientation(context, R_FM)
+
+    def get_angles(self, context: Any) -> npt.NDArray[np.float64]:
+        return self._q(context)[:3].copy()
+
+    def set_angles(self, context: Any, angles: npt.ArrayLike) -> RpyFloatingJoint:
+        return self._set_q(context, 0, _sized("set_angles", angles, 3))  # type: ignore[no-any-return]
+
+    def get_default_angles(self) -> npt.NDArray[np.float64]:
+        return self._default_q[:3].copy()
+
+    def set_default_angles(self, angles: npt.ArrayLike) -> None:
+        self._set_default(0, _sized("set_default_angles", angles, 3))
+
+    def set_default_translation(self, p_FM: npt.ArrayLike) -> None:
+        self._set_default(3, _sized("set_default_translation", p_FM, 3))
 
 
 class ScrewJoint(Joint):
+    """q = [θ]: X_FM = (R_a(θ), a·pitch·θ/2π) about and along the unit axis a (default z)."""
+
     kTypeName = "screw"
     _dofs = (1, 1)
+    _position_suffixes = ("q",)
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
@@ -691,3 +1006,36 @@ class ScrewJoint(Joint):
             (_real("screw_pitch"), _real("damping")),
             (_axis, _real("screw_pitch"), _real("damping")),
         )
+
+    def _axis(self) -> npt.NDArray[np.float64]:
+        return _unit(self._parameters.get("axis", (0.0, 0.0, 1.0)))
+
+    def screw_pitch(self) -> float:
+        return float(self._parameters["screw_pitch"])
+
+    def _translation_of(self, theta: float) -> float:
+        return theta * self.screw_pitch() / (2 * math.pi)
+
+    def _rotation_of(self, z: float) -> float:
+        return z * 2 * math.pi / self.screw_pitch()
+
+    def get_rotation(self, context: Any) -> float:
+        return float(self._q(context)[0])
+
+    def get_translation(self, context: Any) -> float:
+        return self._translation_of(self.get_rotation(context))
+
+    def set_translation(self, context: Any, translation: float) -> ScrewJoint:
+        return self._set_q(context, 0, [self._rotation_of(translation)])  # type: ignore[no-any-return]
+
+    def get_default_rotation(self) -> float:
+        return float(self._default_q[0])
+
+    def set_default_rotation(self, theta: float) -> None:
+        self._set_default(0, [theta])
+
+    def get_default_translation(self) -> float:
+        return self._translation_of(self.get_default_rotation())
+
+    def set_default_translation(self, z: float) -> None:
+        self._set_default(0, [self._rotation_of(z)])

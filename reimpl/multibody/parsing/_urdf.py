@@ -11,7 +11,12 @@ Joints (``<joint type>`` → Drake kind): fixed → weld, revolute and continuou
 → revolute, prismatic, planar; ``floating`` adds no joint (a warning; the
 child stays free). ``<drake:joint type>``: ball → ball_rpy, universal,
 planar, screw. Each joint's frame on the parent is a FixedOffsetFrame
-``<joint>_parent`` in the child's model instance; on the child, the body frame.
+``<joint>_parent`` in the child's model instance at the joint's ``<origin>``
+(X_PJ); on the child, the body frame. A planar joint moves in its frames'
+xy-plane, so Drake turns both frames by R, the rotation taking z to the unit
+``<axis>`` n (about z × n, by the angle between them; about x by π for
+n = −z): ``<joint>_parent`` is X_PJ · R and ``<joint>_child`` is R on the
+child body (measured on pydrake 1.51.1, within 6e-16 for twelve axes).
 
 ``drake_ignore="true"`` (exactly; "1", "True", " true" do not count) on a
 ``<link>``, ``<joint>`` or ``<drake:joint>`` skips the element unread: no body
@@ -42,7 +47,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from reimpl.math import RigidTransform
+import numpy as np
+
+from reimpl.math import RigidTransform, RotationMatrix
+from reimpl.multibody.kinematics import rotation_about
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics
 from reimpl.multibody.parsing._model_builder import (
@@ -72,6 +80,15 @@ _GROUP = "drake:collision_filter_group"
 _JOINT_TAGS = frozenset({"joint", "drake:joint"})
 _AXIS_KINDS = {"revolute", "prismatic", "planar", "universal", "screw"}
 _ZERO_AXIS = 1e-8  # Measured: |axis| = 1e-8 passes, 1e-9 is "zero".
+
+
+def _planar_rotation(axis: tuple[float, float, float]) -> RotationMatrix:
+    """R with R·z = n = axis/|axis|: about z × n by the angle from z to n (about x if n = ±z)."""
+    n = np.array(axis, dtype=float) / math.hypot(*axis)
+    cross = np.array([-n[1], n[0], 0.0])  # z × n
+    sine = float(np.linalg.norm(cross))
+    about = cross / sine if sine > 0 else np.array([1.0, 0.0, 0.0])
+    return RotationMatrix(rotation_about(about, math.atan2(sine, n[2])))
 
 
 def _ignored(element: XmlElement) -> bool:
@@ -208,14 +225,19 @@ class _Robot:
         spec = JointSpec(name, kind, parent_link, child_link, joint.line, xyz)
         if kind == "screw":
             spec = self._with_pitch(joint, spec)
+        X_PF = read_origin(joint)
+        X_CM = RigidTransform()
+        if kind == "planar":  # N.B. Measured: Drake orients a planar joint's frames.
+            X_CM = RigidTransform(_planar_rotation(xyz))
+            X_PF = X_PF @ X_CM
         frame_on_parent = FixedOffsetFrame(
-            f"{name}_parent", parent.body_frame(), read_origin(joint), child.model_instance()
+            f"{name}_parent", parent.body_frame(), X_PF, child.model_instance()
         )
         self.plant.AddFrame(frame_on_parent)
         frame_on_child = child.body_frame()
-        if kind == "planar":  # N.B. Measured: Drake orients a planar joint's child frame.
+        if kind == "planar":
             frame_on_child = FixedOffsetFrame(
-                f"{name}_child", frame_on_child, RigidTransform(), child.model_instance()
+                f"{name}_child", frame_on_child, X_CM, child.model_instance()
             )
             self.plant.AddFrame(frame_on_child)
         self.plant.AddJoint(JOINT_TYPES[kind](spec, frame_on_parent, frame_on_child))
