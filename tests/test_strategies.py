@@ -12,7 +12,7 @@ from conformance.backends.loader import load_backend
 from conformance.compare import diff
 from conformance.corpus.loader import load_file
 from conformance.fuzz import strategies as cs
-from conformance.fuzz.operations import OPERATIONS, issued_ops
+from conformance.fuzz.operations import OPERATIONS, POSED_OPERATIONS, QUERY_OPS, issued_ops
 from conformance.fuzz.sequences import CONTEXT_OPS, command_sequences
 from conformance.policy.divergences import match_step
 from conformance.protocol import Command, backend_id
@@ -141,7 +141,7 @@ def test_set_template_reads_counts_from_byte_0_and_drops_repeated_names() -> Non
 
 
 @SETTINGS
-@given(command_sequences(max_operations=12))
+@given(st.booleans().flatmap(lambda posed: command_sequences(max_operations=12, posed=posed)))
 def test_command_sequences_are_valid_scenario_cases(
     tmp_path_factory: object, commands: list[Command]
 ) -> None:
@@ -183,6 +183,25 @@ def test_command_sequences_reach_every_op_the_lockstep_operations_issue() -> Non
         )
 
 
+def test_posed_command_sequences_reach_every_op_the_posed_operations_issue() -> None:
+    assert issued_ops(POSED_OPERATIONS) == issued_ops(OPERATIONS) | set(QUERY_OPS)
+    for op in sorted(set(QUERY_OPS) | {"register_geometry"}):
+        find(
+            command_sequences(max_operations=8, posed=True),
+            lambda commands, op=op: op in {c.op for c in commands},
+            settings=settings(max_examples=2000, database=None),
+        )
+    with_shapes = find(
+        command_sequences(max_operations=8, posed=True),
+        lambda commands: any(
+            c.op == "register_geometry" and c.args.get("shape", {}).get("type") == "halfspace"
+            for c in commands
+        ),
+        settings=settings(max_examples=2000, database=None),
+    )
+    assert with_shapes
+
+
 REIMPL = load_backend("reimpl")
 PYDRAKE = load_backend("pydrake")
 #: The sequences are drawn against their own pydrake, so only names that were made are used.
@@ -201,3 +220,188 @@ def test_reimpl_and_pydrake_agree_on_drawn_command_sequences(commands: list[Comm
         known = match_step(command, b, a, blamed=backend_id(REIMPL), release=PYDRAKE.version())
         assume(not differences or known is None)
         assert differences == [], command.to_json()
+
+
+# ------------------------------------------------------------- posed scenes
+def test_shape_bytes_give_the_type_then_whole_centimetres_and_a_halfspace_from_248() -> None:
+    assert cs.shape_of(bytes(4)) == {"type": "sphere", "radius": 0.05}
+    assert cs.shape_of(bytes([1, 0, 5, 50])) == {
+        "type": "box",
+        "width": 0.1,
+        "depth": 0.15,
+        "height": 0.6,
+    }
+    assert cs.shape_of(bytes([4, 25, 1, 2])) == {
+        "type": "ellipsoid",
+        "a": 0.3,
+        "b": 0.06,
+        "c": 0.07,
+    }
+    assert cs.shape_of(bytes([248, 9, 9, 9])) == {"type": "halfspace"}
+    assert cs.shape_of(bytes([248, 9]), halfspace=False) == {
+        "type": "capsule",  # 248 % 5; a missing size byte is 0
+        "radius": 0.14,
+        "length": 0.1,
+    }
+    assert [cs.shape_of(bytes([t, 0, 0]))["type"] for t in range(5)] == list(cs.SHAPE_TYPES[:5])
+
+
+def test_pose_bytes_are_signed_steps_of_5_mm_and_0_025_rad_and_zero_parts_are_left_out() -> None:
+    assert cs.pose_of(bytes(6)) == {}
+    assert cs.pose_of(bytes([1, 2, 0, 0, 0, 0])) == {"xyz": [0.005, -0.005, 0.0]}
+    assert cs.pose_of(bytes([0, 0, 0, 3, 4, 255])) == {"rpy": [0.05, -0.05, 3.2]}
+
+
+@SETTINGS
+@given(cs.scenes(min_frames=1, max_geometries=6, posed=True))
+def test_posed_scenes_give_every_geometry_a_shape_and_pose_and_pose_only_scene_frames(
+    scene: cs.Scene,
+) -> None:
+    for geometry in scene.geometries:
+        assert geometry.shape is not None
+        assert geometry.shape["type"] in cs.SHAPE_TYPES
+        assert geometry.pose is not None
+        assert set(geometry.pose) <= {"xyz", "rpy"}
+    assert {name for name, _ in scene.poses} <= set(scene.frame_names)
+    (last,) = scene.commands()[-1:]
+    assert last.op == "set_poses" if scene.poses else last.op != "set_poses"
+
+
+def test_rotation_and_transform_products_are_pydrake_s_to_rounding() -> None:
+    from pydrake.math import RigidTransform, RollPitchYaw  # noqa: PLC0415
+
+    rpy_a, rpy_b = (0.3, -1.2, 2.9), (-2.0, 0.4, -0.7)
+    a = cs.Transform(cs.rotation(rpy_a), (0.1, -0.2, 0.3))
+    b = cs.Transform(cs.rotation(rpy_b), (-0.5, 0.25, 1.0))
+    want = RigidTransform(RollPitchYaw(rpy_a), [0.1, -0.2, 0.3]) @ RigidTransform(
+        RollPitchYaw(rpy_b), [-0.5, 0.25, 1.0]
+    )
+    got = a * b
+    assert (
+        max(
+            abs(x - y)
+            for row, wrow in zip(got.rotation, want.rotation().matrix(), strict=True)
+            for x, y in zip(row, wrow, strict=True)
+        )
+        < 1e-15
+    )
+    assert max(abs(x - y) for x, y in zip(got.translation, want.translation(), strict=True)) < 1e-15
+    assert (
+        max(abs(x - y) for x, y in zip(a.local(a.point((1.0, 2.0, 3.0))), (1, 2, 3), strict=True))
+        < 1e-15
+    )
+    assert cs.Transform.of({"xyz": [1, 2, 3]}) == cs.Transform(translation=(1.0, 2.0, 3.0))
+
+
+def test_touch_bytes_give_a_unit_direction_a_frame_rotation_and_a_gap_of_at_most_1e_3() -> None:
+    assert cs.Touch.decode(bytes(cs.TOUCH_BYTES)) == cs.Touch(
+        0, 0, (0.0, 0.0, 1.0), (0.0, 0.0, 0.0), 5e-4
+    )
+    touch = cs.Touch.decode(bytes([3, 4, 1, 0, 0, 3, 0, 0, 1 | 2 * 3, 128]))
+    assert touch.direction == (1.0, 0.0, 0.0)
+    assert touch.rpy == (0.05, 0.0, 0.0)
+    assert touch.gap == -1e-6 * 1.5 / 2  # sign bit, scale GAP_SCALES[3], mantissa 128
+    exact = cs.Touch.decode(bytes([0] * 8 + [2 * (len(cs.GAP_SCALES) - 1), 77]))
+    assert exact.gap == 0.0
+
+
+#: pydrake's shapes for the grammar's SHAPE values.
+def _pydrake_shape(shape: dict[str, object]) -> object:
+    from pydrake import geometry  # noqa: PLC0415
+
+    from conformance.grammar.queries import SHAPES  # noqa: PLC0415
+
+    class_name, keys = SHAPES[str(shape["type"])]
+    return getattr(geometry, class_name)(**{key: shape[key] for key in keys})
+
+
+_PYDRAKE_SCENES: list[object] = []  # a QueryObject needs its SceneGraph and context alive
+
+
+def _pydrake_signed_distance(
+    shapes: tuple[dict[str, object], dict[str, object]],
+    poses: tuple[cs.Transform, cs.Transform],
+) -> tuple[float, int]:
+    """pydrake's signed distance of the two shapes at the two world poses, and how many
+    penetration pairs it reports."""
+    from pydrake.geometry import (  # noqa: PLC0415
+        FramePoseVector,
+        GeometryFrame,
+        GeometryInstance,
+        ProximityProperties,
+        SceneGraph,
+    )
+    from pydrake.math import RigidTransform, RotationMatrix  # noqa: PLC0415
+
+    scene_graph = SceneGraph()
+    source = scene_graph.RegisterSource(name="s")
+    poses_vector, ids = FramePoseVector(), []
+    for i, (shape, pose) in enumerate(zip(shapes, poses, strict=True)):
+        frame = scene_graph.RegisterFrame(source_id=source, frame=GeometryFrame(f"f{i}"))
+        instance = GeometryInstance(
+            X_PG=RigidTransform(), shape=_pydrake_shape(shape), name=f"g{i}"
+        )
+        ids.append(
+            scene_graph.RegisterGeometry(source_id=source, frame_id=frame, geometry=instance)
+        )
+        scene_graph.AssignRole(
+            source_id=source, geometry_id=ids[-1], properties=ProximityProperties()
+        )
+        X = RigidTransform(
+            RotationMatrix([list(row) for row in pose.rotation]), list(pose.translation)
+        )
+        poses_vector.set_value(id=frame, value=X)
+    context = scene_graph.CreateDefaultContext()
+    scene_graph.get_source_pose_port(source).FixValue(context, poses_vector)
+    _PYDRAKE_SCENES.append((scene_graph, context))
+    query = scene_graph.get_query_output_port().Eval(context)
+    distance = query.ComputeSignedDistancePairClosestPoints(
+        geometry_id_A=ids[0], geometry_id_B=ids[1]
+    ).distance
+    return distance, len(query.ComputePointPairPenetration())
+
+
+#: Pairs whose signed distance pydrake computes in closed form (exact to rounding).
+_CLOSED_FORM = (
+    ("sphere", "sphere"),
+    ("sphere", "box"),
+    ("box", "sphere"),
+    ("box", "box"),
+    ("capsule", "sphere"),
+    ("sphere", "cylinder"),
+    ("halfspace", "sphere"),
+    ("sphere", "halfspace"),
+)
+
+
+def _shape_of_type(kind: str) -> st.SearchStrategy[dict[str, object]]:
+    """A drawn shape of one type (its type byte fixed, its sizes drawn)."""
+    head = 255 if kind == "halfspace" else cs.SHAPE_TYPES.index(kind)
+    return cs.picks(cs.SHAPE_BYTES - 1).map(lambda sizes: cs.shape_of(bytes([head]) + sizes))
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=list(HealthCheck))
+@given(
+    shapes=st.sampled_from(_CLOSED_FORM).flatmap(
+        lambda kinds: st.tuples(_shape_of_type(kinds[0]), _shape_of_type(kinds[1]))
+    ),
+    pose=cs.poses(),
+    rpy=cs.poses(),
+    touch=cs.touches(),
+)
+def test_touching_position_puts_closed_form_pairs_at_the_gap_pydrake_measures(
+    shapes: tuple[dict[str, object], dict[str, object]],
+    pose: dict[str, list[float]],
+    rpy: dict[str, list[float]],
+    touch: cs.Touch,
+) -> None:
+    X_WA = cs.Transform.of(pose)
+    R_WB = cs.Transform.of({"rpy": rpy.get("rpy", [0.0, 0.0, 0.0])}).rotation
+    p_WB = cs.touching_position(
+        shapes[0], X_WA, shapes[1], R_WB, direction=touch.direction, gap=touch.gap
+    )
+    assert p_WB is not None
+    distance, penetrating = _pydrake_signed_distance(shapes, (X_WA, cs.Transform(R_WB, p_WB)))
+    assert abs(distance - touch.gap) < 1e-12 if touch.gap >= 0 else touch.gap - 1e-12 <= distance
+    if abs(touch.gap) > 1e-12:
+        assert penetrating == (touch.gap < 0)

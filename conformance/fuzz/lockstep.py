@@ -44,6 +44,19 @@ choice, plus a declaration or set template where an operation needs one.
 Subclass it to fuzz other pairs, to add operations (extend ``OPERATIONS``)
 or to add rules; ``lockstep_machine()`` makes a subclass for two backend
 factories.
+
+``PosedLockstepMachine`` (``fuzz --poses``) is the same machine on posed
+scenes: its initial scene gives every geometry a drawn shape (the six of
+the grammar, a HalfSpace one time in 32) and pose, and every frame a pose
+(``strategies.scenes(posed=True)``), and it runs ``POSED_OPERATIONS``: the
+operations above, registration with shapes and poses, set_poses, every
+QueryObject query in the model or a context, and near-touching offsets
+(``operations.near_touch``). A query's value is compared as its grammar row
+says (``CommandSpec.compare``: pair sets exactly, numbers within the
+tolerances of ``conformance.tolerances``). Every machine follows the
+commands in a ``PoseBook`` (``self.poses``); the unposed machine draws
+exactly what it drew before posed scenes existed, so its seeds still
+reproduce earlier findings.
 """
 
 from __future__ import annotations
@@ -67,7 +80,7 @@ from conformance.compare import Difference, diff_observations, diff_results
 from conformance.fuzz import operations as ops
 from conformance.fuzz import strategies as cs
 from conformance.fuzz.names import NameBook, register_scene
-from conformance.fuzz.operations import planned_operation
+from conformance.fuzz.operations import PoseBook, planned_operation, register_posed_scene
 from conformance.policy.divergences import match_step
 from conformance.policy.guards import arm_guards
 from conformance.protocol import (
@@ -85,6 +98,7 @@ __all__ = [
     "HarnessAbort",
     "HarnessError",
     "LockstepMachine",
+    "PosedLockstepMachine",
     "TraceStep",
     "lockstep_machine",
     "planned_operation",
@@ -192,12 +206,15 @@ class FuzzStats:
 
 
 @cache
-def _scenes(frames: tuple[int, int], geometries: tuple[int, int]) -> st.SearchStrategy[cs.Scene]:
+def _scenes(
+    frames: tuple[int, int], geometries: tuple[int, int], posed: bool
+) -> st.SearchStrategy[cs.Scene]:
     return cs.scenes(
         min_frames=frames[0],
         max_frames=frames[1],
         min_geometries=geometries[0],
         max_geometries=geometries[1],
+        posed=posed,
     )
 
 
@@ -244,6 +261,8 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
     scene_geometries: ClassVar[tuple[int, int]] = (2, 8)
     #: What a step can do (``conformance.fuzz.operations``); extend it in a subclass.
     OPERATIONS: ClassVar[dict[str, ops.Operation]] = ops.OPERATIONS
+    #: The initial scene has shapes and poses (``PosedLockstepMachine``).
+    posed: ClassVar[bool] = False
     #: Operations per Hypothesis step (each is compared on its own).
     operations_per_step: ClassVar[int] = 2
     _pair: ClassVar[tuple[Backend, Backend] | None] = None
@@ -268,8 +287,13 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         type(self).stats.backend_seconds += time.perf_counter() - start
         #: How many commands of ``trace`` the last state comparison covered.
         self._agreed_upto = 0
+        shared = self.backend.features() & self.reference.features()
         #: Both backends have Activate/Deactivate.
-        self.activation = "activation" in (self.backend.features() & self.reference.features())
+        self.activation = "activation" in shared
+        #: Both backends have the posed queries.
+        self.queries = "queries" in shared
+        #: Where every frame and geometry is (``operations.PoseBook``).
+        self.poses = PoseBook()
         #: Operations switched off for this example (swarm testing).
         self.switched_off: frozenset[str] = frozenset()
         self._noting = _is_final_run()  # Hypothesis shows only the final replay's notes.
@@ -335,6 +359,7 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         stats.backend_seconds += time.perf_counter() - start
         stats.steps += 1
         self.trace.append(TraceStep(command, want, got))
+        self.poses.record(command, want)
         differences = diff_results(want, got, op=op)
         if differences:
             self._diverge(differences, *self._observe())
@@ -390,12 +415,13 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
     # ------------------------------------------------------------- rules
     @initialize(
         scene=_RUNNER.flatmap(
-            lambda machine: _scenes(machine.scene_frames, machine.scene_geometries)
+            lambda machine: _scenes(machine.scene_frames, machine.scene_geometries, machine.posed)
         ),
         swarm=cs.picks(_SWARM_BYTES),
     )
     def scene(self, scene: cs.Scene, swarm: bytes) -> None:
-        """Registers a scene (``scene_frames``/``scene_geometries`` bound its size).
+        """Registers a scene (``scene_frames``/``scene_geometries`` bound its size; posed
+        scenes through ``operations.register_posed_scene``).
 
         ``swarm`` switches operations off for the example: byte 0 is a
         threshold, and operation i is off when its byte (1 + i mod 31) is
@@ -407,7 +433,7 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
             for i, name in enumerate(self.OPERATIONS)
             if swarm[1 + i % (_SWARM_BYTES - 1)] < threshold
         )
-        register_scene(self, scene)
+        (register_posed_scene if self.posed else register_scene)(self, scene)
 
     @rule(plan=_steps())
     def command(self, plan: Plan) -> None:
@@ -421,6 +447,13 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
             operation = self.OPERATIONS[name]
             if operation.enabled(self):
                 operation.run(self, picks, *drawn)
+
+
+class PosedLockstepMachine(LockstepMachine):
+    """The lockstep machine on posed scenes, with the query ops (see the module doc)."""
+
+    OPERATIONS: ClassVar[dict[str, ops.Operation]] = ops.POSED_OPERATIONS
+    posed: ClassVar[bool] = True
 
 
 def lockstep_machine(

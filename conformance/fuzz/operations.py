@@ -19,20 +19,33 @@ To add an operation, subclass the machine with a larger table::
 
     class Mine(LockstepMachine):
         OPERATIONS = {**LockstepMachine.OPERATIONS, "ping": Operation(ping)}
+
+**Posed scenes** (``fuzz --poses``): ``POSED_OPERATIONS`` is ``OPERATIONS``
+with geometry registered with a drawn shape and pose, and with every op of
+the grammar's ``queries`` domain (set_poses and the QueryObject queries, in
+the model or a context), plus ``near_touch``: it moves one geometry's frame
+so that the geometry sits at a drawn gap of at most 1e-3 m from another
+(``strategies.Touch``, ``strategies.touching_position``), then queries
+there, so the decision between colliding and not is made at the boundary.
+``PoseBook`` follows the commands to know where everything is: every
+frame's parent, every geometry's frame, shape and ``X_FG``, and the poses
+``set_poses`` stored at each location. The query ops run only when both
+backends have the ``queries`` feature.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
 from hypothesis import strategies as st
 
 from conformance.fuzz import strategies as cs
-from conformance.fuzz.names import CHOICES, DEFAULT_SOURCE, Choice
+from conformance.fuzz.names import CHOICES, DEFAULT_SOURCE, Choice, NameBook, register_scene
 from conformance.grammar import GRAMMAR, Arg, ArgKind, CommandSpec, NameKind, ops_of
-from conformance.protocol import ErrorKind, Result
+from conformance.grammar.queries import DEFAULT_SHAPE
+from conformance.protocol import MODEL, Command, ErrorKind, Result
 
 __all__ = [
     "CHOICES",
@@ -42,12 +55,17 @@ __all__ = [
     "MAX_SOURCES",
     "OPERATIONS",
     "PICKS_PER_STEP",
+    "POSED_OPERATIONS",
+    "QUERY_OPS",
     "Choice",
     "Machine",
     "Operation",
+    "PoseBook",
     "generic_operation",
     "issued_ops",
+    "near_touch",
     "planned_operation",
+    "register_posed_scene",
 ]
 
 MAX_SOURCES = 3
@@ -64,9 +82,12 @@ class Machine(Protocol):
     """
 
     activation: bool
+    #: Both sides have the posed queries (the ``queries`` feature).
+    queries: bool
     sources_made: int
     contexts_made: int
     names: dict[str, list[str]]
+    poses: PoseBook
 
     def step(self, op: str, **args: Any) -> Result: ...
 
@@ -123,15 +144,24 @@ def register_frame(m: Machine, picks: bytes) -> None:
     m.keep_if_made("frames", name, result)
 
 
-def register_geometries(m: Machine, picks: bytes, placements: bytes) -> None:
-    """A batch of 1-4; into a context only on a frame (never anchored there).
+def _registered(result: Result) -> bool:
+    """The geometry exists after its register_geometry step.
 
-    A placement is four picks: frame, role code (``strategies.role_list``),
-    owner, and now and then another geometry's Drake name to reuse.
+    A failed role assignment leaves it registered (Drake does so too).
     """
+    return result.error is None or result.error.kind is ErrorKind.TRANSIENT_HISTORY
+
+
+#: Bytes of a placement: four picks, then (posed) a shape and a pose.
+_PLACEMENT = 4
+_POSED_PLACEMENT = _PLACEMENT + cs.SHAPE_BYTES + cs.POSE_BYTES
+
+
+def _register_batch(m: Machine, picks: bytes, placements: bytes, width: int) -> None:
     into, names = m.name("context", picks[0]), []
-    for at in range(0, len(placements) - 3, 4):
-        frame_pick, code, source, reuse = placements[at : at + 4]
+    for at in range(0, len(placements) - width + 1, width):
+        frame_pick, code, source, reuse = placements[at : at + _PLACEMENT]
+        solid = placements[at + _PLACEMENT : at + width]
         name, frame = m.fresh("g"), m.name("frame", frame_pick)
         result = m.step(
             "register_geometry",
@@ -141,11 +171,30 @@ def register_geometries(m: Machine, picks: bytes, placements: bytes) -> None:
             roles=cs.role_list(code),
             source=m.name("owner", source),
             context=into if frame != cs.WORLD else None,
+            shape=cs.shape_of(solid[: cs.SHAPE_BYTES]) if solid else None,
+            pose=(cs.pose_of(solid[cs.SHAPE_BYTES :]) or None) if solid else None,
         )
-        # A failed role assignment leaves the geometry registered (Drake does so too).
-        if result.error is None or result.error.kind is ErrorKind.TRANSIENT_HISTORY:
+        if _registered(result):
             names.append(name)
     m.keep("geometries", *names)
+
+
+def register_geometries(m: Machine, picks: bytes, placements: bytes) -> None:
+    """A batch of 1-4; into a context only on a frame (never anchored there).
+
+    A placement is four picks: frame, role code (``strategies.role_list``),
+    owner, and now and then another geometry's Drake name to reuse.
+    """
+    _register_batch(m, picks, placements, _PLACEMENT)
+
+
+def register_posed_geometries(m: Machine, picks: bytes, placements: bytes) -> None:
+    """``register_geometries`` whose placements also draw a shape and a pose ``X_FG``.
+
+    A placement is the four picks, ``SHAPE_BYTES`` (``strategies.shape_of``)
+    and ``POSE_BYTES`` (``strategies.pose_of``).
+    """
+    _register_batch(m, picks, placements, _POSED_PLACEMENT)
 
 
 def assign_role(m: Machine, picks: bytes) -> None:
@@ -295,6 +344,185 @@ def set_default_context(m: Machine, picks: bytes) -> None:
     m.step("set_default_context", context=m.name("origin", picks[0]))
 
 
+# ---------------------------------------------------------------- poses
+@dataclass(frozen=True)
+class Placed:
+    """A registered geometry: its frame, its SHAPE and ``X_FG``."""
+
+    frame: str
+    shape: dict[str, Any]
+    pose: cs.Transform
+
+
+class PoseBook:
+    """Where everything is, as the commands so far put it (the reference's results decide).
+
+    ``record`` reads every command after it ran: register_frame (a frame's
+    parent), register_geometry (frame, shape, ``X_FG``), set_poses (each
+    frame's ``X_PF``, at the model or a context, merged with earlier ones),
+    create_context (no poses: identity) and clone_context (the source's
+    poses), as ``backends.queries`` keeps them. A frame's world pose is
+    ``X_WF = X_WP · X_PF`` and a geometry's ``X_WG = X_WF · X_FG``.
+    """
+
+    def __init__(self) -> None:
+        #: frame → parent frame (the world frame has none).
+        self.parents: dict[str, str] = {}
+        self.geometries: dict[str, Placed] = {}
+        #: location → frame → X_PF.
+        self.stored: dict[str, dict[str, cs.Transform]] = {MODEL: {}}
+
+    def record(self, command: Command, result: Result) -> None:
+        """Follows ``command``, which answered ``result`` (on the reference)."""
+        follow = _FOLLOW.get(command.op)
+        if follow is not None:
+            follow(self, command.args, result)
+
+    def _frame(self, args: Mapping[str, Any], result: Result) -> None:
+        if result.error is None:
+            self.parents[args["name"]] = args.get("parent", cs.WORLD)
+
+    def _geometry(self, args: Mapping[str, Any], result: Result) -> None:
+        if _registered(result):
+            shape = dict(args.get("shape", DEFAULT_SHAPE))
+            placed = Placed(args.get("frame", cs.WORLD), shape, cs.Transform.of(args.get("pose")))
+            self.geometries[args["name"]] = placed
+
+    def _poses(self, args: Mapping[str, Any], result: Result) -> None:
+        if result.error is None:
+            stored = self.stored.setdefault(args.get("context", MODEL), {})
+            stored.update({name: cs.Transform.of(pose) for name, pose in args["poses"].items()})
+
+    def _new_context(self, args: Mapping[str, Any], result: Result) -> None:
+        if result.error is None:
+            self.stored[args["name"]] = {}
+
+    def _clone(self, args: Mapping[str, Any], result: Result) -> None:
+        if result.error is None:
+            self.stored[args["name"]] = dict(self.stored.get(args["from"], {}))
+
+    def lineage(self, frame: str) -> list[str]:
+        """``frame`` and its ancestors, up to (without) the world frame."""
+        chain = []
+        while frame in self.parents:
+            chain.append(frame)
+            frame = self.parents[frame]
+        return chain
+
+    def frame_pose(self, frame: str, location: str) -> cs.Transform:
+        """``X_WF`` at ``location`` (a frame with no stored pose: identity in its parent)."""
+        stored = self.stored.get(location, {})
+        pose = cs.Transform()
+        for name in reversed(self.lineage(frame)):
+            pose = pose * stored.get(name, cs.Transform())
+        return pose
+
+    def geometry_pose(self, geometry: str, location: str) -> cs.Transform:
+        """``X_WG = X_WF · X_FG`` at ``location``."""
+        placed = self.geometries[geometry]
+        return self.frame_pose(placed.frame, location) * placed.pose
+
+
+#: What ``PoseBook.record`` follows, by op.
+_FOLLOW: dict[str, Callable[[PoseBook, Mapping[str, Any], Result], None]] = {
+    "register_frame": PoseBook._frame,
+    "register_geometry": PoseBook._geometry,
+    "set_poses": PoseBook._poses,
+    "create_context": PoseBook._new_context,
+    "clone_context": PoseBook._clone,
+}
+
+
+def register_posed_scene(m: NameBook, scene: cs.Scene) -> None:
+    """``names.register_scene`` for a posed scene (``strategies.scenes(posed=True)``).
+
+    The frames go through ``register_scene``; then each geometry is
+    registered with its shape and ``X_FG``, and the frames' poses are set at
+    the model (one set_poses).
+    """
+    register_scene(m, cs.Scene(scene.frames, ()))
+    made = m.names["frames"][len(m.names["frames"]) - len(scene.frames) :]
+    frames = dict(zip(scene.frame_names, made, strict=True))
+    names = []
+    for geometry in scene.geometries:
+        name = m.fresh("g")
+        arguments = {**geometry.arguments(), "name": name}
+        result = m.step(
+            "register_geometry", frame=frames.get(geometry.frame, cs.WORLD), **arguments
+        )
+        if _registered(result):
+            names.append(name)
+    m.keep("geometries", *names)
+    if scene.poses:
+        m.step("set_poses", poses={frames[name]: pose for name, pose in scene.poses})
+
+
+def _posable(m: Machine) -> list[str]:
+    """The frames a pose can be set for (all but the world frame)."""
+    return [name for name in m.names["frames"] if name != cs.WORLD]
+
+
+#: The query that follows a near touch, by pick (mod 4).
+_TOUCH_QUERIES = (
+    "compute_point_pair_penetration",
+    "compute_signed_distance_pair_closest_points",
+    "has_collisions",
+    "compute_signed_distance_pairwise_closest_points",
+)
+
+
+def _movable(book: PoseBook, a: str, b: str) -> bool:
+    """Moving b's frame leaves a where it is: b is on a frame that is no ancestor of a's."""
+    frame = book.geometries[b].frame
+    return frame != cs.WORLD and frame not in book.lineage(book.geometries[a].frame)
+
+
+def near_touch(m: Machine, picks: bytes, touch: cs.Touch) -> None:
+    """Moves geometry B's frame so that B sits at ``touch.gap`` from geometry A; then a query.
+
+    A and B are picked among the geometries the book knows (B must be
+    movable without moving A: else they swap, else nothing happens). B's
+    frame F gets the drawn rotation ``R_PF`` in its parent P and the
+    translation that puts B where ``strategies.touching_position`` says:
+    ``p_WF = p_WB − R_WF p_FB``, ``p_PF = R_WPᵀ (p_WF − p_WP)``. The
+    set_poses and the query (penetration, the pair's signed distance,
+    HasCollisions or the pairwise signed distances, by pick) run at the
+    picked location.
+    """
+    book = m.poses
+    known = [name for name in m.names["geometries"] if name in book.geometries]
+    if not known:
+        return
+    a, b = known[touch.a % len(known)], known[touch.b % len(known)]
+    if not _movable(book, a, b):
+        a, b = b, a
+        if not _movable(book, a, b):
+            return
+    where = m.name("context", picks[0])
+    location = where or MODEL
+    frame = book.geometries[b].frame
+    X_WP = book.frame_pose(book.parents[frame], location)
+    R_WF = (X_WP * cs.Transform(cs.rotation(touch.rpy))).rotation
+    X_FB = book.geometries[b].pose
+    p_WB = cs.touching_position(
+        book.geometries[a].shape,
+        book.geometry_pose(a, location),
+        book.geometries[b].shape,
+        (cs.Transform(R_WF) * X_FB).rotation,
+        direction=touch.direction,
+        gap=touch.gap,
+    )
+    if p_WB is None:
+        return
+    offset = cs.Transform(R_WF).point(X_FB.translation)  # R_WF p_FB
+    p_WF = (p_WB[0] - offset[0], p_WB[1] - offset[1], p_WB[2] - offset[2])
+    p_PF = X_WP.local(p_WF)
+    m.step("set_poses", poses={frame: {"xyz": list(p_PF), "rpy": list(touch.rpy)}}, context=where)
+    query = _TOUCH_QUERIES[picks[1] % len(_TOUCH_QUERIES)]
+    pair = {"pair": [a, b]} if query == "compute_signed_distance_pair_closest_points" else {}
+    m.step(query, context=where, **pair)
+
+
 # ------------------------------------------------------------------- table
 def _has(bundle: str) -> Callable[[Machine], bool]:
     return lambda m: bool(m.names[bundle])
@@ -380,7 +608,22 @@ _PREFIX: dict[NameKind, str] = {
 _DRAWN_KINDS: dict[ArgKind, st.SearchStrategy[Any]] = {
     ArgKind.SET: _SET,
     ArgKind.DECLARATION: _DECLARATION,
+    ArgKind.SHAPE: cs.shapes(),
+    ArgKind.POSE: cs.poses(),
+    ArgKind.POSES: cs.poses(),
 }
+#: A ``max_distance`` read from a pick of 128 or more (below: left out, infinite).
+_DISTANCES = (0.0, 1e-3, 0.01, 0.1, 0.5)
+
+
+def _distance(pick: int) -> float | None:
+    return _DISTANCES[pick % len(_DISTANCES)] if pick >= cs.PICK_RANGE // 2 else None
+
+
+def _frame_poses(m: Machine, pick: int, pose: dict[str, list[float]]) -> dict[str, Any]:
+    """One frame's pose (the pick's frame, never the world), or none while only the world is."""
+    frames = _posable(m)
+    return {frames[pick % len(frames)]: pose} if frames else {}
 
 
 def _name(m: Machine, arg: Arg, pick: int) -> str | None:
@@ -397,6 +640,16 @@ _READ: dict[ArgKind, Callable[[Machine, Arg, int, Iterator[Any]], Any]] = {
     ArgKind.ROLES: lambda m, a, p, t: [cs.ROLES[p % 3]],
     ArgKind.ANY_ROLE: lambda m, a, p, t: (*cs.ROLES, "unassigned")[p % 4],
     ArgKind.ASSIGN: lambda m, a, p, t: ("new", "replace")[p % 2],
+    ArgKind.SHAPE: lambda m, a, p, t: next(t),
+    ArgKind.POSE: lambda m, a, p, t: next(t) or None,
+    ArgKind.POSES: lambda m, a, p, t: _frame_poses(m, p, next(t)),
+    ArgKind.DISTANCE: lambda m, a, p, t: _distance(p),
+}
+
+#: Features an op may need beyond SceneGraph's core, and whether both backends have it.
+_FEATURES: dict[str, Callable[[Machine], bool]] = {
+    "activation": lambda m: m.activation,
+    "queries": lambda m: m.queries,
 }
 
 
@@ -416,9 +669,10 @@ def generic_operation(command: CommandSpec) -> Operation:
 
     Names it declares are kept if the command succeeds. Of a ``one_of``
     group it gives the first key. It is enabled once the names its required
-    arguments need exist, and for ``activation`` ops only if both backends
-    have them. Every op without a hand-written operation gets one, so a new
-    op needs only its grammar row and its handler to be fuzzed.
+    arguments need exist, and for ``activation`` and ``queries`` ops only if
+    both backends have them (``_FEATURES``). Every op without a hand-written
+    operation gets one, so a new op needs only its grammar row and its
+    handler to be fuzzed.
     """
     skipped = {key for group in command.one_of for key in group[1:]}
     args = tuple(arg for arg in command.args if arg.key not in skipped)
@@ -442,8 +696,10 @@ def generic_operation(command: CommandSpec) -> Operation:
             if arg.kind.declares is not None:
                 m.keep_if_made(_BUNDLE_OF[arg.kind.declares], values[arg.key], result)
 
+    feature = _FEATURES.get(command.feature)
+
     def enabled(m: Machine) -> bool:
-        if command.feature == "activation" and not m.activation:
+        if feature is not None and not feature(m):
             return False
         return all(m.names[bundle] for bundle in needs)
 
@@ -472,4 +728,30 @@ OPERATIONS: dict[str, Operation] = {
         for op in ops_of("scene_graph")
         if not GRAMMAR[op].harness_only and op not in issued_ops(HAND_WRITTEN)
     },
+}
+
+#: The ops of the grammar's ``queries`` domain: set_poses and the QueryObject queries.
+QUERY_OPS = ops_of("queries")
+
+
+def _touchable(m: Machine) -> bool:
+    return m.queries and len(m.names["geometries"]) > 1
+
+
+#: ``fuzz --poses``: ``OPERATIONS`` with shapes and poses in every registration, a
+#: generic operation for every query op, and ``near_touch`` (see the module doc).
+POSED_OPERATIONS: dict[str, Operation] = {
+    **OPERATIONS,
+    "register_geometries": Operation(
+        register_posed_geometries,
+        (st.binary(min_size=_POSED_PLACEMENT, max_size=4 * _POSED_PLACEMENT),),
+        issues=frozenset({"register_geometry"}),
+    ),
+    "near_touch": Operation(
+        near_touch,
+        (cs.touches(),),
+        enabled=_touchable,
+        issues=frozenset({"set_poses", *_TOUCH_QUERIES}),
+    ),
+    **{op: generic_operation(GRAMMAR[op]) for op in QUERY_OPS},
 }

@@ -8,6 +8,9 @@ reaches both with no further edit.
 
 >>> from conformance.fuzz.sequences import command_sequences
 >>> strategy = command_sequences(max_operations=5, contexts=False)
+
+``posed=True`` draws posed sequences, as ``fuzz --poses`` does: a posed
+scene, then ``POSED_OPERATIONS`` (shapes, poses, the queries, near touches).
 """
 
 from __future__ import annotations
@@ -22,9 +25,12 @@ from conformance.fuzz.names import NameBook, register_scene
 from conformance.fuzz.operations import (
     OPERATIONS,
     PICKS_PER_STEP,
+    POSED_OPERATIONS,
     Operation,
+    PoseBook,
     issued_ops,
     planned_operation,
+    register_posed_scene,
 )
 from conformance.protocol import Backend, Command, Result
 
@@ -46,20 +52,29 @@ class Recorder(NameBook):
     """
 
     def __init__(
-        self, *, backend: Backend | None = None, activation: bool = False, special: bool = True
+        self,
+        *,
+        backend: Backend | None = None,
+        activation: bool = False,
+        queries: bool = False,
+        special: bool = True,
     ) -> None:
         super().__init__()
         self.backend = backend
         self.activation = activation
+        self.queries = queries
         self.special = special
         self.commands: list[Command] = []
+        self.poses = PoseBook()
         if backend is not None:
             backend.reset()
 
     def step(self, op: str, **args: Any) -> Result:
         command = Command(op, {k: v for k, v in args.items() if v is not None})
         self.commands.append(command)
-        return Result() if self.backend is None else self.backend.execute(command)
+        result = Result() if self.backend is None else self.backend.execute(command)
+        self.poses.record(command, result)
+        return result
 
 
 def _without_contexts(operations: Mapping[str, Operation]) -> dict[str, Operation]:
@@ -80,8 +95,9 @@ def command_sequences(
     contexts: bool = True,
     activation: bool = False,
     special: bool = True,
-    operations: Mapping[str, Operation] = OPERATIONS,
+    operations: Mapping[str, Operation] | None = None,
     backend: Backend | None = None,
+    posed: bool = False,
 ) -> list[Command]:
     """A scene's registration, then ``min_operations``-``max_operations`` operations.
 
@@ -96,10 +112,15 @@ def command_sequences(
     ``special`` False never names ``@unknown`` or ``@foreign``. With a
     ``backend`` the sequence is drawn against it (see ``Recorder``), so every
     name it uses was made; arm its guards (``policy.guards.arm_guards``)
-    before drawing activation on a release that needs them.
+    before drawing activation on a release that needs them. ``posed`` draws
+    a posed scene and ``POSED_OPERATIONS`` (the default table otherwise is
+    ``OPERATIONS``), with the queries.
     """
-    recorder = Recorder(backend=backend, activation=activation, special=special)
-    register_scene(recorder, draw(scene if scene is not None else cs.scenes()))
+    recorder = Recorder(backend=backend, activation=activation, queries=posed, special=special)
+    drawn_scene = draw(scene if scene is not None else cs.scenes(posed=posed))
+    (register_posed_scene if posed else register_scene)(recorder, drawn_scene)
+    if operations is None:
+        operations = POSED_OPERATIONS if posed else OPERATIONS
     table = dict(operations) if contexts else _without_contexts(operations)
     for _ in range(draw(st.integers(min_value=min_operations, max_value=max_operations))):
         head = draw(cs.picks(1 + PICKS_PER_STEP))

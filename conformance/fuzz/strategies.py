@@ -27,13 +27,23 @@ uniformly and shrinks each towards 0. ``set_templates`` and
 each, to be resolved later against lists that may have grown since (a state
 machine's bundles do; ``conformance.fuzz.lockstep`` uses them so).
 ``geometry_sets`` and ``declarations`` are those templates resolved at once.
+
+Posed scenes (``fuzz --poses``) add shapes, poses and near-touching offsets,
+drawn the same way: ``shape_of``, ``pose_of`` and ``Touch.decode`` read a
+few bytes each, and ``shapes``, ``poses`` and ``touches`` are those bytes
+as strategies. A ``SHAPE`` and a ``POSE`` are the grammar's JSON values
+(``{"type": "box", "width": w, "depth": d, "height": h}``,
+``{"xyz": [x, y, z], "rpy": [r, p, y]}``). ``touching_position`` places one
+shape at a signed gap from another along a direction, from the shapes'
+support points; see its doc for why the gap is then the signed distance.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass, field
-from functools import cache
+from dataclasses import dataclass, field, replace
+from functools import cache, partial
 from typing import Any
 
 from hypothesis import strategies as st
@@ -42,28 +52,45 @@ from conformance.protocol import Command
 
 __all__ = [
     "FOREIGN",
+    "GAP_SCALES",
     "PICK_RANGE",
+    "POSE_BYTES",
     "ROLES",
+    "SHAPE_BYTES",
+    "SHAPE_TYPES",
     "STATEMENT_OPS",
+    "TOUCH_BYTES",
     "UNKNOWN",
     "WORLD",
     "DeclarationTemplate",
     "GeometrySpec",
+    "Matrix",
     "Names",
     "Picker",
     "Scene",
     "SetTemplate",
+    "Touch",
+    "Transform",
+    "Vector",
     "declaration_templates",
     "declarations",
     "geometry_sets",
     "pick",
     "picks",
+    "pose_of",
+    "poses",
     "role_list",
     "roles",
+    "rotation",
     "scenes",
     "set_spec",
     "set_templates",
+    "shape_of",
+    "shapes",
     "statements",
+    "support",
+    "touches",
+    "touching_position",
 ]
 
 WORLD = "world"
@@ -164,27 +191,377 @@ def roles(*, proximity: bool | None = None) -> st.SearchStrategy[list[str]]:
     return _role_codes(proximity).map(role_list)
 
 
+# ------------------------------------------------------- shapes, poses, touches
+#: The shapes of the grammar's SHAPE, in Drake's order of ``shape_specification.h``.
+SHAPE_TYPES = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "halfspace")
+
+#: Bytes of a drawn shape: the type, then one per dimension.
+SHAPE_BYTES = 4
+#: Bytes of a drawn pose: x, y, z, then roll, pitch, yaw.
+POSE_BYTES = 6
+#: A type byte from here up is a HalfSpace: 1 shape in 32.
+_HALFSPACE_FROM = PICK_RANGE - PICK_RANGE // 32
+
+#: Dimensions in centimetres, inclusive: a radius (or semi-axis), a length.
+_RADIUS = (5, 30)
+_LENGTH = (10, 60)
+#: Each shape's dimensions, as pydrake's constructors name them.
+_DIMENSIONS: dict[str, tuple[tuple[str, tuple[int, int]], ...]] = {
+    "sphere": (("radius", _RADIUS),),
+    "box": (("width", _LENGTH), ("depth", _LENGTH), ("height", _LENGTH)),
+    "cylinder": (("radius", _RADIUS), ("length", _LENGTH)),
+    "capsule": (("radius", _RADIUS), ("length", _LENGTH)),
+    "ellipsoid": (("a", _RADIUS), ("b", _RADIUS), ("c", _RADIUS)),
+    "halfspace": (),
+}
+#: A pose's steps: 5 mm (±0.64 m) and 0.025 rad (±3.2 rad). Dividing by a whole
+#: number of steps keeps the values short in a written case (0.575, not 0.5750000000000001).
+_STEPS_PER_METRE = 200
+_STEPS_PER_RADIAN = 40
+
+
+def _centimetres(byte: int, bounds: tuple[int, int]) -> float:
+    low, high = bounds
+    return (low + byte % (high - low + 1)) / 100
+
+
+def _signed(byte: int) -> int:
+    """0, 1, -1, 2, -2, ... for bytes 0, 1, 2, 3, 4, ...: shrinks towards 0."""
+    return (byte + 1) // 2 * (1 if byte & 1 else -1)
+
+
+def shape_of(data: bytes, *, halfspace: bool = True) -> dict[str, Any]:
+    """The SHAPE that ``SHAPE_BYTES`` bytes stand for.
+
+    Byte 0 is the type: ``SHAPE_TYPES[byte % 5]`` (0, the sphere, is where it
+    shrinks), or a HalfSpace from 248 up (1 in 32) when ``halfspace``. The
+    next bytes are the dimensions in whole centimetres, smallest at 0: radii
+    and semi-axes 0.05-0.30 m, lengths and box sides 0.10-0.60 m. Whole
+    centimetres keep a written case readable (``"radius": 0.23``).
+    """
+    head = data[0] if data else 0
+    kind = "halfspace" if halfspace and head >= _HALFSPACE_FROM else SHAPE_TYPES[head % 5]
+    sizes = iter(data[1:])
+    return {"type": kind} | {
+        key: _centimetres(next(sizes, 0), bounds) for key, bounds in _DIMENSIONS[kind]
+    }
+
+
+def pose_of(data: bytes) -> dict[str, list[float]]:
+    """The POSE that ``POSE_BYTES`` bytes stand for (all zero bytes: the identity, ``{}``).
+
+    Each byte is a signed step (``0, 1, -1, 2, ...``): xyz in steps of
+    5 mm (±0.64 m), rpy in steps of 0.025 rad (±3.2 rad, a whole turn). A
+    part that is all zero is left out, as the grammar allows.
+    """
+    steps = [_signed(byte) for byte in data[:POSE_BYTES].ljust(POSE_BYTES, b"\0")]
+    xyz = [step / _STEPS_PER_METRE for step in steps[:3]]
+    rpy = [step / _STEPS_PER_RADIAN for step in steps[3:]]
+    return {key: part for key, part in (("xyz", xyz), ("rpy", rpy)) if any(part)}
+
+
+@cache
+def shapes(*, halfspace: bool = True) -> st.SearchStrategy[dict[str, Any]]:
+    """A SHAPE of the six types (HalfSpace one time in 32 unless ``halfspace`` is False).
+
+    One choice of ``SHAPE_BYTES`` bytes, read by ``shape_of``.
+    """
+    return picks(SHAPE_BYTES).map(partial(shape_of, halfspace=halfspace))
+
+
+@cache
+def poses() -> st.SearchStrategy[dict[str, list[float]]]:
+    """A POSE (rpy and xyz); one choice of ``POSE_BYTES`` bytes, read by ``pose_of``."""
+    return picks(POSE_BYTES).map(pose_of)
+
+
+Vector = tuple[float, float, float]
+#: A rotation matrix, by rows.
+Matrix = tuple[Vector, Vector, Vector]
+
+
+def rotation(rpy: Sequence[float]) -> Matrix:
+    """``R = Rz(yaw) · Ry(pitch) · Rx(roll)``, as ``RollPitchYaw.ToRotationMatrix()``."""
+    r, p, y = rpy
+    cr, sr, cp, sp, cy, sy = (
+        math.cos(r),
+        math.sin(r),
+        math.cos(p),
+        math.sin(p),
+        math.cos(y),
+        math.sin(y),
+    )
+    return (
+        (cp * cy, sr * sp * cy - cr * sy, cr * sp * cy + sr * sy),
+        (cp * sy, sr * sp * sy + cr * cy, cr * sp * sy - sr * cy),
+        (-sp, sr * cp, cr * cp),
+    )
+
+
+def _norm(v: Sequence[float]) -> float:
+    return math.sqrt(sum(x * x for x in v))
+
+
+def _scaled(v: Sequence[float], k: float) -> Vector:
+    return (v[0] * k, v[1] * k, v[2] * k)
+
+
+def _sign(x: float) -> float:
+    return -1.0 if x < 0 else 1.0
+
+
+def _support_ellipsoid(shape: dict[str, Any], d: Vector) -> Vector:
+    """``x = D² d / |D d|`` with ``D = diag(a, b, c)``: the maximiser of ``d · x``."""
+    axes = (shape["a"], shape["b"], shape["c"])
+    scaled = [a * x for a, x in zip(axes, d, strict=True)]
+    length = _norm(scaled)
+    return (
+        axes[0] * scaled[0] / length,
+        axes[1] * scaled[1] / length,
+        axes[2] * scaled[2] / length,
+    )
+
+
+def _support_round(radius: float, d: Vector) -> Vector:
+    return _scaled(d, radius / _norm(d))
+
+
+def _support_cylinder(shape: dict[str, Any], d: Vector) -> Vector:
+    """The rim point: ``r (dx, dy) / |(dx, dy)|`` and the cap ``±L/2`` on z by the sign of dz."""
+    radial = math.hypot(d[0], d[1])
+    k = shape["radius"] / radial if radial else 0.0
+    return (d[0] * k, d[1] * k, _sign(d[2]) * shape["length"] / 2)
+
+
+def _support_capsule(shape: dict[str, Any], d: Vector) -> Vector:
+    """The end of the segment on the side of d, plus the radius along d."""
+    x, y, z = _support_round(shape["radius"], d)
+    return (x, y, z + _sign(d[2]) * shape["length"] / 2)
+
+
+#: The support point of each bounded shape in its own frame, for a direction d ≠ 0.
+_SUPPORT: dict[str, Callable[[dict[str, Any], Vector], Vector]] = {
+    "sphere": lambda shape, d: _support_round(shape["radius"], d),
+    "box": lambda shape, d: (
+        _sign(d[0]) * shape["width"] / 2,
+        _sign(d[1]) * shape["depth"] / 2,
+        _sign(d[2]) * shape["height"] / 2,
+    ),
+    "cylinder": _support_cylinder,
+    "capsule": _support_capsule,
+    "ellipsoid": _support_ellipsoid,
+}
+
+
+def support(shape: dict[str, Any], direction: Vector) -> Vector:
+    """A point of ``shape`` (in its frame) that maximises ``direction · x``.
+
+    A HalfSpace (``z ≤ 0``) is bounded only along +z: its support in any
+    direction is taken as its origin, which is right only for ``+z``
+    (``touching_position`` turns the direction so).
+    """
+    if shape["type"] == "halfspace":
+        return (0.0, 0.0, 0.0)
+    return _SUPPORT[shape["type"]](shape, direction)
+
+
+def _apply(rotation_: Matrix, v: Sequence[float]) -> Vector:
+    return (
+        rotation_[0][0] * v[0] + rotation_[0][1] * v[1] + rotation_[0][2] * v[2],
+        rotation_[1][0] * v[0] + rotation_[1][1] * v[1] + rotation_[1][2] * v[2],
+        rotation_[2][0] * v[0] + rotation_[2][1] * v[1] + rotation_[2][2] * v[2],
+    )
+
+
+def _apply_transposed(rotation_: Matrix, v: Sequence[float]) -> Vector:
+    return (
+        rotation_[0][0] * v[0] + rotation_[1][0] * v[1] + rotation_[2][0] * v[2],
+        rotation_[0][1] * v[0] + rotation_[1][1] * v[1] + rotation_[2][1] * v[2],
+        rotation_[0][2] * v[0] + rotation_[1][2] * v[1] + rotation_[2][2] * v[2],
+    )
+
+
+def _product(a: Matrix, b: Matrix) -> Matrix:
+    columns = [(b[0][j], b[1][j], b[2][j]) for j in range(3)]
+    rows = [tuple(sum(x * y for x, y in zip(row, c, strict=True)) for c in columns) for row in a]
+    return (
+        (rows[0][0], rows[0][1], rows[0][2]),
+        (rows[1][0], rows[1][1], rows[1][2]),
+        (rows[2][0], rows[2][1], rows[2][2]),
+    )
+
+
+def _plus(a: Vector, b: Vector) -> Vector:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def _minus(a: Vector, b: Vector) -> Vector:
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+_IDENTITY_ROTATION: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
+@dataclass(frozen=True)
+class Transform:
+    """A rigid transform ``X_AB``: B's rotation and origin in A (what a POSE stands for)."""
+
+    rotation: Matrix = _IDENTITY_ROTATION
+    translation: Vector = (0.0, 0.0, 0.0)
+
+    @classmethod
+    def of(cls, pose: dict[str, Any] | None) -> Transform:
+        """The transform of a POSE: ``RigidTransform(rpy=RollPitchYaw(rpy), p=xyz)``."""
+        pose = pose or {}
+        rpy, xyz = pose.get("rpy", (0.0, 0.0, 0.0)), pose.get("xyz", (0.0, 0.0, 0.0))
+        return cls(rotation(rpy), (float(xyz[0]), float(xyz[1]), float(xyz[2])))
+
+    def __mul__(self, other: Transform) -> Transform:
+        """``X_AC = X_AB · X_BC``: ``R_AC = R_AB R_BC``, ``p_AC = p_AB + R_AB p_BC``."""
+        return Transform(
+            _product(self.rotation, other.rotation),
+            _plus(self.translation, _apply(self.rotation, other.translation)),
+        )
+
+    def point(self, p_B: Vector) -> Vector:
+        """``p_A = X_AB · p_B``."""
+        return _plus(self.translation, _apply(self.rotation, p_B))
+
+    def local(self, p_A: Vector) -> Vector:
+        """``p_B = X_AB⁻¹ · p_A = R_ABᵀ (p_A − p_AB)``."""
+        return _apply_transposed(self.rotation, _minus(p_A, self.translation))
+
+
+def touching_position(
+    shape_a: dict[str, Any],
+    pose_a: Transform,
+    shape_b: dict[str, Any],
+    rotation_b: Matrix,
+    *,
+    direction: Vector,
+    gap: float,
+) -> Vector | None:
+    """Where B's origin goes (in the world) for B to sit at ``gap`` from A along ``direction``.
+
+    ``pose_a`` is A's world pose X_WA, ``rotation_b`` B's world
+    rotation R_WB, ``direction`` a unit vector u. With ``s_A`` A's support
+    point along u and ``s_B`` B's along −u (both in the world), B goes to
+    ``p_WB = s_A + gap·u − R_WB·s_B(B frame)``. For ``gap ≥ 0`` the two planes
+    normal to u through the support points bound a slab of width ``gap``
+    between the shapes, and the support points are ``gap`` apart, so the
+    signed distance is exactly ``gap``; for ``gap < 0`` the shapes overlap by
+    ``|gap|`` along u, and the penetration depth is at most ``|gap|``. Either
+    way the pair goes from colliding to not colliding at ``gap = 0``.
+
+    A HalfSpace is bounded only along its normal, so u becomes A's outward
+    normal ``R_WA·z`` if A is one, or ``−R_WB·z`` if B is one (B's normal then
+    faces A). Two HalfSpaces have no such position: None.
+    """
+    rotation_a, origin_a = pose_a.rotation, pose_a.translation
+    if shape_a["type"] == "halfspace" and shape_b["type"] == "halfspace":
+        return None
+    if shape_a["type"] == "halfspace":
+        direction = _apply(rotation_a, (0.0, 0.0, 1.0))
+    elif shape_b["type"] == "halfspace":
+        direction = _scaled(_apply(rotation_b, (0.0, 0.0, 1.0)), -1.0)
+    local_a = support(shape_a, _apply_transposed(rotation_a, direction))
+    s_a = _apply(rotation_a, local_a)
+    local_b = support(shape_b, _apply_transposed(rotation_b, _scaled(direction, -1.0)))
+    s_b = _apply(rotation_b, local_b)
+    return (
+        origin_a[0] + s_a[0] + gap * direction[0] - s_b[0],
+        origin_a[1] + s_a[1] + gap * direction[1] - s_b[1],
+        origin_a[2] + s_a[2] + gap * direction[2] - s_b[2],
+    )
+
+
+#: Magnitudes of a drawn gap (metres): ε = 1e-3 down to 1e-12, then exact contact.
+GAP_SCALES = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 0.0)
+#: Bytes of a drawn touch: the pair (2), the direction (3), B's frame rotation (3), the gap (2).
+TOUCH_BYTES = 10
+
+
+@dataclass(frozen=True)
+class Touch:
+    """A near-touching offset: put geometry B at ``gap`` from geometry A along ``direction``.
+
+    ``a`` and ``b`` are picks (names are read later, as for any template);
+    ``rpy`` is the rotation of B's frame in its parent, drawn with the offset.
+    """
+
+    a: int
+    b: int
+    direction: Vector
+    rpy: Vector
+    gap: float
+
+    @classmethod
+    def decode(cls, data: bytes) -> Touch:
+        """``TOUCH_BYTES`` bytes: picks a, b; direction; rpy; sign-and-scale, mantissa.
+
+        The direction is three signed steps, normalised (all zero: +z). The
+        gap's byte 8 holds the sign (bit 0) and the scale (the rest, mod
+        ``len(GAP_SCALES)``), byte 9 the mantissa: ``±scale·(1 + m/256)/2``,
+        so ``|gap| ≤ 1e-3``. All bytes zero: ``+5e-4`` along +z, unrotated.
+        """
+        data = data[:TOUCH_BYTES].ljust(TOUCH_BYTES, b"\0")
+        steps = [float(_signed(byte)) for byte in data[2:5]]
+        length = _norm(steps)
+        direction = (0.0, 0.0, 1.0) if not length else _scaled(steps, 1 / length)
+        rpy = (
+            _signed(data[5]) / _STEPS_PER_RADIAN,
+            _signed(data[6]) / _STEPS_PER_RADIAN,
+            _signed(data[7]) / _STEPS_PER_RADIAN,
+        )
+        scale = GAP_SCALES[(data[8] >> 1) % len(GAP_SCALES)]
+        gap = (-1 if data[8] & 1 else 1) * scale * (1 + data[9] / 256) / 2
+        return cls(data[0], data[1], direction, rpy, gap)
+
+
+@cache
+def touches() -> st.SearchStrategy[Touch]:
+    """A ``Touch``: one choice of ``TOUCH_BYTES`` bytes, read by ``Touch.decode``."""
+    return picks(TOUCH_BYTES).map(Touch.decode)
+
+
 # ------------------------------------------------------------------ scenes
 @dataclass(frozen=True)
 class GeometrySpec:
     name: str
     frame: str  # WORLD for anchored geometry
     roles: tuple[str, ...]
+    #: The grammar's SHAPE (None: the default sphere) and POSE in the frame (None: identity).
+    shape: dict[str, Any] | None = field(default=None, hash=False, compare=True)
+    pose: dict[str, list[float]] | None = field(default=None, hash=False, compare=True)
+
+    def arguments(self) -> dict[str, Any]:
+        """The register_geometry arguments besides the frame: name, roles, shape, pose."""
+        args: dict[str, Any] = {"name": self.name, "roles": [*self.roles]}
+        if self.shape is not None:
+            args["shape"] = self.shape
+        if self.pose:
+            args["pose"] = self.pose
+        return args
 
 
 @dataclass(frozen=True)
 class Scene:
-    """Frames (name → parent, None for the world) and geometries, in registration order."""
+    """Frames (name → parent, None for the world) and geometries, in registration order.
+
+    ``poses`` (a posed scene) holds each frame's pose in its parent (the
+    grammar's POSES, for ``set_poses``); a frame left out is at the identity.
+    """
 
     frames: tuple[tuple[str, str | None], ...]
     geometries: tuple[GeometrySpec, ...]
+    poses: tuple[tuple[str, dict[str, list[float]]], ...] = field(default=(), hash=False)
     frame_names: tuple[str, ...] = field(init=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "frame_names", tuple(name for name, _ in self.frames))
 
     def commands(self) -> list[Command]:
-        """register_frame, then register_geometry commands (on the implicit source)."""
+        """register_frame, register_geometry, then (posed) set_poses, on the implicit source."""
         out: list[Command] = []
         for name, parent in self.frames:
             args: dict[str, Any] = {"name": name}
@@ -192,22 +569,18 @@ class Scene:
                 args["parent"] = parent
             out.append(Command("register_frame", args))
         for g in self.geometries:
-            out.append(
-                Command(
-                    "register_geometry", {"name": g.name, "frame": g.frame, "roles": [*g.roles]}
-                )
-            )
+            out.append(Command("register_geometry", {**g.arguments(), "frame": g.frame}))
+        if self.poses:
+            out.append(Command("set_poses", {"poses": dict(self.poses)}))
         return out
 
     def to_json(self) -> dict[str, Any]:
-        """The scenario file's ``scene`` object."""
+        """The scenario file's ``scene`` object (a posed scene's frame poses are not in it)."""
         return {
             "frames": [
                 {"name": n} if p is None else {"name": n, "parent": p} for n, p in self.frames
             ],
-            "geometries": [
-                {"name": g.name, "frame": g.frame, "roles": [*g.roles]} for g in self.geometries
-            ],
+            "geometries": [{**g.arguments(), "frame": g.frame} for g in self.geometries],
         }
 
 
@@ -222,6 +595,8 @@ def scenes(
     anchored: bool = True,
     nested: bool = True,
     non_proximity: bool = True,
+    posed: bool = False,
+    halfspace: bool = True,
 ) -> Scene:
     """A scene: a frame tree and geometry on it.
 
@@ -229,6 +604,9 @@ def scenes(
     earlier frame. Geometries are ``g1, g2, ...`` on a frame or, with
     ``anchored``, on the world. With ``non_proximity`` some geometries lack
     the proximity role (only illustration/perception, or no role at all).
+    ``posed`` draws a shape and a pose for every geometry (``shapes``,
+    ``poses``; HalfSpaces only with ``halfspace``) and a pose for every frame,
+    after everything else, so an unposed scene is drawn as before.
     """
     n_frames = draw(st.integers(min_value=min_frames, max_value=max_frames))
     frames: list[tuple[str, str | None]] = []
@@ -247,7 +625,26 @@ def scenes(
         )
         for index, code in enumerate(layout[1::2], start=1)
     ]
-    return Scene(tuple(frames), tuple(geometries))
+    if not posed:
+        return Scene(tuple(frames), tuple(geometries))
+    solid = SHAPE_BYTES + POSE_BYTES
+    drawn = draw(picks(solid * n_geometries + POSE_BYTES * n_frames))
+    geometries = [
+        replace(
+            g,
+            shape=shape_of(drawn[i * solid : i * solid + SHAPE_BYTES], halfspace=halfspace),
+            pose=pose_of(drawn[i * solid + SHAPE_BYTES : (i + 1) * solid]),
+        )
+        for i, g in enumerate(geometries)
+    ]
+    at = solid * n_geometries
+    frame_poses = [
+        (name, pose_of(drawn[at + i * POSE_BYTES : at + (i + 1) * POSE_BYTES]))
+        for i, (name, _) in enumerate(frames)
+    ]
+    return Scene(
+        tuple(frames), tuple(geometries), tuple((name, pose) for name, pose in frame_poses if pose)
+    )
 
 
 # ---------------------------------------------------------- sets, declarations
