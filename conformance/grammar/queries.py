@@ -110,8 +110,16 @@ DEFINITIONS: Mapping[str, Mapping[str, Any]] = {
 _CONTEXT = Arg("context", K.CONTEXT)
 
 
-def _query(op: str, doc: str, *args: Arg, compare: Comparison = Comparison.EXACT) -> CommandSpec:
-    return CommandSpec(op, (*args, _CONTEXT), "queries", doc, domain="queries", compare=compare)
+def _query(
+    op: str,
+    doc: str,
+    *args: Arg,
+    compare: Comparison = Comparison.EXACT,
+    since: str | None = None,
+) -> CommandSpec:
+    return CommandSpec(
+        op, (*args, _CONTEXT), "queries", doc, domain="queries", compare=compare, since=since
+    )
 
 
 QUERY_COMMANDS: tuple[CommandSpec, ...] = (
@@ -131,7 +139,9 @@ QUERY_COMMANDS: tuple[CommandSpec, ...] = (
     _query("has_collisions", "QueryObject.HasCollisions(); returns a bool"),
     _query(
         "find_collision_candidates",
-        "QueryObject.FindCollisionCandidates(); returns the sorted list of sorted name pairs",
+        "QueryObject.FindCollisionCandidates(); returns the sorted list of sorted name pairs "
+        "(before 1.48 pydrake cannot convert its result: a binding gap)",
+        since="1.48",
     ),
     _query(
         "compute_signed_distance_pairwise_closest_points",
