@@ -713,3 +713,127 @@ def test_connect_wires_an_input_once_between_systems_of_its_builder(mb: Modules)
         RuntimeError, match="Build\\(\\) or BuildInto\\(\\) has already been called"
     ):
         builder.Connect(pose, source_port)
+
+
+# ------------------------------------------------------------- SDFormat
+
+POSED_SDF = """<sdf version="1.9"><world name="w">
+<model name="m">
+ <pose>1 0 0 0 0 0.3</pose>
+ <link name="A"><pose>0 0 1 0 0.2 0</pose>
+  <collision name="c"><pose>0.1 0 0 0.3 0 0</pose>
+   <geometry><sphere><radius>0.1</radius></sphere></geometry></collision></link>
+ <link name="B"><pose relative_to="A">0 1 0 0.1 0 0</pose>
+  <collision name="c"><pose relative_to="F1">0 0 0.1 0 0 0</pose>
+   <geometry><box><size>1 1 1</size></box></geometry></collision></link>
+ <link name="C"><pose>0 1 2 0 0 0</pose></link>
+ <link name="D"><pose>1 1 2 0 0 0.5</pose></link>
+ <link name="E"><pose>0 0 3 0 0 0</pose></link>
+ <link name="free"><pose>2 2 2 0.1 0.2 0.3</pose>
+  <collision name="c"><geometry><sphere><radius>0.1</radius></sphere></geometry></collision></link>
+ <joint name="j0" type="fixed"><parent>world</parent><child>A</child></joint>
+ <joint name="j1" type="revolute"><pose>0 0 0.5 0 0 0</pose><parent>A</parent><child>B</child>
+  <axis><xyz>0 0 1</xyz></axis></joint>
+ <joint name="j2" type="prismatic"><pose relative_to="A">0 0.3 0 0 0 0.4</pose>
+  <parent>B</parent><child>E</child><axis><xyz expressed_in="__model__">1 0 0</xyz></axis></joint>
+ <joint name="ju" type="universal"><pose>0 0 0.1 0 0 0</pose><parent>B</parent><child>C</child>
+  <axis><xyz>0 1 0</xyz></axis><axis2><xyz>0 0 1</xyz></axis2></joint>
+ <joint name="js" type="screw"><parent>C</parent><child>D</child><axis><xyz>0 1 1</xyz></axis>
+  <screw_thread_pitch>0.2</screw_thread_pitch></joint>
+ <frame name="F1" attached_to="B"><pose>0 0 0.2 0 0 0</pose></frame>
+ <frame name="F2"><pose relative_to="F1">0.5 0 0 0 0 0</pose></frame>
+ <model name="inner"><pose>0 0 5 0.1 0 0</pose>
+  <link name="N"><pose>1 0 0 0 0 0</pose>
+   <collision name="c"><pose degrees="true">0 0 0 90 0 0</pose>
+    <geometry><sphere><radius>0.1</radius></sphere></geometry></collision></link>
+  <frame name="NF" attached_to="N">
+   <pose rotation_format="quat_xyzw">0 0 1 0 0 0.7071067811865476 0.7071067811865476</pose></frame>
+ </model>
+ <joint name="jn" type="ball"><parent>D</parent><child>inner::N</child></joint>
+</model>
+<model name="s"><static>true</static><pose>0 0 -1 0 0 0.1</pose>
+ <link name="S"><pose>0.5 0 0 0 0 0</pose>
+  <collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision></link></model>
+</world></sdf>"""
+
+
+def _sdf_snapshot(implementation: str, seed: int) -> dict[str, Any]:
+    """Everything SDFormat poses reach, by name: frames, geometries, axes, X_WB at q."""
+    mb = modules(implementation)
+    builder = mb.framework.DiagramBuilder()
+    plant, scene_graph = mb.plant.AddMultibodyPlantSceneGraph(builder, time_step=0.0)
+    mb.parsing.Parser(plant).AddModelsFromString(POSED_SDF, "sdf")
+    plant.Finalize()
+    context = plant.CreateDefaultContext()
+    values: dict[str, Any] = {"default q": plant.GetPositions(context)}
+    for i in range(plant.num_frames()):
+        frame = plant.get_frame(mb.tree.FrameIndex(i))
+        # N.B. pydrake 1.51.1 adds frames of its own at Finalize (j2_j2_parent_F, ...).
+        if not frame.name().endswith(("_F", "_M")):
+            key = f"frame {frame.scoped_name()} on {frame.body().name()}"
+            values[key] = frame.GetFixedPoseInBodyFrame().GetAsMatrix4()
+    inspector = scene_graph.model_inspector()
+    for geometry_id in inspector.GetAllGeometryIds():
+        values[f"geometry {inspector.GetName(geometry_id)}"] = inspector.GetPoseInFrame(
+            geometry_id
+        ).GetAsMatrix4()
+    for i in range(plant.num_joints()):
+        joint = plant.get_joint(mb.tree.JointIndex(i))
+        for axis in ("revolute_axis", "translation_axis"):
+            if hasattr(joint, axis):
+                values[f"{joint.name()} {axis}"] = getattr(joint, axis)()
+        if joint.type_name() == "weld":
+            values[f"{joint.name()} X_FM"] = joint.X_FM().GetAsMatrix4()
+    plant.SetPositions(context, random_q(np.random.default_rng(seed), plant.num_positions()))
+    for i in range(plant.num_bodies()):
+        body = plant.get_body(mb.tree.BodyIndex(i))
+        values[f"X_WB {body.name()}"] = plant.EvalBodyPoseInWorld(context, body).GetAsMatrix4()
+    return values
+
+
+@pytest.mark.filterwarnings("ignore:Actuation")
+def test_sdformat_poses_reach_frames_geometries_joints_and_free_bodies() -> None:
+    """Link, joint, frame, geometry and model poses, relative_to, expressed_in, degrees,
+    quat_xyzw, nested and static models: every value equals pydrake's within 1e-12."""
+    for seed in (1, 2, 3):
+        ours, theirs = _sdf_snapshot("reimpl", seed), _sdf_snapshot("pydrake", seed)
+        assert ours.keys() == theirs.keys()
+        for key, value in theirs.items():
+            np.testing.assert_allclose(ours[key], value, rtol=0, atol=TOLERANCE, err_msg=key)
+    # Measured: the free link floats at its SDFormat pose, X_WM * X_ML (after the 8
+    # positions of j1, j2, ju, js and jn).
+    np.testing.assert_allclose(
+        theirs["default q"][8:],
+        [0.95085035, 0.01804247, 0.10995138, 0.28890962, 2.31963256, 2.50171339, 2.0],
+        atol=1e-8,
+    )
+
+
+@pytest.mark.parametrize(
+    ("body", "message"),
+    [
+        (
+            '<link name="L"><pose relative_to="nope">0 0 1 0 0 0</pose></link>',
+            "error: relative_to name[nope] specified by link with name[L] does not match a "
+            "nested model, link, joint, or frame name in model with name[m].",
+        ),
+        (
+            '<link name="L"/><link name="M"/><joint name="j" type="revolute"><parent>L</parent>'
+            '<child>M</child><axis><xyz expressed_in="nope">1 0 0</xyz></axis></joint>',
+            "error: axis xyz expressed-in frame with name[nope] specified by joint with name[j] "
+            "not found in model with name[m].",
+        ),
+        (
+            '<link name="L"/><link name="M"/><joint name="j" type="universal"><parent>L</parent>'
+            "<child>M</child><axis><xyz>1 0 0</xyz></axis><axis2><xyz>1 1 0</xyz></axis2></joint>",
+            "<literal-string>.sdf:1: error: axis and axis2 must be orthogonal for joint 'j'",
+        ),
+    ],
+)
+@pytest.mark.filterwarnings("ignore:Actuation")
+def test_sdformat_pose_errors_are_drakes(mb: Modules, body: str, message: str) -> None:
+    plant = mb.plant.MultibodyPlant(time_step=0.0)
+    text = f'<sdf version="1.9"><model name="m">{body}</model></sdf>'
+    with pytest.raises(RuntimeError) as raised:
+        mb.parsing.Parser(plant).AddModelsFromString(text, "sdf")
+    assert str(raised.value) == message

@@ -14,6 +14,15 @@ a FixedOffsetFrame ``<joint>_child``; on the parent, the parent body's frame,
 unless a ``<pose>`` may move it (then ``<joint>_parent``). Parent and child may
 name links or frames, scoped into nested models (``inner::x``).
 
+Poses (see _sdf_poses): a link's default pose is X_WL (SetDefaultFreeBodyPose,
+for every link, as Drake does); a joint J's frames are ``<joint>_parent`` at
+X_PJ and ``<joint>_child`` at X_CJ, its axis expressed in J (``expressed_in``
+another frame E: R_JE·xyz); a universal joint's frames are turned by
+R = [a₁ a₂ a₁×a₂] so that its axes are their x and y; a ``<frame>`` is a
+FixedOffsetFrame on the frame it is attached to; a geometry is at X_LG; a
+static model's weld has X_FM = X_WL; ``__model__`` sits at X_LM on the
+canonical link (pydrake 1.51.1 within 1e-12).
+
 Collision filter groups (only with a SceneGraph) hold text children::
 
     <drake:collision_filter_group name="G" ignore="false">
@@ -30,9 +39,13 @@ from __future__ import annotations
 
 import logging
 import os
+from collections.abc import Callable
 from typing import Any
 
-from reimpl.math import RigidTransform
+import numpy as np
+
+from reimpl.multibody import kinematics
+from reimpl.multibody.kinematics import Pose
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
 from reimpl.multibody.parsing._model_builder import (
@@ -45,8 +58,9 @@ from reimpl.multibody.parsing._package_map import UriError, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
 from reimpl.multibody.parsing._sdf_document import check_document, scoped_name_error, xml_path
 from reimpl.multibody.parsing._sdf_geometry import read_shape_spec, text_of, values_of
+from reimpl.multibody.parsing._sdf_poses import WORLD, PoseGraph, read_pose, transform
 from reimpl.multibody.parsing._xml import XmlElement, XmlSyntaxError, children, parse_xml
-from reimpl.multibody.tree import FixedOffsetFrame
+from reimpl.multibody.tree import FixedOffsetFrame, WeldJoint
 
 __all__ = ["read_sdf"]
 
@@ -106,6 +120,7 @@ class _Document:
         self.context, self.source, self.diagnostics = context, source, diagnostics
         self.plant = context.plant
         self.instances: list[Any] = []
+        self.poses = PoseGraph()
         #: scoped <frame> (or __model__) name -> the scoped name it is attached to
         self.attached_to: dict[str, str] = {}
         self.parents: dict[XmlElement, XmlElement] = {
@@ -149,11 +164,11 @@ class _Document:
             self._check_drake_elements(worlds[0])
             for element in worlds[0]:
                 if element.tag == "model" and isinstance(element, XmlElement):
-                    self._add_model(element, None, scope)
+                    self._add_model(element, None, scope, WORLD)
                 elif element.tag == "include" and isinstance(element, XmlElement):
                     self._include(element, scope)
         else:
-            self._add_model(models[0], model_name, scope)
+            self._add_model(models[0], model_name, scope, WORLD)
         return self.instances
 
     # --------------------------------------------------------------- models
@@ -175,21 +190,30 @@ class _Document:
         name = text_of(include, "name", "") or None
         self.instances += self.context.read_file(self.context, path, name, scope)
 
-    def _add_model(self, model: XmlElement, model_name: str | None, scope: str) -> None:
+    def _add_model(
+        self, model: XmlElement, model_name: str | None, scope: str, parent_frame: str
+    ) -> None:
+        """Adds ``model``, whose pose is by default in ``parent_frame`` (the world, or the
+        enclosing model's frame)."""
         self._check_drake_elements(model)
         name = scoped.join(scope, model_name or model.get("name") or "")
         instance = self.context.add_model_instance(name)
         instance_name = self.plant.GetModelInstanceName(instance)
         self.instances.append(instance)
+        targets = self._add_poses(model, instance_name, parent_frame, scope)
         for element in model:
             if element.tag == "model" and isinstance(element, XmlElement):
-                self._add_model(element, None, instance_name)
+                self._add_model(element, None, instance_name, f"{instance_name}::__model__")
             elif element.tag == "include" and isinstance(element, XmlElement):
                 self._include(element, instance_name)
+        for target, kind, element_name in targets:
+            self._check_pose_target(target, kind, element_name, model)
         links = children(model, "link")
         if not links and not children(model, "model") and not children(model, "include"):
             raise Diagnostics(None).error("A model must have at least one link.")
-        bodies = {link.get("name", ""): self._add_link(link, instance) for link in links}
+        bodies = {
+            link.get("name", ""): self._add_link(link, instance, instance_name) for link in links
+        }
         self._add_model_frame(model, instance, bodies)
         for frame in children(model, "frame"):
             target = frame.get("attached_to") or "__model__"
@@ -203,16 +227,62 @@ class _Document:
         if _bool(text_of(model, "static", "false")):
             world = self.plant.world_frame()
             for link_name, body in bodies.items():
+                X_WL = self.poses.X_W(scoped.join(instance_name, link_name))
                 self.plant.AddJoint(
-                    JOINT_TYPES["weld"](
-                        _spec(f"sdformat_model_static_world_welds_to_{link_name}", "weld"),
+                    WeldJoint(
+                        f"sdformat_model_static_world_welds_to_{link_name}",
                         world,
                         body.body_frame(),
+                        transform(X_WL),
                     )
                 )
         if self.context.has_scene_graph():
             for group in children(model, _GROUP):
                 self._add_group(group, model, instance_name)
+
+    def _add_poses(
+        self, model: XmlElement, instance_name: str, parent_frame: str, scope: str
+    ) -> list[tuple[str, str, str]]:
+        """Registers the poses of the model frame and of its links, joints and frames.
+
+        Returns each explicit ``relative_to`` (frame, element kind, element name), to be
+        checked once the nested models are read.
+        """
+        targets: list[tuple[str, str, str]] = []
+        model_frame = f"{instance_name}::__model__"
+        relative_to, X = read_pose(model)
+        R = parent_frame if relative_to is None else self._pose_frame(scope, relative_to)
+        self.poses.add(model_frame, R, X)
+        self.poses.add(instance_name, model_frame, kinematics.identity())
+        defaults: dict[str, Callable[[XmlElement], str]] = {
+            "link": lambda e: "__model__",
+            "joint": lambda e: text_of(e, "child", ""),
+            "frame": lambda e: e.get("attached_to") or "__model__",
+        }
+        for kind, default in defaults.items():
+            for element in children(model, kind):
+                relative_to, X = read_pose(element)
+                target = relative_to if relative_to is not None else default(element)
+                full = self._pose_frame(instance_name, target)
+                if relative_to is not None:
+                    targets.append((full, kind, element.get("name", "")))
+                self.poses.add(scoped.join(instance_name, element.get("name", "")), full, X)
+        return targets
+
+    def _pose_frame(self, scope: str, name: str) -> str:
+        return WORLD if name == WORLD else scoped.join(scope, name)
+
+    def _check_pose_target(self, target: str, kind: str, name: str, model: XmlElement) -> None:
+        if not self.poses.has(target):
+            raise Diagnostics(None).error(
+                f"relative_to name[{scoped.split(target)[1]}] specified by {kind} with "
+                f"name[{name}] does not match a nested model, link, joint, or frame name in "
+                f"model with name[{model.get('name')}]."
+            )
+
+    def _X(self, frame: str, element: str) -> Pose:
+        """X_FE between two registered frames (exact when E is posed in F)."""
+        return self.poses.X_AB(frame, element)
 
     def _add_model_frame(self, model: XmlElement, instance: Any, bodies: dict[str, Any]) -> None:
         canonical = model.get("canonical_link")
@@ -225,10 +295,11 @@ class _Document:
             if not indices:
                 return
             body = self.plant.get_body(indices[0])
-        frame = FixedOffsetFrame("__model__", body.body_frame(), RigidTransform(), instance)
-        self.plant.AddFrame(frame)
         instance_name = self.plant.GetModelInstanceName(instance)
         body_instance = self.plant.GetModelInstanceName(body.model_instance())
+        X_LM = self._X(scoped.join(body_instance, body.name()), f"{instance_name}::__model__")
+        frame = FixedOffsetFrame("__model__", body.body_frame(), transform(X_LM), instance)
+        self.plant.AddFrame(frame)
         self.attached_to[scoped.join(instance_name, "__model__")] = scoped.join(
             body_instance, body.name()
         )
@@ -243,15 +314,22 @@ class _Document:
         return []
 
     # ---------------------------------------------------------------- links
-    def _add_link(self, link: XmlElement, instance: Any) -> Any:
+    def _add_link(self, link: XmlElement, instance: Any, instance_name: str) -> Any:
         self._check_drake_elements(link)
         body = self.plant.AddRigidBody(name=link.get("name", ""), model_instance=instance)
+        link_frame = scoped.join(instance_name, link.get("name", ""))
+        self.plant.SetDefaultFreeBodyPose(body, transform(self.poses.X_W(link_frame)))
         if not self.context.has_scene_graph():
             return body
         for role in ("visual", "collision"):
             namer = GeometryNamer()
             for element in children(link, role):
-                spec = read_shape_spec(element, self._resolve)
+                relative_to, X = read_pose(element)
+                if relative_to is not None:
+                    X = kinematics.compose(
+                        self._X(link_frame, self._pose_frame(instance_name, relative_to)), X
+                    )
+                spec = read_shape_spec(element, self._resolve, transform(X))
                 if spec is not None:
                     register_geometry(self.plant, body, spec, namer.name(spec, self.diagnostics))
         return body
@@ -294,8 +372,9 @@ class _Document:
             parent = self.plant.GetBodyByName(element, target_instance).body_frame()
         else:
             parent = self.plant.GetFrameByName(element, target_instance)
+        X_PF = self._X(scoped.join(namespace, element), scoped.join(scope, frame.get("name", "")))
         self.plant.AddFrame(
-            FixedOffsetFrame(frame.get("name", ""), parent, RigidTransform(), instance)
+            FixedOffsetFrame(frame.get("name", ""), parent, transform(X_PF), instance)
         )
 
     # --------------------------------------------------------------- joints
@@ -323,7 +402,8 @@ class _Document:
             raise self.diagnostics.error(
                 f"Both axis and axis2 must be specified for joint '{name}'", joint.line
             )
-        xyz = values_of(axes[0], "xyz", "0 0 1") if axes else [0.0, 0.0, 1.0]
+        joint_frame = scoped.join(scope, name)
+        xyz = self._axis(axes[0], joint_frame, name, model) if axes else [0.0, 0.0, 1.0]
         pitch = float(text_of(joint, "screw_thread_pitch", "1"))
         spec = JointSpec(
             name, _JOINT_KINDS[joint_type], parent_name, child_name, joint.line,
@@ -336,17 +416,63 @@ class _Document:
                 joint.line,
             )
         child_instance = frame_on_child.model_instance()
+        X_PJ = self._X(self._body_pose_frame(frame_on_parent), joint_frame)
+        X_CJ = self._X(self._body_pose_frame(frame_on_child), joint_frame)
+        if joint_type == "universal":
+            R = self._universal_rotation(joint, joint_frame, model, np.array(xyz))
+            X_PJ, X_CJ = kinematics.compose(X_PJ, R), kinematics.compose(X_CJ, R)
+        identity = kinematics.identity()
+        moved = not (np.array_equal(X_PJ[0], identity[0]) and not X_PJ[1].any())
         # N.B. Measured: a universal joint always gets a parent frame too.
-        if joint_type == "universal" or _moves_parent_frame(joint, model, parent_name, child_name):
+        if (
+            joint_type == "universal"
+            or moved
+            or _moves_parent_frame(joint, model, parent_name, child_name)
+        ):
             frame_on_parent = self.plant.AddFrame(
-                FixedOffsetFrame(
-                    f"{name}_parent", frame_on_parent, RigidTransform(), child_instance
-                )
+                FixedOffsetFrame(f"{name}_parent", frame_on_parent, transform(X_PJ), child_instance)
             )
         frame_on_child = self.plant.AddFrame(
-            FixedOffsetFrame(f"{name}_child", frame_on_child, RigidTransform(), child_instance)
+            FixedOffsetFrame(f"{name}_child", frame_on_child, transform(X_CJ), child_instance)
         )
         self.plant.AddJoint(JOINT_TYPES[spec.kind](spec, frame_on_parent, frame_on_child))
+
+    def _body_pose_frame(self, frame: Any) -> str:
+        """The pose graph's name for a body frame of the plant (the world's is the world)."""
+        if frame.body().index() == 0:
+            return WORLD
+        body = frame.body()
+        return scoped.join(self.plant.GetModelInstanceName(body.model_instance()), body.name())
+
+    def _axis(
+        self, axis: XmlElement, joint_frame: str, joint: str, model: XmlElement
+    ) -> list[float]:
+        """``<xyz>`` in the joint frame J: R_JE·xyz for ``expressed_in`` E (J by default)."""
+        xyz = values_of(axis, "xyz", "0 0 1")
+        expressed_in = next((x.get("expressed_in") for x in children(axis, "xyz")), None)
+        if not expressed_in:
+            return xyz
+        frame = self._pose_frame(scoped.split(joint_frame)[0], expressed_in)
+        if not self.poses.has(frame):
+            raise Diagnostics(None).error(
+                f"axis xyz expressed-in frame with name[{expressed_in}] specified by joint with "
+                f"name[{joint}] not found in model with name[{model.get('name')}]."
+            )
+        R_JE = self._X(joint_frame, frame)[0]
+        return [float(v) for v in R_JE @ np.array(xyz)]
+
+    def _universal_rotation(
+        self, joint: XmlElement, joint_frame: str, model: XmlElement, a1: Any
+    ) -> Pose:
+        """R = [a₁ a₂ a₁×a₂] (unit axes in J), so that the joint's x and y are its axes."""
+        a2 = np.array(self._axis(children(joint, "axis2")[0], joint_frame, "", model))
+        a1, a2 = a1 / np.linalg.norm(a1), a2 / np.linalg.norm(a2)
+        if abs(float(a1 @ a2)) > 1e-10:
+            raise self.diagnostics.error(
+                f"axis and axis2 must be orthogonal for joint '{joint.get('name', '')}'",
+                joint.line,
+            )
+        return np.column_stack([a1, a2, np.cross(a1, a2)]), np.zeros(3)
 
     # --------------------------------------------------------------- groups
     def _texts(self, group: XmlElement, tag: str) -> set[str]:

@@ -44,14 +44,16 @@ _SHAPES: dict[str, Callable[[XmlElement, Callable[[str], str]], Shape]] = {
 }
 
 
-def read_shape_spec(element: XmlElement, resolve: Callable[[str], str]) -> GeometrySpec | None:
-    """The named ``<collision>`` or ``<visual>``, or None when it has no shape."""
+def read_shape_spec(
+    element: XmlElement, resolve: Callable[[str], str], X_BG: RigidTransform | None = None
+) -> GeometrySpec | None:
+    """The named ``<collision>`` or ``<visual>`` at X_BG, or None when it has no shape."""
     for geometry in children(element, "geometry"):
         for shape_element in geometry:
             make = _SHAPES.get(shape_element.tag)
             if make is not None and isinstance(shape_element, XmlElement):
                 shape = make(shape_element, resolve)
                 return GeometrySpec(
-                    element.tag, element.get("name"), shape, RigidTransform(), element.line
+                    element.tag, element.get("name"), shape, X_BG or RigidTransform(), element.line
                 )
     return None
