@@ -9,8 +9,17 @@ import pytest
 from conformance.backends.scene_graph import SceneGraphBackend
 from conformance.fuzz.lockstep import Divergence, TraceStep
 from conformance.fuzz.regression import regression_scenario
-from conformance.grammar import GRAMMAR, NameKind, UnknownOpError, declared_names, referenced_names
+from conformance.grammar import (
+    GRAMMAR,
+    ArgKind,
+    Comparison,
+    NameKind,
+    UnknownOpError,
+    declared_names,
+    referenced_names,
+)
 from conformance.grammar import spec as command_spec
+from conformance.grammar.queries import SHAPES
 from conformance.grammar.schema import scenario_schema, schema_path
 from conformance.protocol import Command, LocationState, Observation, Result
 
@@ -88,3 +97,34 @@ def test_regression_files_take_their_feature_tags_from_the_grammar() -> None:
         reference_version="1.51.1",
     )
     assert scenario["features"] == ["contexts", "core", "transient"]
+
+
+def test_set_poses_refers_to_each_posed_frame_by_name() -> None:
+    args = {"poses": {"f1": {"xyz": [1.0, 0.0, 0.0]}, "m::l1": {}}, "context": "c1"}
+    assert list(referenced_names("set_poses", args)) == [
+        (NameKind.FRAME, "f1", "poses.f1"),
+        (NameKind.FRAME, "m::l1", "poses.m::l1"),
+        (NameKind.CONTEXT, "c1", "context"),
+    ]
+
+
+def test_the_shape_schema_has_one_rule_per_shape_with_its_pydrake_keywords() -> None:
+    shape = scenario_schema()["$defs"]["shape"]
+    assert shape["properties"]["type"]["enum"] == list(SHAPES)
+    rules = {rule["if"]["properties"]["type"]["const"]: rule["then"] for rule in shape["allOf"]}
+    assert rules["box"]["required"] == ["width", "depth", "height"]
+    assert rules["ellipsoid"]["required"] == ["a", "b", "c"]
+    assert rules["halfspace"]["required"] == []
+    assert all(rule["additionalProperties"] is False for rule in rules.values())
+
+
+def test_register_geometry_takes_a_shape_and_a_pose_and_the_queries_compare_by_tolerance() -> None:
+    assert command_spec("register_geometry").arg_kinds["shape"] is ArgKind.SHAPE
+    assert command_spec("register_geometry").arg_kinds["pose"] is ArgKind.POSE
+    assert {op for op, c in GRAMMAR.items() if c.compare is not Comparison.EXACT} == {
+        "compute_point_pair_penetration",
+        "compute_signed_distance_pairwise_closest_points",
+        "compute_signed_distance_pair_closest_points",
+        "x_wg",
+        "x_wf",
+    }
