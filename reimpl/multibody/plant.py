@@ -111,6 +111,7 @@ _REVERSIBLE_JOINT_TYPES = frozenset({"prismatic", "revolute", "weld"})
 #: Where a plant context keeps its positions q and its cached body poses (Context._values).
 _POSITIONS = "q"
 _BODY_POSES = "X_WB"
+_FRAME_POSES = "geometry_pose"
 
 #: Where pydrake 1.51.1 reports its DRAKE_DEMAND failures (SystemExit, measured).
 _PLANT_H = (
@@ -891,12 +892,21 @@ class MultibodyPlant(LeafSystem):
         return self._geometry_pose_port
 
     def _calc_frame_poses(self, context: Context) -> FramePoseVector:
-        """{F(B): X_WB} for every body B but the world that has a SceneGraph frame."""
+        """{F(B): X_WB} for every body B but the world that has a SceneGraph frame.
+
+        Like Drake's cached output, the same vector is returned while q is
+        unchanged (so SceneGraph need not re-pose).
+        """
+        key = self._context_positions(context).tobytes()
+        cached = context._values.get(_FRAME_POSES)
+        if cached is not None and cached[0] == key:
+            return cached[1]  # type: ignore[no-any-return]
         poses = FramePoseVector()
         world_poses = self._body_poses(context)
         for index, frame_id in self._body_frame_ids.items():
             if index != graph.WORLD:
                 poses.set_value(frame_id, _transform(world_poses[index]))
+        context._values[_FRAME_POSES] = (key, poses)
         return poses
 
     # ---------------------------------------------------------- positions
