@@ -97,9 +97,18 @@ def invert(X_AB: Pose) -> Pose:
 def rotation_about(a: Array, theta: float) -> Array:
     """R_a(θ) for a unit axis a (Eigen's AngleAxis::toRotationMatrix).
 
-    R = c·I + (1 − c)·a·aᵀ + s·[a]×, with c = cos θ, s = sin θ.
+    R = c·I + (1 − c)·a·aᵀ + s·[a]×, with c = cos θ, s = sin θ. About ±x, ±y
+    or ±z it is the elementary rotation, entry for entry (R_z(θ) has R₂₂ = 1
+    exactly, as Drake's MakeZRotation; the general formula gives (1 − c) + c).
     """
     c, s = math.cos(theta), math.sin(theta)
+    if np.count_nonzero(a) == 1:
+        i = int(np.flatnonzero(a)[0])
+        j, k = (i + 1) % 3, (i + 2) % 3
+        s = s if a[i] > 0 else -s
+        R = np.eye(3)
+        R[j, j], R[j, k], R[k, j], R[k, k] = c, -s, s, c
+        return R
     sin_axis = s * a
     cos1_axis = (1.0 - c) * a
     R = np.empty((3, 3))
