@@ -884,6 +884,10 @@ class MultibodyPlant(LeafSystem):
             declaration.ExcludeBetween(set_A, set_B)
         scene_graph.collision_filter_manager().Apply(declaration=declaration)
 
+    def SetDefaultContext(self, context: Context) -> None:
+        """Resets the context's q to the joints' default positions."""
+        self._context_positions(context)[:] = self.GetDefaultPositions()
+
     # ------------------------------------------------------------- ports
     def get_geometry_query_input_port(self) -> InputPort:
         return self._geometry_query_port

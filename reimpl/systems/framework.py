@@ -344,6 +344,14 @@ class Diagram(System):
     def num_output_ports(self) -> int:
         return 0
 
+    def SetDefaultContext(self, context: Context) -> None:
+        """Resets every subsystem's subcontext to its defaults (those that have any)."""
+        self.ValidateContext(context)
+        for system in self._systems:
+            reset = getattr(system, "SetDefaultContext", None)
+            if reset is not None:
+                reset(context._subcontexts[system])
+
     def GetSubsystemContext(self, subsystem: System, context: Context) -> Context:
         self.ValidateContext(context)
         if subsystem not in context._subcontexts:
