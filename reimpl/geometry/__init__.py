@@ -29,6 +29,12 @@ from reimpl.geometry.query_object import (
     QueryObject,
     QueryObject_,
 )
+from reimpl.geometry.query_results import (
+    PenetrationAsPointPair,
+    PenetrationAsPointPair_,
+    SignedDistancePair,
+    SignedDistancePair_,
+)
 from reimpl.geometry.scene_graph import SceneGraph, SceneGraph_
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector, SceneGraphInspector_
 from reimpl.geometry.shape import (
@@ -67,6 +73,8 @@ __all__ = [
     "Mesh",
     "MeshSource",
     "MeshcatCone",
+    "PenetrationAsPointPair",
+    "PenetrationAsPointPair_",
     "PerceptionProperties",
     "ProximityProperties",
     "QueryObject",
@@ -78,6 +86,8 @@ __all__ = [
     "SceneGraphInspector_",
     "SceneGraph_",
     "Shape",
+    "SignedDistancePair",
+    "SignedDistancePair_",
     "SourceId",
     "Sphere",
 ]

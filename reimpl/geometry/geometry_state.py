@@ -100,6 +100,9 @@ class GeometryState:
         self.collision_filter = CollisionFilter()
         # Frames whose registration failed on a duplicate name; see register_frame.
         self.ghost_frames = 0
+        # Bumped by every change to the frames or the proximity geometries, so a
+        # posed proximity engine built from this state knows when it is stale.
+        self.revision = 0
 
     def clone(self) -> GeometryState:
         """A deep copy, as a context's copy of the model is (filters and history too)."""
@@ -121,6 +124,7 @@ class GeometryState:
         }
         other.collision_filter = self.collision_filter.copy()
         other.ghost_frames = self.ghost_frames
+        other.revision = self.revision
         return other
 
     # ------------------------------------------------------------- validation
@@ -208,6 +212,7 @@ class GeometryState:
             frame.id(), frame.name(), source_id, parent_id, frame.frame_group()
         )
         source.frames.append(frame.id())
+        self.revision += 1
         return frame.id()
 
     def register_geometry(
@@ -294,6 +299,7 @@ class GeometryState:
             )
         geometry.properties[role] = type(properties)(properties)
         if role is Role.kProximity:
+            self.revision += 1
             self._assign_proximity(geometry)
 
     def _assign_proximity(self, geometry: _Geometry) -> None:
@@ -333,6 +339,7 @@ class GeometryState:
         if geometry.properties.pop(role, None) is None:
             return 0
         if role is Role.kProximity:
+            self.revision += 1
             self.collision_filter.remove_geometry(geometry.id)
         return 1
 
@@ -349,6 +356,7 @@ class GeometryState:
         if geometry.is_anchored:
             self._sources[source_id].anchored.remove(geometry_id)
         del self._geometries[geometry_id]
+        self.revision += 1
 
     # ----------------------------------------------------------------- names
     def rename_frame(self, frame_id: FrameId, name: str) -> None:
@@ -478,6 +486,10 @@ class GeometryState:
                 f"No frame name available for invalid frame id: {frame_id.get_value()}"
             )
         return self._frames[frame_id].name
+
+    def frame_parent(self, frame_id: FrameId) -> FrameId:
+        """The frame's parent frame (the world frame's parent is itself)."""
+        return self._frame(frame_id).parent_id
 
     def frame_group(self, frame_id: FrameId) -> int:
         return self._frame(frame_id).frame_group

@@ -1,62 +1,208 @@
 """QueryObject and FramePoseVector: the query port's value and the pose port's input.
 
-Only the inspector is served: reimpl answers which pairs are candidates, not
-where geometry is.
+A QueryObject is a live view of one context (Drake's is too): each query reads
+the context's geometry state and its pose ports *now*, so fixing new poses
+after ``Eval`` changes what an earlier QueryObject reports (measured on pydrake
+1.51.1). The posing and the proximity queries themselves are SceneGraph's
+(``_Posed``); this module gives them pydrake's names, keywords, result types
+and ordering:
+
+* ComputePointPairPenetration, ComputeSignedDistancePairwiseClosestPoints:
+  sorted by (id_A, id_B) values; FindCollisionCandidates: sorted pairs
+  ``(id_lo, id_hi)`` as tuples.
+* Every query first validates the pose ports (Drake's FullPoseUpdate), so a
+  missing pose raises before an unknown id does (measured).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import TYPE_CHECKING
+import itertools
+import math
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
+import numpy as np
+import numpy.typing as npt
+
+from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
 from reimpl.common.value import register_value_type
-from reimpl.geometry.identifier import FrameId
+from reimpl.geometry.geometry_roles import Role
+from reimpl.geometry.geometry_state import WORLD_FRAME_ID
+from reimpl.geometry.identifier import FrameId, GeometryId
+from reimpl.geometry.proximity_engine import (
+    PairResult,
+    PoseInput,
+    ProximityEngine,
+    compose_poses,
+)
+from reimpl.geometry.query_results import PenetrationAsPointPair, SignedDistancePair
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
-from reimpl.math import RigidTransform
+from reimpl.math import RigidTransform, RotationMatrix
 
 if TYPE_CHECKING:
     from reimpl.geometry.geometry_state import GeometryState
 
-__all__ = ["FramePoseVector", "FramePoseVector_", "QueryObject", "QueryObject_"]
+__all__ = ["FramePoseVector", "FramePoseVector_", "PosedState", "QueryObject", "QueryObject_"]
+
+_OWNER = "reimpl.geometry.QueryObject"
+
+#: Every FramePoseVector edit draws a new stamp, so a stamp names one content.
+_stamps = itertools.count(1)
+
+
+class _Posed(Protocol):
+    """What SceneGraph hands a QueryObject for one posed context (see scene_graph)."""
+
+    def point_pair_penetration(self) -> list[PenetrationAsPointPair]: ...
+    def has_collisions(self) -> bool: ...
+    def collision_candidates(self) -> list[tuple[GeometryId, GeometryId]]: ...
+    def pairwise_distances(self, max_distance: float) -> list[SignedDistancePair]: ...
+    def pair_distance(self, id_A: GeometryId, id_B: GeometryId) -> SignedDistancePair: ...
+    def frame_pose_in_world(self, frame_id: FrameId) -> RigidTransform: ...
+    def frame_pose_in_parent(self, frame_id: FrameId) -> RigidTransform: ...
+    def geometry_pose_in_world(self, geometry_id: GeometryId) -> RigidTransform: ...
 
 
 class QueryObject:
     """What SceneGraph's query output port evaluates to for one context."""
 
     def __init__(self) -> None:
-        """A default QueryObject is not connected to any state; its inspector cannot answer."""
+        """A default QueryObject is not connected to any state; its queries cannot answer."""
 
-        def unconnected() -> GeometryState:
+        def unconnected() -> Any:
             # N.B. pydrake 1.51.1 aborts the process here; reimpl raises instead.
             raise RuntimeError("condition 'state_ != nullptr' failed.")
 
         self._state_of = unconnected
+        self._posed_of = unconnected
 
     _state_of: Callable[[], GeometryState]
+    _posed_of: Callable[[], _Posed]
 
     @classmethod
-    def _make(cls, state_of: Callable[[], GeometryState]) -> QueryObject:
+    def _make(
+        cls, state_of: Callable[[], GeometryState], posed_of: Callable[[], _Posed]
+    ) -> QueryObject:
         query = object.__new__(cls)
         query._state_of = state_of
+        query._posed_of = posed_of
         return query
 
     def inspector(self) -> SceneGraphInspector:
-        """A live inspector of the context this object was evaluated on."""
+        """A live inspector of the context this object was evaluated on (needs no poses)."""
         return SceneGraphInspector._view(self._state_of)
+
+    # ------------------------------------------------------------ queries
+    def ComputePointPairPenetration(self) -> list[PenetrationAsPointPair]:
+        """Every unfiltered penetrating pair, sorted by (id_A, id_B)."""
+        return self._posed_of().point_pair_penetration()
+
+    def HasCollisions(self) -> bool:
+        """Whether any unfiltered pair collides; stops at the first that does."""
+        return self._posed_of().has_collisions()
+
+    def FindCollisionCandidates(self) -> list[tuple[GeometryId, GeometryId]]:
+        """Unfiltered pairs whose bounding boxes overlap, as sorted (lower, higher) ids."""
+        return self._posed_of().collision_candidates()
+
+    def ComputeSignedDistancePairwiseClosestPoints(
+        self, max_distance: float = math.inf
+    ) -> list[SignedDistancePair]:
+        """φ for every unfiltered pair with ``φ ≤ max_distance``, sorted by (id_A, id_B)."""
+        if isinstance(max_distance, bool) or not isinstance(max_distance, int | float):
+            raise TypeError(
+                "ComputeSignedDistancePairwiseClosestPoints(): incompatible function arguments. "
+                "The following argument types are supported:\n"
+                f"    1. (self: {_OWNER}, max_distance: float = inf) -> "
+                "list[reimpl.geometry.SignedDistancePair]\n\n"
+                f"Invoked with: <{_OWNER} object>, {max_distance!r}"
+            )
+        return self._posed_of().pairwise_distances(float(max_distance))
+
+    def ComputeSignedDistancePairClosestPoints(
+        self, geometry_id_A: GeometryId, geometry_id_B: GeometryId
+    ) -> SignedDistancePair:
+        """φ(A, B) for two proximity geometries, filters ignored; reported with id_A < id_B."""
+        for value in (geometry_id_A, geometry_id_B):
+            if not isinstance(value, GeometryId):
+                raise TypeError(
+                    "ComputeSignedDistancePairClosestPoints(): incompatible function arguments. "
+                    "The following argument types are supported:\n"
+                    f"    1. (self: {_OWNER}, geometry_id_A: reimpl.geometry.GeometryId, "
+                    "geometry_id_B: reimpl.geometry.GeometryId) -> "
+                    "reimpl.geometry.SignedDistancePair\n\n"
+                    f"Invoked with: <{_OWNER} object>, {geometry_id_A!r}, {geometry_id_B!r}"
+                )
+        return self._posed_of().pair_distance(geometry_id_A, geometry_id_B)
+
+    # -------------------------------------------------------------- poses
+    def GetPoseInWorld(self, *args: Any, **kwargs: Any) -> RigidTransform:
+        """X_WF of a frame (``X_WF = X_WP · X_PF``) or X_WG of a geometry (``X_WF · X_FG``)."""
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "GetPoseInWorld",
+            (
+                Overload(
+                    (Param("frame_id", instance_of(FrameId)),),
+                    lambda frame_id: self._posed_of().frame_pose_in_world(frame_id),
+                ),
+                Overload(
+                    (Param("geometry_id", instance_of(GeometryId)),),
+                    lambda geometry_id: self._posed_of().geometry_pose_in_world(geometry_id),
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def GetPoseInParent(self, frame_id: FrameId) -> RigidTransform:
+        """X_PF, the frame's pose in its parent, as its source's pose port gives it."""
+        if not isinstance(frame_id, FrameId):
+            raise TypeError(
+                "GetPoseInParent(): incompatible function arguments. The following argument "
+                "types are supported:\n"
+                f"    1. (self: {_OWNER}, frame_id: reimpl.geometry.FrameId) -> "
+                "reimpl.math.RigidTransform\n\n"
+                f"Invoked with: <{_OWNER} object>, {frame_id!r}"
+            )
+        return self._posed_of().frame_pose_in_parent(frame_id)
+
+    def X_WF(self, frame_id: FrameId) -> RigidTransform:
+        """Drake C++'s older name for GetPoseInWorld(frame_id); pydrake 1.51.1 binds only
+        GetPoseInWorld."""
+        return self.GetPoseInWorld(frame_id=frame_id)
+
+    def X_WG(self, geometry_id: GeometryId) -> RigidTransform:
+        """Drake C++'s older name for GetPoseInWorld(geometry_id); pydrake 1.51.1 binds only
+        GetPoseInWorld."""
+        return self.GetPoseInWorld(geometry_id=geometry_id)
 
 
 class FramePoseVector:
-    """Poses of a source's frames, keyed by FrameId."""
+    """Poses of a source's frames, keyed by FrameId: each frame's X_PF (pose in its parent).
+
+    Each edit draws a new process-wide stamp; SceneGraph re-poses a context only
+    when a pose port's stamp changed.
+    """
 
     def __init__(self) -> None:
         self._poses: dict[FrameId, RigidTransform] = {}
+        self._matrices: dict[FrameId, npt.NDArray[np.float64]] = {}
+        self._stamp = next(_stamps)
 
     def set_value(self, id: FrameId, value: RigidTransform) -> None:
-        self._poses[id] = RigidTransform(value)
+        pose = RigidTransform(value)
+        self._poses[id] = pose
+        self._matrices[id] = pose.GetAsMatrix4()
+        self._stamp = next(_stamps)
 
     def value(self, id: FrameId) -> RigidTransform:
         return RigidTransform(self._poses[id])
+
+    def _matrix(self, id: FrameId) -> npt.NDArray[np.float64]:
+        """X_PF as a 4×4 matrix (shared, not copied)."""
+        return self._matrices[id]
 
     def has_id(self, id: FrameId) -> bool:
         return id in self._poses
@@ -69,6 +215,201 @@ class FramePoseVector:
 
     def clear(self) -> None:
         self._poses.clear()
+        self._matrices.clear()
+        self._stamp = next(_stamps)
+
+    def __copy__(self) -> FramePoseVector:
+        """Same poses, same stamp (same content); either copy's next edit re-stamps it."""
+        other = object.__new__(FramePoseVector)
+        other._poses, other._matrices = dict(self._poses), dict(self._matrices)
+        other._stamp = self._stamp
+        return other
+
+
+def _rigid_transform(R: npt.NDArray[np.float64], p: npt.NDArray[np.float64]) -> RigidTransform:
+    return RigidTransform(RotationMatrix(np.array(R)), np.array(p))
+
+
+def _role_text(state: GeometryState, geometry_id: GeometryId) -> str:
+    for role, text in (
+        (Role.kIllustration, "the illustration role"),
+        (Role.kPerception, "the perception role"),
+    ):
+        if state.has_role(geometry_id, role):
+            return text
+    return "no role"
+
+
+class PosedState:
+    """One context's GeometryState with its proximity engine, posed from its pose ports.
+
+    SceneGraph keeps one per context and rebuilds it when the state changes
+    (``GeometryState.revision``); ``pose()`` validates the ports' values with
+    Drake's messages, then hands them to the engine, which re-poses only when
+    some vector's stamp changed.
+    """
+
+    def __init__(self, state: GeometryState) -> None:
+        self.state = state
+        self.revision = state.revision
+        frames = [
+            (f, None if state.frame_parent(f) == WORLD_FRAME_ID else state.frame_parent(f))
+            for f in state.frame_ids()
+            if f != WORLD_FRAME_ID
+        ]
+        # N.B. Drake walks the sources in its unordered_map's order: newest first for
+        # a few sources (measured: with two unposed sources it names the second).
+        sources = [
+            PoseInput(s, state.source_name(s), tuple(state.frames_of_source(s)))
+            for s in reversed(state.source_ids())
+            if state.frames_of_source(s)
+        ]
+        geometries = [
+            (
+                g,
+                None if state.geometry_frame(g) == WORLD_FRAME_ID else state.geometry_frame(g),
+                state.geometry_shape(g),
+                state.geometry_pose(g).GetAsMatrix4(),
+            )
+            for g in state.geometry_ids()
+            if state.has_role(g, Role.kProximity)
+        ]
+        self.engine = ProximityEngine(frames, sources, geometries)
+        self.sources = self.engine.sources
+        self._validated: list[int | None] = [None] * len(self.sources)
+
+    def pose(self, values: Sequence[object]) -> None:
+        """Validates each source's value (Drake's order and messages), then poses the engine.
+
+        Raises:
+            RuntimeError: a source with frames has no value, or its vector's size
+                differs from its frame count, or lacks one of its frames.
+        """
+        for k, (source, value) in enumerate(zip(self.sources, values, strict=True)):
+            if value is None:
+                raise RuntimeError(
+                    f"Source '{source.name}' (id: {source.source_id.get_value()}) has registered "
+                    "dynamic frames but is not connected to the appropriate input port."
+                )
+            if not isinstance(value, FramePoseVector):
+                raise RuntimeError(
+                    f"reimpl: the pose port of source '{source.name}' holds a "
+                    f"{type(value).__name__}, not a FramePoseVector"
+                )
+            if self._validated[k] == value._stamp:
+                continue
+            if value.size() != len(source.frames):
+                raise RuntimeError(
+                    f"Disagreement in expected number of frames ({len(source.frames)}) and the "
+                    f"given number of frames ({value.size()})."
+                )
+            for frame in reversed(source.frames):
+                if not value.has_id(frame):
+                    raise RuntimeError(
+                        f"Registered frame id ({frame.get_value()}) belonging to source "
+                        f"{source.source_id.get_value()} was not found in the provided "
+                        "kinematics data."
+                    )
+            self._validated[k] = value._stamp
+        self.engine.pose(values, tuple(self._validated))
+
+    # ------------------------------------------------------------ queries
+    @staticmethod
+    def _arrays(results: list[PairResult]) -> npt.NDArray[np.float64]:
+        return np.array([(r.point_A, r.point_B, r.nhat_BA_W) for r in results], dtype=float)
+
+    @staticmethod
+    def _sort(results: list[PairResult]) -> None:
+        results.sort(key=lambda r: (r.id_A.get_value(), r.id_B.get_value()))
+
+    def point_pair_penetration(self) -> list[PenetrationAsPointPair]:
+        engine = self.engine
+        found = []
+        for a, b in engine.candidates(self.state.collision_filter.can_collide_with):
+            result = engine.penetration(a, b)
+            if result is not None:
+                found.append(result)
+        self._sort(found)
+        arrays = self._arrays(found)
+        return [
+            PenetrationAsPointPair._make(r.id_A, r.id_B, r.value, v)
+            for r, v in zip(found, arrays, strict=True)
+        ]
+
+    def has_collisions(self) -> bool:
+        return self.engine.has_collisions(self.state.collision_filter.can_collide_with)
+
+    def collision_candidates(self) -> list[tuple[GeometryId, GeometryId]]:
+        engine = self.engine
+        pairs = []
+        for a, b in engine.candidates(self.state.collision_filter.can_collide_with):
+            lo, hi = engine.ordered(a, b)
+            pairs.append((engine.body_id(lo), engine.body_id(hi)))
+        pairs.sort(key=lambda p: (p[0].get_value(), p[1].get_value()))
+        return pairs
+
+    def pairwise_distances(self, max_distance: float) -> list[SignedDistancePair]:
+        engine = self.engine
+        can_collide = self.state.collision_filter.can_collide_with
+        found = []
+        for a, b in engine.distance_pairs(max_distance):
+            if can_collide(engine.body_id(a), engine.body_id(b)):
+                result = engine.signed_distance(a, b)
+                if result.value <= max_distance:
+                    found.append(result)
+        self._sort(found)
+        return [self._distance_pair(r, v) for r, v in zip(found, self._arrays(found), strict=True)]
+
+    @staticmethod
+    def _distance_pair(r: PairResult, v: npt.NDArray[np.float64]) -> SignedDistancePair:
+        return SignedDistancePair._make(r.id_A, r.id_B, r.value, v)
+
+    def pair_distance(self, id_A: GeometryId, id_B: GeometryId) -> SignedDistancePair:
+        """φ(A, B), filters ignored; A then B must be registered proximity geometries."""
+        slots = []
+        for geometry_id in (id_A, id_B):
+            self.state.geometry_frame(geometry_id)  # "Referenced geometry N has not been ..."
+            slot = self.engine.slot(geometry_id)
+            if slot is None:
+                raise RuntimeError(
+                    f"The geometry {geometry_id.get_value()} cannot be used in "
+                    "ComputeSignedDistancePairClosestPoints; it does not have a proximity role. "
+                    f"It has {_role_text(self.state, geometry_id)}."
+                )
+            slots.append(slot)
+        result = self.engine.signed_distance(slots[0], slots[1])
+        return self._distance_pair(result, self._arrays([result])[0])
+
+    # -------------------------------------------------------------- poses
+    def frame_pose_in_world(self, frame_id: FrameId) -> RigidTransform:
+        if frame_id == WORLD_FRAME_ID:
+            return RigidTransform()
+        pose = self.engine.X_WF(frame_id)
+        if pose is None:
+            raise RuntimeError(
+                f"No world pose available for invalid frame id: {frame_id.get_value()}"
+            )
+        return _rigid_transform(*pose)
+
+    def frame_pose_in_parent(self, frame_id: FrameId) -> RigidTransform:
+        if frame_id == WORLD_FRAME_ID:
+            return RigidTransform()
+        pose = self.engine.X_PF(frame_id)
+        if pose is None:
+            raise RuntimeError(f"No pose available for invalid frame id: {frame_id.get_value()}")
+        return _rigid_transform(*pose)
+
+    def geometry_pose_in_world(self, geometry_id: GeometryId) -> RigidTransform:
+        """X_WG = X_WF · X_FG (X_FG for anchored geometry), for a geometry of any role."""
+        frame_id = self.state.geometry_frame(geometry_id)
+        slot = self.engine.slot(geometry_id)
+        if slot is not None:
+            return _rigid_transform(*self.engine.X_WG_arrays(slot))
+        X_FG = self.state.geometry_pose(geometry_id).GetAsMatrix4()
+        if frame_id == WORLD_FRAME_ID:
+            return _rigid_transform(X_FG[:3, :3], X_FG[:3, 3])
+        R_WF, p_WF = self.engine.X_WF(frame_id)  # type: ignore[misc]
+        return _rigid_transform(*compose_poses(R_WF, p_WF, X_FG[:3, :3], X_FG[:3, 3]))
 
 
 FramePoseVector_ = scalar_template("reimpl.geometry", "FramePoseVector_", FramePoseVector)

@@ -17,6 +17,7 @@ do not, so contexts made afterwards miss them until one of those calls.
 from __future__ import annotations
 
 from typing import Any
+from weakref import WeakKeyDictionary
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
@@ -31,7 +32,7 @@ from reimpl.geometry.geometry_roles import (
 )
 from reimpl.geometry.geometry_state import WORLD_FRAME_ID, GeometryState
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
-from reimpl.geometry.query_object import QueryObject
+from reimpl.geometry.query_object import PosedState, QueryObject
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
 from reimpl.systems.framework import Context, InputPort, LeafContext, LeafSystem, OutputPort
 
@@ -60,6 +61,8 @@ class SceneGraph(LeafSystem):
         self._configuration_ports: dict[SourceId, InputPort] = {}
         self._num_input_ports = 0
         self._query_port = OutputPort(self, "query", 0, self._eval_query)
+        # Each context's posed proximity engine, kept while the context lives.
+        self._posed_states: WeakKeyDictionary[Context, PosedState] = WeakKeyDictionary()
         self._model_inspector = SceneGraphInspector._view(lambda: self._model)
 
     # ------------------------------------------------------------- helpers
@@ -301,7 +304,21 @@ class SceneGraph(LeafSystem):
     def _eval_query(self, context: Context) -> QueryObject:
         self._state_of(context)
         context._clone_check = self._check_pose_inputs
-        return QueryObject._make(lambda: context._geometry_state)
+        return QueryObject._make(lambda: context._geometry_state, lambda: self._posed(context))
+
+    def _posed(self, context: Context) -> PosedState:
+        """The context's state posed from its pose ports now (Drake's FullPoseUpdate).
+
+        The engine is rebuilt when the context's state changed, re-posed when a
+        pose port's vector changed, and otherwise reused as it is.
+        """
+        state = context._geometry_state
+        posed = self._posed_states.get(context)
+        if posed is None or posed.state is not state or posed.revision != state.revision:
+            posed = PosedState(state)
+            self._posed_states[context] = posed
+        posed.pose([self._pose_ports[s.source_id]._eval(context) for s in posed.sources])
+        return posed
 
     def _check_pose_inputs(self, context: Context) -> None:
         """Why Clone() fails after the query port was evaluated without poses.
