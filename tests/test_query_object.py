@@ -15,6 +15,7 @@ from __future__ import annotations
 import itertools
 import math
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -559,6 +560,7 @@ def test_unknown_ids_raise_drakes_messages(api: Api) -> None:
             f"Referenced geometry {bad_geometry.get_value()} has not been registered.",
         ),
     ]
+    call: Callable[[], object]
     for call, message in cases:
         with pytest.raises(RuntimeError) as error:
             call()

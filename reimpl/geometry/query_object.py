@@ -190,6 +190,7 @@ class FramePoseVector:
         self._poses: dict[FrameId, RigidTransform] = {}
         self._matrices: dict[FrameId, npt.NDArray[np.float64]] = {}
         self._stamp = next(_stamps)
+        self._stacked: tuple[int, tuple[int, ...], npt.NDArray[np.float64]] | None = None
 
     def set_value(self, id: FrameId, value: RigidTransform) -> None:
         pose = RigidTransform(value)
@@ -203,6 +204,15 @@ class FramePoseVector:
     def _matrix(self, id: FrameId) -> npt.NDArray[np.float64]:
         """X_PF as a 4×4 matrix (shared, not copied)."""
         return self._matrices[id]
+
+    def _stack(self) -> tuple[tuple[int, ...], npt.NDArray[np.float64]]:
+        """The frames' id values in insertion order and their X_PF stacked (k, 4, 4),
+        computed once per content."""
+        if self._stacked is None or self._stacked[0] != self._stamp:
+            order = tuple(f.get_value() for f in self._matrices)
+            block = np.array(list(self._matrices.values()), dtype=float).reshape(-1, 4, 4)
+            self._stacked = (self._stamp, order, block)
+        return self._stacked[1], self._stacked[2]
 
     def has_id(self, id: FrameId) -> bool:
         return id in self._poses
@@ -222,7 +232,7 @@ class FramePoseVector:
         """Same poses, same stamp (same content); either copy's next edit re-stamps it."""
         other = object.__new__(FramePoseVector)
         other._poses, other._matrices = dict(self._poses), dict(self._matrices)
-        other._stamp = self._stamp
+        other._stamp, other._stacked = self._stamp, self._stacked
         return other
 
 
@@ -260,7 +270,12 @@ class PosedState:
         # N.B. Drake walks the sources in its unordered_map's order: newest first for
         # a few sources (measured: with two unposed sources it names the second).
         sources = [
-            PoseInput(s, state.source_name(s), tuple(state.frames_of_source(s)))
+            PoseInput(
+                s,
+                state.source_name(s),
+                tuple(state.frames_of_source(s)),
+                tuple(f.get_value() for f in state.frames_of_source(s)),
+            )
             for s in reversed(state.source_ids())
             if state.frames_of_source(s)
         ]
@@ -285,6 +300,7 @@ class PosedState:
             RuntimeError: a source with frames has no value, or its vector's size
                 differs from its frame count, or lacks one of its frames.
         """
+        blocks = []
         for k, (source, value) in enumerate(zip(self.sources, values, strict=True)):
             if value is None:
                 raise RuntimeError(
@@ -296,45 +312,51 @@ class PosedState:
                     f"reimpl: the pose port of source '{source.name}' holds a "
                     f"{type(value).__name__}, not a FramePoseVector"
                 )
-            if self._validated[k] == value._stamp:
-                continue
-            if value.size() != len(source.frames):
+            if self._validated[k] != value._stamp:
+                self._validate(source, value)
+                self._validated[k] = value._stamp
+            blocks.append(value)
+        self.engine.pose(
+            tuple(self._validated),
+            lambda: [self._block(s, v) for s, v in zip(self.sources, blocks, strict=True)],
+        )
+
+    @staticmethod
+    def _validate(source: PoseInput, value: FramePoseVector) -> None:
+        if value._stack()[0] == source.values:
+            return  # exactly the source's frames, in its order
+        if value.size() != len(source.frames):
+            raise RuntimeError(
+                f"Disagreement in expected number of frames ({len(source.frames)}) and the "
+                f"given number of frames ({value.size()})."
+            )
+        for frame in reversed(source.frames):
+            if not value.has_id(frame):
                 raise RuntimeError(
-                    f"Disagreement in expected number of frames ({len(source.frames)}) and the "
-                    f"given number of frames ({value.size()})."
+                    f"Registered frame id ({frame.get_value()}) belonging to source "
+                    f"{source.source_id.get_value()} was not found in the provided "
+                    "kinematics data."
                 )
-            for frame in reversed(source.frames):
-                if not value.has_id(frame):
-                    raise RuntimeError(
-                        f"Registered frame id ({frame.get_value()}) belonging to source "
-                        f"{source.source_id.get_value()} was not found in the provided "
-                        "kinematics data."
-                    )
-            self._validated[k] = value._stamp
-        self.engine.pose(values, tuple(self._validated))
+
+    @staticmethod
+    def _block(source: PoseInput, value: FramePoseVector) -> npt.NDArray[np.float64]:
+        """X_PF of the source's frames, in the source's order (k, 4, 4)."""
+        order, block = value._stack()
+        if order == source.values:
+            return block
+        return np.array([value._matrix(f) for f in source.frames], dtype=float)
 
     # ------------------------------------------------------------ queries
-    @staticmethod
-    def _arrays(results: list[PairResult]) -> npt.NDArray[np.float64]:
-        return np.array([(r.point_A, r.point_B, r.nhat_BA_W) for r in results], dtype=float)
-
     @staticmethod
     def _sort(results: list[PairResult]) -> None:
         results.sort(key=lambda r: (r.id_A.get_value(), r.id_B.get_value()))
 
     def point_pair_penetration(self) -> list[PenetrationAsPointPair]:
         engine = self.engine
-        found = []
-        for a, b in engine.candidates(self.state.collision_filter.can_collide_with):
-            result = engine.penetration(a, b)
-            if result is not None:
-                found.append(result)
+        pairs = engine.candidates(self.state.collision_filter.can_collide_with)
+        found = [r for r in engine.penetrations(pairs) if r is not None]
         self._sort(found)
-        arrays = self._arrays(found)
-        return [
-            PenetrationAsPointPair._make(r.id_A, r.id_B, r.value, v)
-            for r, v in zip(found, arrays, strict=True)
-        ]
+        return [PenetrationAsPointPair._make(r.id_A, r.id_B, r.value, r.vectors) for r in found]
 
     def has_collisions(self) -> bool:
         return self.engine.has_collisions(self.state.collision_filter.can_collide_with)
@@ -351,18 +373,14 @@ class PosedState:
     def pairwise_distances(self, max_distance: float) -> list[SignedDistancePair]:
         engine = self.engine
         can_collide = self.state.collision_filter.can_collide_with
-        found = []
-        for a, b in engine.distance_pairs(max_distance):
-            if can_collide(engine.body_id(a), engine.body_id(b)):
-                result = engine.signed_distance(a, b)
-                if result.value <= max_distance:
-                    found.append(result)
+        pairs = [
+            (a, b)
+            for a, b in engine.distance_pairs(max_distance)
+            if can_collide(engine.body_id(a), engine.body_id(b))
+        ]
+        found = [r for r in engine.signed_distances(pairs) if r.value <= max_distance]
         self._sort(found)
-        return [self._distance_pair(r, v) for r, v in zip(found, self._arrays(found), strict=True)]
-
-    @staticmethod
-    def _distance_pair(r: PairResult, v: npt.NDArray[np.float64]) -> SignedDistancePair:
-        return SignedDistancePair._make(r.id_A, r.id_B, r.value, v)
+        return [SignedDistancePair._make(r.id_A, r.id_B, r.value, r.vectors) for r in found]
 
     def pair_distance(self, id_A: GeometryId, id_B: GeometryId) -> SignedDistancePair:
         """φ(A, B), filters ignored; A then B must be registered proximity geometries."""
@@ -377,8 +395,8 @@ class PosedState:
                     f"It has {_role_text(self.state, geometry_id)}."
                 )
             slots.append(slot)
-        result = self.engine.signed_distance(slots[0], slots[1])
-        return self._distance_pair(result, self._arrays([result])[0])
+        r = self.engine.signed_distance(slots[0], slots[1])
+        return SignedDistancePair._make(r.id_A, r.id_B, r.value, r.vectors)
 
     # -------------------------------------------------------------- poses
     def frame_pose_in_world(self, frame_id: FrameId) -> RigidTransform:

@@ -1,0 +1,132 @@
+"""Times posed proximity queries, reimpl against pydrake in one run; prints ms and ratios.
+
+Scene: n spheres (radius r) on n frames posed at random in a cube of side L
+(rotations random too); with the defaults (n = 1000, r = 0.3, L = 10) a few
+hundred pairs overlap. Both implementations get the same poses; the pair counts
+are printed to show they answer alike. Two timings per query, each the median
+of ``repeat`` runs, pydrake's and reimpl's runs interleaved:
+
+* "same poses": the query again on the QueryObject of a posed context (both
+  implementations cache the poses; reimpl also keeps the broadphase's pairs and
+  the narrowphase answers per pose, so this is its cheapest case);
+* "new poses": FixValue of the other of two FramePoseVectors, then the query
+  (pose update, broadphase and narrowphase from scratch on both sides).
+
+Usage: python benchmarks/bench_queries.py [n [r [L]]]
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections.abc import Callable
+from functools import partial
+from typing import Any
+
+import numpy as np
+
+from conformance.backends.pydrake_api import pydrake_api
+from conformance.backends.reimpl_api import reimpl_api
+from conformance.backends.scene_graph import Api
+
+MAX_DISTANCE = 0.05
+
+
+class Posed:
+    """n proximity spheres on n frames, with two FramePoseVectors to alternate between."""
+
+    def __init__(self, api: Api, n: int, radius: float, side: float) -> None:
+        g, m = api.geometry, api.math
+        self.sg = g.SceneGraph()
+        self.source = self.sg.RegisterSource(name="bench")
+        frames = []
+        for i in range(n):
+            frame = self.sg.RegisterFrame(
+                source_id=self.source, frame=g.GeometryFrame(frame_name=f"f{i}")
+            )
+            geometry = self.sg.RegisterGeometry(
+                source_id=self.source,
+                frame_id=frame,
+                geometry=g.GeometryInstance(
+                    X_PG=m.RigidTransform(), shape=g.Sphere(radius=radius), name=f"g{i}"
+                ),
+            )
+            self.sg.AssignRole(
+                source_id=self.source, geometry_id=geometry, properties=g.ProximityProperties()
+            )
+            frames.append(frame)
+        rng = np.random.default_rng(0)
+        self.vectors = []
+        for _ in range(2):
+            vector = g.FramePoseVector()
+            for frame in frames:
+                rpy = m.RollPitchYaw(rpy=rng.uniform(-np.pi, np.pi, 3))
+                vector.set_value(
+                    id=frame, value=m.RigidTransform(rpy=rpy, p=rng.uniform(0, side, 3))
+                )
+            self.vectors.append(vector)
+        self.context = self.sg.CreateDefaultContext()
+        self.port = self.sg.get_source_pose_port(self.source)
+        self.port.FixValue(self.context, self.vectors[0])
+        self.query = self.sg.get_query_output_port().Eval(self.context)
+        self.turn = 0
+
+    def repose(self) -> Any:
+        """Fixes the other pose vector; returns the QueryObject, evaluated again."""
+        self.turn = 1 - self.turn
+        self.port.FixValue(self.context, self.vectors[self.turn])
+        return self.sg.get_query_output_port().Eval(self.context)
+
+
+QUERIES: dict[str, Callable[[Any], Any]] = {
+    "ComputePointPairPenetration": lambda q: q.ComputePointPairPenetration(),
+    "HasCollisions": lambda q: q.HasCollisions(),
+    "FindCollisionCandidates": lambda q: q.FindCollisionCandidates(),
+    f"SignedDistance(max {MAX_DISTANCE})": lambda q: q.ComputeSignedDistancePairwiseClosestPoints(
+        max_distance=MAX_DISTANCE
+    ),
+}
+
+
+def run(call: Callable[[Any], Any], scene: Posed, query: Any) -> Any:
+    """The query on ``query``, or (None) on the scene re-posed and evaluated again."""
+    return call(scene.repose() if query is None else query)
+
+
+def elapsed_ms(fn: Callable[[], object]) -> float:
+    start = time.perf_counter()
+    fn()
+    return (time.perf_counter() - start) * 1e3
+
+
+def median(values: list[float]) -> float:
+    return sorted(values)[len(values) // 2]
+
+
+def main(n: int, radius: float, side: float) -> None:
+    scenes = {
+        "pydrake": Posed(pydrake_api(), n, radius, side),
+        "reimpl": Posed(reimpl_api(), n, radius, side),
+    }
+    print(f"n = {n} spheres, r = {radius}, cube side {side}")
+    for name, call in QUERIES.items():
+        counts = {k: call(s.query) for k, s in scenes.items()}
+        sizes = {k: v if isinstance(v, bool) else len(v) for k, v in counts.items()}
+        print(f"\n{name}: pydrake {sizes['pydrake']}, reimpl {sizes['reimpl']}")
+        for how, repeat in (("same poses", 41), ("new poses", 11)):
+            times: dict[str, list[float]] = {k: [] for k in scenes}
+            for _ in range(repeat):
+                for key, scene in scenes.items():
+                    query = scene.query if how == "same poses" else None
+                    times[key].append(elapsed_ms(partial(run, call, scene, query)))
+            pd, rm = median(times["pydrake"]), median(times["reimpl"])
+            print(f"  {how:10s}  pydrake {pd:9.4f} ms   reimpl {rm:9.4f} ms   ratio {rm / pd:6.2f}")
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    main(
+        int(args[0]) if args else 1000,
+        float(args[1]) if len(args) > 1 else 0.3,
+        float(args[2]) if len(args) > 2 else 10.0,
+    )
