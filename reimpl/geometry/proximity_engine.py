@@ -8,14 +8,18 @@ arrays and result objects.
 Posing. A pose port holds ``X_PF`` for each frame of its source, F's pose in
 its parent P (measured: a frame registered under another frame). Then
 ``X_WF = X_WP · X_PF`` down the frame tree, ``X_WG = X_WF · X_FG`` for a
-geometry on F, and ``X_WG = X_FG`` for anchored geometry.
+geometry on F (rounded as Drake's fused multiply-adds round it), and
+``X_WG = X_FG`` for anchored geometry. Posing again moves only the FCL objects
+whose ``X_WG`` changed.
 
 Broadphase. Two ``fcl.DynamicAABBTreeCollisionManager``, as in Drake: one for
 dynamic geometry (queried against itself) and one for anchored geometry
 (queried against the dynamic one, dynamic object first); anchored pairs are
 never met. Each met pair is kept only if ``collision_filter.can_collide_with``
-(filters and activation). The manager, and the pairs it meets, are cached per
-pose: posing again moves only the objects whose ``X_WG`` changed.
+(filters and activation). python-fcl hands callbacks new wrappers, so a met
+object is named by its translation (see ``_identify``). Per pose the engine
+keeps the met pairs, the distance traversal's visits and every narrowphase
+answer; the filter is applied at each query, as it may change in between.
 
 Narrowphase, per pair (A, B) with ``id_A < id_B`` (Drake orders the pair
 before computing it), as Drake computes it:
@@ -130,10 +134,6 @@ class _Pose(NamedTuple):
     def apply_inverse(self, v: Vec) -> Vec:
         """X_WG⁻¹ · p_W = Rᵀ · p_W + Rᵀ · (−p), as Drake's ``X.inverse() * p``."""
         return _add(_rot_t(self.R, v), _rot_t(self.R, _scale(self.p, -1.0)))
-
-
-def _array(v: Vec) -> Array:
-    return np.array(v, dtype=float)
 
 
 # ================================================================ composition
@@ -275,13 +275,13 @@ def _box_in_frame(h: Sequence[float], p_GQ: Sequence[float]) -> tuple[list[float
     grad = [0.0] * n
     if 2 in where:
         diff = [p_GQ[i] - p_GN[i] for i in range(n)]
-        length = math.sqrt(sum_left(d * d for d in diff))
+        length = math.sqrt(_sum_left(d * d for d in diff))
         grad = [d / length for d in diff]
     elif 1 in where:
         for i in range(n):
             if where[i] == 1:
                 grad[i] = _sign(p_GN[i])
-        length = math.sqrt(sum_left(g * g for g in grad))
+        length = math.sqrt(_sum_left(g * g for g in grad))
         grad = [g / length for g in grad]
     else:
         axis, best = -1, math.inf
@@ -296,7 +296,7 @@ def _box_in_frame(h: Sequence[float], p_GQ: Sequence[float]) -> tuple[list[float
     return p_GN, grad
 
 
-def sum_left(values: Any) -> float:
+def _sum_left(values: Any) -> float:
     """Σ values, left to right (as Eigen's fixed-size reductions)."""
     total = 0.0
     first = True
