@@ -339,7 +339,7 @@ class SceneGraph(LeafSystem):
                     "has registered dynamic frames but is not connected to the appropriate "
                     "input port."
                 )
-            given = context._fixed_inputs[port._index]
+            given = port._eval(context)  # fixed, or computed by a connected output
             size = given.size() if hasattr(given, "size") else len(frames)
             if size != len(frames):
                 raise RuntimeError(
