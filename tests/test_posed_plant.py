@@ -891,22 +891,7 @@ def test_queries_through_the_diagram_see_the_plants_poses() -> None:
     assert colliding == 9  # measured: 9 colliding pairs over the 10 configurations
 
 
-@pytest.mark.parametrize(
-    "implementation",
-    [
-        pytest.param(
-            "reimpl",
-            marks=pytest.mark.xfail(
-                reason="reimpl bug: SceneGraph's Clone check reads only fixed pose values "
-                "(context._fixed_inputs), not a wired port's, so cloning a diagram context "
-                "after a query raises KeyError; the fix is in reimpl/geometry/scene_graph.py "
-                "(_check_pose_inputs: given = port._eval(context))",
-                strict=False,
-            ),
-        ),
-        "pydrake",
-    ],
-)
+@pytest.mark.parametrize("implementation", ["reimpl", "pydrake"])
 def test_a_diagram_context_clones_after_a_query(implementation: str) -> None:
     posed = Posed(modules(implementation))
     posed.scene_graph.get_query_output_port().Eval(posed.sg_context)

@@ -244,8 +244,11 @@ class InputPort:
 
     def FixValue(self, context: Context, value: object) -> FixedInputPortValue:
         _check_port_context("InputPort", self._system, self._index, self._name, context)
-        context._fixed_inputs[self._index] = value
-        return FixedInputPortValue(value)
+        # N.B. The context keeps a copy, as pydrake's does: editing ``value`` afterwards
+        # does not change what the context holds.
+        held = copy.copy(value)
+        context._fixed_inputs[self._index] = held
+        return FixedInputPortValue(held)
 
     def _source(self, context: Context) -> tuple[OutputPort, Context] | None:
         """The output port wired to this port in ``context``'s diagram, and its subcontext."""
