@@ -4,15 +4,19 @@ Everything that compares backends (the scenario runner, the lockstep fuzzer,
 tests) calls ``diff``. Two answers agree iff ``diff`` is empty:
 
 - **Results** agree iff both returned values that agree, or both raised the
-  same ``ErrorKind`` with the same normalised message. Binding errors (no
+  same ``ErrorKind`` with the same normalised message (where the op's
+  ``CommandSpec.error_choice`` names a part of it that is Drake's unspecified
+  choice, whatever that part says: ``comparable_message``). Binding errors (no
   overload accepts the arguments) compare by kind alone: their wording is
   pybind11's, and it changes between releases.
 - **Values** agree as the op's ``CommandSpec.compare`` says
   (``value_differences``, which the expectations' ``returns`` use too):
   ``EXACT``, equal JSON values; ``PROXIMITY``, query records (one, or a
-  sorted list) with equal pairs and shapes in the same order and every
-  number within the tolerance of its record's shape pair
-  (``conformance.tolerances``); ``POSE``, ``xyz`` and rotation entries within
+  sorted list) with equal pairs and shapes in the same order and their
+  numbers within the tolerances of the record's shape pair
+  (``conformance.tolerances``: the depth or distance; unless the contact is
+  a touch, the witness points, and the normal through the separation vector
+  ``d·nhat``); ``POSE``, ``xyz`` and rotation entries within
   ``tolerances.POSE_TOLERANCE``.
 - **Observations** agree iff they have the same locations and, at each one,
   the same candidate set C, the same IsActive of every declaration label and
@@ -28,6 +32,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -37,7 +42,9 @@ from conformance.protocol import ErrorKind, Observation, Pair, Result
 from conformance.tolerances import POSE_TOLERANCE, tolerance
 
 __all__ = [
+    "CHOICE",
     "Difference",
+    "comparable_message",
     "diff",
     "diff_observations",
     "diff_results",
@@ -66,38 +73,57 @@ def format_pairs(pairs: Iterable[Pair]) -> list[str]:
     return sorted(f"{a}-{b}" for a, b in pairs)
 
 
-#: A record field → the Tolerance attribute it is compared within.
+#: Record fields: the signed number d (depth or distance), the witness points, the normal.
+_NUMBER_FIELDS = ("depth", "distance")
+_WITNESS_FIELDS = ("p_WCa", "p_WCb", "p_ACa", "p_BCb")
+_NORMAL_FIELD = "nhat_BA_W"
+#: A record field → the Tolerance attribute it is compared within (tests and reports).
 _FIELD_TOLERANCE: Mapping[str, str] = {
-    "depth": "distance",
-    "distance": "distance",
-    "p_WCa": "witness",
-    "p_WCb": "witness",
-    "p_ACa": "witness",
-    "p_BCb": "witness",
-    "nhat_BA_W": "normal",
+    **dict.fromkeys(_NUMBER_FIELDS, "distance"),
+    **dict.fromkeys(_WITNESS_FIELDS, "witness"),
+    _NORMAL_FIELD: "normal",
 }
 #: Record fields compared exactly.
 _EXACT_FIELDS = ("pair", "shapes")
 
 
-def _gap(reference: Any, other: Any) -> float:
-    """``|a − b|`` of two numbers, ``‖a − b‖`` of two vectors (NaN if either is malformed)."""
-    if isinstance(reference, (int, float)) and isinstance(other, (int, float)):
-        return abs(float(reference) - float(other))
-    if (
-        isinstance(reference, Sequence)
-        and isinstance(other, Sequence)
-        and len(reference) == len(other)
-        and all(isinstance(x, (int, float)) for x in (*reference, *other))
+def _numbers(value: Any) -> list[float] | None:
+    """A number or a vector of numbers as a list of floats (None if malformed)."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return [float(value)]
+    if isinstance(value, Sequence) and all(
+        isinstance(x, (int, float)) and not isinstance(x, bool) for x in value
     ):
-        return math.sqrt(
-            sum((float(a) - float(b)) ** 2 for a, b in zip(reference, other, strict=True))
-        )
-    return math.nan
+        return [float(x) for x in value]
+    return None
+
+
+def _gap(reference: Any, other: Any) -> float:
+    """``|a − b|`` of two numbers, ``‖a − b‖`` of two vectors; a NaN entry agrees only with a
+    NaN (gap 0), else the gap is infinite; NaN if either is malformed."""
+    a, b = _numbers(reference), _numbers(other)
+    if a is None or b is None or len(a) != len(b):
+        return math.nan
+    total = 0.0
+    for x, y in zip(a, b, strict=True):
+        if math.isnan(x) or math.isnan(y):
+            if not (math.isnan(x) and math.isnan(y)):
+                return math.inf
+            continue
+        total += (x - y) ** 2
+    return math.sqrt(total)
+
+
+def _scaled(d: Any, vector: Any) -> Any:
+    """``d·vector`` (the separation vector of a record), or ``vector`` if malformed."""
+    scale, entries = _numbers(d), _numbers(vector)
+    if scale is None or entries is None or len(scale) != 1:
+        return vector
+    return [scale[0] * x for x in entries]
 
 
 def _record_differences(reference: Any, other: Any) -> Iterator[str]:
-    """How a query record differs beyond its shape pair's tolerances."""
+    """How a query record differs beyond its shape pair's tolerances (``tolerances``)."""
     if not isinstance(reference, Mapping) or not isinstance(other, Mapping):
         yield "not a query record"
         return
@@ -110,23 +136,31 @@ def _record_differences(reference: Any, other: Any) -> Iterator[str]:
             yield f"{name} {key} {reference.get(key)} vs {other.get(key)}"
             return
     shapes = reference.get("shapes")
-    if not isinstance(shapes, list) or len(shapes) != 2:
-        yield f"{name} shapes {shapes} are not a pair"
+    number = next((key for key in _NUMBER_FIELDS if key in reference), None)
+    if not isinstance(shapes, list) or len(shapes) != 2 or number is None:
+        yield f"{name} is not a query record of a shape pair"
         return
     row = tolerance(*map(str, shapes))
+    d, d_other = reference[number], other[number]
+    magnitude = abs(d) if isinstance(d, (int, float)) else math.inf
     for key in sorted(reference):
-        if key in _EXACT_FIELDS:
+        if key in _EXACT_FIELDS or reference[key] == other[key]:
             continue
+        if key != number and magnitude < row.touching:
+            continue  # a touch: no unique witness points or normal (tolerances' module doc)
         attribute = _FIELD_TOLERANCE.get(key)
         if attribute is None:
-            if reference[key] != other[key]:
-                yield f"{name} {key} differs"
+            yield f"{name} {key} differs"
             continue
         allowed = getattr(row, attribute)
-        gap = _gap(reference[key], other[key])
-        if reference[key] != other[key] and not gap <= allowed:
+        if key == _NORMAL_FIELD:
+            gap = _gap(_scaled(d, reference[key]), _scaled(d_other, other[key]))
+            what = f"{number}·{key}"
+        else:
+            gap, what = _gap(reference[key], other[key]), key
+        if not gap <= allowed:
             yield (
-                f"{name} {key}: |Δ| = {gap:.3g} > {allowed:g} "
+                f"{name} {what}: |Δ| = {gap:.3g} > {allowed:g} "
                 f"({'-'.join(shapes)} {attribute} tolerance)"
             )
 
@@ -184,6 +218,19 @@ def value_differences(op: str, reference: Any, other: Any) -> list[str]:
     return _COMPARISONS[comparison](reference, other)
 
 
+#: What ``comparable_message`` puts where an op's ``error_choice`` matched.
+CHOICE = "<Drake's choice>"
+
+
+def comparable_message(op: str, message: str) -> str:
+    """``message`` with the part naming Drake's unspecified choice (the op's
+    ``CommandSpec.error_choice``) replaced by ``CHOICE``."""
+    command = GRAMMAR.get(op)
+    if command is None or command.error_choice is None:
+        return message
+    return re.sub(command.error_choice, CHOICE, message, count=1)
+
+
 def diff_results(reference: Result, other: Result, *, op: str = "command") -> list[Difference]:
     """[] iff the two Results agree (see the module doc)."""
     if reference.error is None and other.error is None:
@@ -192,15 +239,17 @@ def diff_results(reference: Result, other: Result, *, op: str = "command") -> li
             return []
         shown = "" if details == ["values differ"] else f" ({'; '.join(details)})"
         return [Difference(f"{op} result{shown}", reference.to_json(), other.to_json())]
-    if _errors_agree(reference, other):
+    if _errors_agree(op, reference, other):
         return []
     return [Difference(f"{op} result", reference.to_json(), other.to_json())]
 
 
-def _errors_agree(a: Result, b: Result) -> bool:
+def _errors_agree(op: str, a: Result, b: Result) -> bool:
     if a.error is None or b.error is None or a.error.kind != b.error.kind:
         return False
-    return a.error.kind is ErrorKind.BINDING or a.error.message == b.error.message
+    return a.error.kind is ErrorKind.BINDING or comparable_message(
+        op, a.error.message
+    ) == comparable_message(op, b.error.message)
 
 
 def _observation_differences(reference: Observation, other: Observation) -> Iterator[Difference]:

@@ -4,9 +4,24 @@ from __future__ import annotations
 
 from typing import Any
 
-from conformance.compare import Difference, diff, diff_observations, diff_results, value_differences
+from conformance.compare import (
+    CHOICE,
+    Difference,
+    comparable_message,
+    diff,
+    diff_observations,
+    diff_results,
+    value_differences,
+)
 from conformance.protocol import ErrorInfo, ErrorKind, LocationState, Observation, Result
-from conformance.tolerances import POSE_TOLERANCE, TOLERANCES, shape_pair, tolerance
+from conformance.tolerances import (
+    CLOSED,
+    ITERATIVE,
+    POSE_TOLERANCE,
+    TOLERANCES,
+    shape_pair,
+    tolerance,
+)
 
 
 def state(*pairs: tuple[str, str], history: bool = False, **active: bool) -> Observation:
@@ -87,9 +102,9 @@ def shifted(record: dict[str, Any], key: str, by: float) -> dict[str, Any]:
     return {**record, key: moved}
 
 
-def test_query_numbers_12_orders_below_the_tolerance_agree() -> None:
+def test_query_numbers_1e_13_apart_agree_for_a_closed_form_pair() -> None:
     for key in ("depth", "p_WCa", "p_WCb", "nhat_BA_W"):
-        near = [shifted(BOX_SPHERE, key, 1e-12)]
+        near = [shifted(BOX_SPHERE, key, 1e-13)]
         assert value_differences(PENETRATION, [BOX_SPHERE], near) == []
         assert diff_results(Result(value=[BOX_SPHERE]), Result(value=near), op=PENETRATION) == []
 
@@ -97,7 +112,7 @@ def test_query_numbers_12_orders_below_the_tolerance_agree() -> None:
 def test_a_sphere_sphere_depth_1e_3_off_disagrees_and_says_by_how_much() -> None:
     off = shifted(SPHERES, "depth", 1e-3)
     assert value_differences(PENETRATION, [SPHERES], [off]) == [
-        "s1-s2 depth: |Δ| = 0.001 > 1e-09 (sphere-sphere distance tolerance)"
+        "s1-s2 depth: |Δ| = 0.001 > 1e-12 (sphere-sphere distance tolerance)"
     ]
     (difference,) = diff_results(Result(value=[SPHERES]), Result(value=[off]), op=PENETRATION)
     assert difference.what.startswith(f"{PENETRATION} result (s1-s2 depth: |Δ| = 0.001")
@@ -123,7 +138,7 @@ def test_pair_lists_are_compared_exactly_whatever_the_numbers() -> None:
     assert value_differences(PENETRATION, [SPHERES], [shapes]) != []
 
 
-def test_an_ellipsoid_pair_is_compared_within_the_gjk_tolerance() -> None:
+def test_an_ellipsoid_pair_is_compared_within_the_iterative_tolerance() -> None:
     ellipsoid = {**SPHERES, "shapes": ["ellipsoid", "sphere"]}
     assert tolerance("sphere", "ellipsoid").distance == tolerance("ellipsoid", "sphere").distance
     allowed = tolerance("ellipsoid", "sphere").distance
@@ -145,9 +160,9 @@ def test_a_signed_distance_pair_record_is_compared_alone() -> None:
         "p_BCb": [-0.5, 0.17029855566198823, -0.2923360863848727],
         "nhat_BA_W": [-0.9362933635841992, -0.28962947762551555, 0.19866933079506122],
     }
-    assert value_differences(op, record, shifted(record, "p_BCb", 1e-12)) == []
+    assert value_differences(op, record, shifted(record, "p_BCb", 1e-13)) == []
     assert value_differences(op, record, shifted(record, "p_BCb", 1e-6)) == [
-        "b-a p_BCb: |Δ| = 1e-06 > 1e-09 (sphere-box witness tolerance)"
+        "b-a p_BCb: |Δ| = 1e-06 > 1e-12 (sphere-box witness tolerance)"
     ]
 
 
@@ -175,3 +190,73 @@ def test_every_pair_of_the_six_shapes_has_a_tolerance_row_with_a_reason() -> Non
     rows = {shape_pair(a, b) for a in shapes for b in shapes}
     assert rows == set(TOLERANCES)
     assert all(row.reason for row in TOLERANCES.values())
+    assert tolerance("sphere", "capsule") is CLOSED
+    assert tolerance("capsule", "capsule") is ITERATIVE  # FCL's MPR, not a closed form
+
+
+#: ComputeSignedDistancePairClosestPoints, capsule A along cylinder B, nearly touching.
+TOUCH = {
+    "pair": ["k", "y"],
+    "shapes": ["capsule", "cylinder"],
+    "distance": 1e-11,
+    "p_ACa": [0.1, 0.0, 0.2],
+    "p_BCb": [0.3, 0.0, 0.1],
+    "nhat_BA_W": [0.0, 0.0, 1.0],
+}
+PAIR = "compute_signed_distance_pair_closest_points"
+
+
+def test_at_a_touch_only_the_distance_is_compared() -> None:
+    """Below the row's touching distance the witness points and the normal are not unique."""
+    elsewhere = {
+        **TOUCH,
+        "p_ACa": [0.16, 0.0, 0.2],
+        "p_BCb": [0.36, 0.0, 0.1],
+        "nhat_BA_W": [0.0, 0.0, -1.0],
+    }
+    assert value_differences(PAIR, TOUCH, elsewhere) == []
+    assert value_differences(PAIR, TOUCH, {**elsewhere, "distance": 1e-4}) != []
+    apart = {**TOUCH, "distance": 0.01}
+    assert value_differences(PAIR, apart, {**elsewhere, "distance": 0.01}) == [
+        "k-y distance·nhat_BA_W: |Δ| = 0.02 > 5e-05 (capsule-cylinder normal tolerance)",
+        "k-y p_ACa: |Δ| = 0.06 > 1e-05 (capsule-cylinder witness tolerance)",
+        "k-y p_BCb: |Δ| = 0.06 > 1e-05 (capsule-cylinder witness tolerance)",
+    ]
+
+
+def test_a_normal_is_compared_through_the_separation_vector() -> None:
+    """‖d·n − d′·n′‖: a normal 1e-3 off is within 5e-5 at d = 0.01, not at d = 0.1."""
+    tilted = [0.0, 1e-3, (1 - 1e-6) ** 0.5]
+    near = {**TOUCH, "distance": 0.01}
+    assert value_differences(PAIR, near, {**near, "nhat_BA_W": tilted}) == []
+    far = {**TOUCH, "distance": 0.1}
+    (difference,) = value_differences(PAIR, far, {**far, "nhat_BA_W": tilted})
+    assert difference.startswith("k-y distance·nhat_BA_W: |Δ| = 0.0001 > 5e-05")
+
+
+def test_a_nan_normal_agrees_only_with_a_nan_normal() -> None:
+    nan = float("nan")
+    record = {**SPHERES, "nhat_BA_W": [nan, nan, nan]}
+    assert value_differences(PENETRATION, [record], [dict(record)]) == []
+    assert value_differences(PENETRATION, [record], [SPHERES]) != []
+
+
+def test_a_pairwise_signed_distance_error_agrees_whatever_unsupported_pair_it_names() -> None:
+    """Drake names the first unsupported pair its broadphase meets, in no specified order."""
+    op = "compute_signed_distance_pairwise_closest_points"
+    message = (
+        "Signed distance queries between shapes '{}' and '{}' are not supported for scalar "
+        "type double. See the documentation for "
+        "QueryObject::ComputeSignedDistancePairwiseClosestPoints() for the full status of "
+        "supported geometries."
+    )
+    box = error(ErrorKind.OTHER, message.format("Box", "Halfspace"))
+    capsule = error(ErrorKind.OTHER, message.format("Halfspace", "Capsule"))
+    assert diff_results(box, capsule, op=op) == []
+    assert comparable_message(op, message.format("Box", "Halfspace")) == (
+        f"Signed distance queries {CHOICE} are not supported for scalar type double. See the "
+        "documentation for QueryObject::ComputeSignedDistancePairwiseClosestPoints() for the "
+        "full status of supported geometries."
+    )
+    assert diff_results(box, capsule, op="compute_signed_distance_pair_closest_points") != []
+    assert diff_results(box, error(ErrorKind.OTHER, "Signed distance queries"), op=op) != []

@@ -177,6 +177,9 @@ class CommandSpec:
       lockstep fuzzer drives the SceneGraph ops;
     - ``compare``: how two of its values compare (``Comparison``: exact by
       default; the proximity queries and poses within tolerances);
+    - ``error_choice``: a regular expression for the part of the op's error
+      message that names one of several equally valid choices Drake makes
+      in no specified order; two messages agree whatever that part says;
     - ``scoped_names``: from this step on, a case may refer to model-scoped
       names (``m::l1``, ``m::l1/Sphere``) that the corpus cannot see
       statically (the model text holds them).
@@ -194,6 +197,7 @@ class CommandSpec:
     domain: str = "scene_graph"
     scoped_names: bool = False
     compare: Comparison = Comparison.EXACT
+    error_choice: str | None = None
 
     @property
     def handler(self) -> str | None:

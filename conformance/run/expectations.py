@@ -3,7 +3,8 @@
 An expectation holds for a backend only if the backend's Drake release lies
 in its ``since``/``until`` range. ``check`` yields ``(what, expected,
 actual)`` for every part that does not hold: the error kind and message
-prefix, the return value (compared as the op's ``CommandSpec.compare`` says:
+prefix (the part an op's ``error_choice`` matches may name any choice), the
+return value (compared as the op's ``CommandSpec.compare`` says:
 ``compare.value_differences``, within tolerances for query values), and at
 the location ``at`` (default: the step's
 context, else the model) the exact candidate set, pairs that must be
@@ -15,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
-from conformance.compare import format_pairs, value_differences
+from conformance.compare import comparable_message, format_pairs, value_differences
 from conformance.corpus.loader import Step
 from conformance.protocol import MODEL, LocationState, Observation, Pair, Result, normalise_message
 
@@ -34,7 +35,9 @@ def _check_result(
         actual = result.error.to_json() if result.error else "no error"
         if result.error is None or result.error.kind.value != error["kind"]:
             yield "error", error, actual
-        elif not result.error.message.startswith(normalise_message(error.get("message", ""))):
+        elif not comparable_message(op, result.error.message).startswith(
+            comparable_message(op, normalise_message(error.get("message", "")))
+        ):
             yield "error message prefix", error, actual
     elif result.error is not None:
         yield "no error", None, result.error.to_json()
