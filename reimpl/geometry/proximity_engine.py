@@ -1,4 +1,4 @@
-"""The proximity engine: FCL objects for one GeometryState, posed, and Drake's narrowphase.
+"""The proximity engine: FCL objects for one GeometryState, posed, the broadphase and queries.
 
 Drake counterpart: drake/geometry/proximity_engine.cc and proximity/*_callback.cc
 (Drake 1.51.1 builds on its vendored FCL and libccd). This is the only module
@@ -21,159 +21,36 @@ object is named by its translation (see ``_identify``). Per pose the engine
 keeps the met pairs, the distance traversal's visits and every narrowphase
 answer; the filter is applied at each query, as it may change in between.
 
-Narrowphase, per pair (A, B) with ``id_A < id_B`` (Drake orders the pair
-before computing it), as Drake computes it:
-
-* Sphere–{Sphere, Box, Cylinder, Capsule, HalfSpace}: closed forms through the
-  signed distance φ_B(Ao) from the sphere's centre Ao to B, its gradient ∇φ_B
-  and nearest point N. Penetration ``depth = r_A − φ_B(Ao)`` (reported when
-  ``depth ≥ 0``), ``p_WCb = X_WB · p_BN``, ``nhat_BA_W = ∇φ_B``,
-  ``p_WCa = p_WA + r_A·(−nhat_BA_W)``; signed distance ``φ = φ_B(Ao) − r_A``,
-  ``p_ACa = −r_A · R_AW · ∇φ_B``, ``p_BCb = p_BN``.
-* Every other penetration: FCL's single contact (position c, normal n from A to
-  B, depth d > ε): ``nhat_BA_W = −n``, ``p_WCa = c − d/2 · nhat_BA_W``,
-  ``p_WCb = c + d/2 · nhat_BA_W``. FCL answers Box–Box and X–HalfSpace in closed
-  form (python-fcl's own); the rest is libccd's MPR, which Drake runs at
-  ``gjk_tolerance = 2e-12`` while python-fcl cannot set it (1e-6), so MPR is
-  reimplemented here (``_Mpr``) on FCL's support functions.
-  N.B. For Sphere–Ellipsoid with the ellipsoid's id lower, Drake re-labels the
-  result after FCL's, so ``id_A`` is the sphere's, the larger (measured).
-* Every other signed distance: python-fcl's GJK/EPA signed distance (bit-equal
-  to pydrake 1.51.1's, measured), ``nhat_BA_W = (p_WCa − p_WCb) / φ``; when
-  ``|φ| < 1e-14``, Drake's touching rules (sphere, box–box) or NaN.
-* HalfSpace–HalfSpace penetration, and signed distance between a HalfSpace and
-  anything but a Sphere, raise Drake's messages.
+Narrowphase. Each pair is answered as Drake answers it by
+``reimpl.geometry.proximity.narrowphase`` (closed forms, libccd's MPR ported to
+Drake's tolerance, Drake's touching rules), sphere–sphere pairs stacked by
+``proximity.sphere_sphere``; FCL's own answers (Box–Box and X–HalfSpace
+contacts, boolean tests, GJK/EPA signed distance) come from the ``_Body``
+methods here.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from typing import Any, NamedTuple, cast
 
 import fcl
 import numpy as np
-import numpy.typing as npt
 
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
+from reimpl.geometry.proximity.narrowphase import (
+    DISTANCE_UNSUPPORTED,
+    PairResult,
+    distance_supported,
+    pair_collides,
+    pair_penetration,
+    pair_signed_distance,
+)
+from reimpl.geometry.proximity.sphere_sphere import sphere_sphere
+from reimpl.geometry.proximity.transforms import EPS, Array, Pose, Vec, compose_poses
 from reimpl.geometry.shape import Box, Capsule, Cylinder, Ellipsoid, HalfSpace, Shape, Sphere
 
 __all__ = ["PairResult", "PoseInput", "ProximityEngine", "WorldPoses", "compose_poses"]
-
-Vec = tuple[float, float, float]
-Mat = tuple[Vec, Vec, Vec]
-Array = npt.NDArray[np.float64]
-
-#: Machine epsilon, libccd's CCD_EPS and Drake's ε.
-_EPS = 2.220446049250313e-16
-_NAN = (math.nan, math.nan, math.nan)
-_ORIGIN: Vec = (0.0, 0.0, 0.0)
-
-
-# ============================================================== vector algebra
-# Tuples of floats: a 3-vector costs less than a numpy array at this size.
-# Sums run left to right, as Eigen evaluates 3-vectors and 3×3 products.
-def _add(a: Vec, b: Vec) -> Vec:
-    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
-
-
-def _sub(a: Vec, b: Vec) -> Vec:
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def _scale(a: Vec, k: float) -> Vec:
-    return (a[0] * k, a[1] * k, a[2] * k)
-
-
-def _dot(a: Vec, b: Vec) -> float:
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def _cross(a: Vec, b: Vec) -> Vec:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _norm(a: Vec) -> float:
-    return math.sqrt(_dot(a, a))
-
-
-def _unit(a: Vec) -> Vec:
-    """``a / |a|`` (Eigen's ``normalized()``: unchanged when ``|a| = 0``)."""
-    n = _norm(a)
-    return a if n == 0 else (a[0] / n, a[1] / n, a[2] / n)
-
-
-def _rot(R: Mat, v: Vec) -> Vec:
-    """R · v."""
-    return (_dot(R[0], v), _dot(R[1], v), _dot(R[2], v))
-
-
-def _rot_t(R: Mat, v: Vec) -> Vec:
-    """Rᵀ · v."""
-    return (
-        R[0][0] * v[0] + R[1][0] * v[1] + R[2][0] * v[2],
-        R[0][1] * v[0] + R[1][1] * v[1] + R[2][1] * v[2],
-        R[0][2] * v[0] + R[1][2] * v[1] + R[2][2] * v[2],
-    )
-
-
-def _col(R: Mat, i: int) -> Vec:
-    return (R[0][i], R[1][i], R[2][i])
-
-
-class _Pose(NamedTuple):
-    """X_WG as plain floats: rotation rows and translation."""
-
-    R: Mat
-    p: Vec
-
-    def apply(self, v: Vec) -> Vec:
-        """X_WG · p_G = R · p_G + p."""
-        return _add(_rot(self.R, v), self.p)
-
-    def apply_inverse(self, v: Vec) -> Vec:
-        """X_WG⁻¹ · p_W = Rᵀ · p_W + Rᵀ · (−p), as Drake's ``X.inverse() * p``."""
-        return _add(_rot_t(self.R, v), _rot_t(self.R, _scale(self.p, -1.0)))
-
-
-# ================================================================ composition
-# Drake's Eigen products run on fused multiply-adds: X₁·X₂ has rotation entries
-# fma(a₂, b₂, fma(a₁, b₁, a₀·b₀)) and translation fma(a₂, v₂, fma(a₁, v₁, fma(a₀, v₀, p₁)))
-# (bit-equal to pydrake 1.51.1's RigidTransform.multiply on 3000 random pairs, measured).
-# numpy has no fma; TwoProduct/TwoSum (Dekker, Knuth) emulate it elementwise.
-_SPLIT = 134217729.0  # 2²⁷ + 1, Veltkamp's splitter for doubles
-
-
-def _fma(a: Array, b: Array, c: Array) -> Array:
-    """a·b + c with one rounding (error-free product and sum, then one final sum)."""
-    product = a * b
-    t = _SPLIT * a
-    a_hi = t - (t - a)
-    a_lo = a - a_hi
-    t = _SPLIT * b
-    b_hi = t - (t - b)
-    b_lo = b - b_hi
-    error = ((a_hi * b_hi - product) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo
-    total = product + c
-    virtual = total - product
-    rounding = (product - (total - virtual)) + (c - virtual)
-    result: Array = total + (rounding + error)
-    return result
-
-
-def compose_poses(R1: Array, p1: Array, R2: Array, p2: Array) -> tuple[Array, Array]:
-    """X₁·X₂ = (R₁·R₂, R₁·p₂ + p₁) for stacks (..., 3, 3) and (..., 3), as Drake rounds it."""
-    R = _fma(
-        R1[..., :, 2:3],
-        R2[..., 2:3, :],
-        _fma(R1[..., :, 1:2], R2[..., 1:2, :], R1[..., :, 0:1] * R2[..., 0:1, :]),
-    )
-    p = _fma(
-        R1[..., :, 2],
-        p2[..., 2:3],
-        _fma(R1[..., :, 1], p2[..., 1:2], _fma(R1[..., :, 0], p2[..., 0:1], p1)),
-    )
-    return R, p
 
 
 # ===================================================================== shapes
@@ -211,448 +88,6 @@ def _shape_info(shape: Shape) -> _ShapeInfo:
     )
 
 
-# ========================================================= distance to a point
-class _PointDistance(NamedTuple):
-    """φ_G(Q) with its nearest point N (in G's frame) and its gradient ∇φ_G (in W)."""
-
-    p_GN: Vec
-    distance: float
-    grad_W: Vec
-
-
-def _tolerance(size: float) -> float:
-    """Drake's DistanceToPointRelativeTolerance: 1e-14 · max(1, size)."""
-    return 1e-14 * max(1.0, size)
-
-
-def _sphere_in_frame(radius: float, p_SQ: Vec) -> tuple[Vec, float, Vec]:
-    """Point Q to a sphere centred on S's origin: (p_SN, φ, ∇φ in S).
-
-    ∇φ = p_SQ / |p_SQ| (+x when Q is at the centre), N = r·∇φ, φ = (p_SQ − p_SN)·∇φ.
-    """
-    dist = _norm(p_SQ)
-    grad = (
-        (p_SQ[0] / dist, p_SQ[1] / dist, p_SQ[2] / dist)
-        if dist > _tolerance(radius)
-        else (
-            1.0,
-            0.0,
-            0.0,
-        )
-    )
-    p_SN = _scale(grad, radius)
-    return p_SN, _dot(_sub(p_SQ, p_SN), grad), grad
-
-
-def _sign(x: float) -> float:
-    """Drake's Sign(): −1 below zero, else +1."""
-    return -1.0 if x < 0 else 1.0
-
-
-def _box_in_frame(h: Sequence[float], p_GQ: Sequence[float]) -> tuple[list[float], list[float]]:
-    """Point Q to the box [−h, h] (2D or 3D) in its frame: (p_GN, ∇φ in G).
-
-    Each coordinate is inside, on the boundary (within Drake's tolerance) or
-    outside. Outside: N clamps Q and ∇φ = (Q − N)/|Q − N|; on the boundary:
-    ∇φ is the normalised sum of the touched faces' normals; inside: N is Q
-    pushed to the nearest face (ties: +x, −x, +y, −y, +z, −z) and ∇φ its normal.
-    """
-    n = len(h)
-    p_GN: list[float] = []
-    where: list[int] = []  # 0 inside, 1 boundary, 2 outside
-    for i in range(n):
-        tol = _tolerance(h[i])
-        c = p_GQ[i]
-        if abs(c) > h[i] + tol:
-            where.append(2)
-            p_GN.append(_sign(c) * h[i])
-        elif abs(c) >= h[i] - tol:
-            where.append(1)
-            p_GN.append(_sign(c) * h[i])
-        else:
-            where.append(0)
-            p_GN.append(c)
-    grad = [0.0] * n
-    if 2 in where:
-        diff = [p_GQ[i] - p_GN[i] for i in range(n)]
-        length = math.sqrt(_sum_left(d * d for d in diff))
-        grad = [d / length for d in diff]
-    elif 1 in where:
-        for i in range(n):
-            if where[i] == 1:
-                grad[i] = _sign(p_GN[i])
-        length = math.sqrt(_sum_left(g * g for g in grad))
-        grad = [g / length for g in grad]
-    else:
-        axis, best = -1, math.inf
-        for i in range(n):
-            for bound in (h[i], -h[i]):
-                gap = abs(bound - p_GQ[i])
-                if gap < best:
-                    best, axis = gap, i
-        s = _sign(p_GQ[axis])
-        p_GN[axis] = s * h[axis]
-        grad[axis] = s
-    return p_GN, grad
-
-
-def _sum_left(values: Any) -> float:
-    """Σ values, left to right (as Eigen's fixed-size reductions)."""
-    total = 0.0
-    first = True
-    for v in values:
-        total = v if first else total + v
-        first = False
-    return total
-
-
-def _distance_to_point(kind: str, m: tuple[float, ...], X_WG: _Pose, p_WQ: Vec) -> _PointDistance:
-    """Drake's DistanceToPoint for a sphere, box, cylinder, capsule or half space G."""
-    p_GQ = X_WG.apply_inverse(p_WQ)
-    if kind == "Sphere":
-        p_GN, distance, grad_G = _sphere_in_frame(m[0], p_GQ)
-        return _PointDistance(p_GN, distance, _rot(X_WG.R, grad_G))
-    if kind == "Halfspace":
-        # φ = z in the half space's frame; N = (x, y, 0); ∇φ = R_WG · +z.
-        return _PointDistance((p_GQ[0], p_GQ[1], 0.0), p_GQ[2], _rot(X_WG.R, (0.0, 0.0, 1.0)))
-    if kind == "Capsule":
-        radius, half = m
-        if p_GQ[2] >= half or p_GQ[2] <= -half:
-            # Nearest an end cap: the sphere of that cap.
-            p_GS = (0.0, 0.0, half if p_GQ[2] >= half else -half)
-            p_SN, distance, grad_G = _sphere_in_frame(radius, _sub(p_GQ, p_GS))
-            return _PointDistance(_add(p_GS, p_SN), distance, _rot(X_WG.R, grad_G))
-        # Nearest the spine: Q's projection R on the z = 0 plane, to the centre sphere.
-        p_GM, distance, grad_G = _sphere_in_frame(radius, (p_GQ[0], p_GQ[1], 0.0))
-        return _PointDistance((p_GM[0], p_GM[1], p_GQ[2]), distance, _rot(X_WG.R, grad_G))
-    if kind == "Box":
-        p_GN_list, grad_list = _box_in_frame(m, p_GQ)
-        p_GN = (p_GN_list[0], p_GN_list[1], p_GN_list[2])
-        grad_W = _rot(X_WG.R, (grad_list[0], grad_list[1], grad_list[2]))
-        return _PointDistance(p_GN, _dot(grad_W, _sub(p_WQ, X_WG.apply(p_GN))), grad_W)
-    if kind == "Cylinder":
-        # The 2D box [−r, r]×[−h, h] of the cross section through Q and the axis,
-        # in (ρ, z) with ρ along v = (x, y)/|(x, y)| (+x when Q is on the axis).
-        radius, half = m
-        r_Q = math.sqrt(p_GQ[0] * p_GQ[0] + p_GQ[1] * p_GQ[1])
-        v = (1.0, 0.0) if r_Q < _tolerance(radius) else (p_GQ[0] / r_Q, p_GQ[1] / r_Q)
-        p_BN, grad_B = _box_in_frame((radius, half), (r_Q, p_GQ[2]))
-        p_GN = (p_BN[0] * v[0], p_BN[0] * v[1], p_BN[1])
-        grad_W = _rot(X_WG.R, (grad_B[0] * v[0], grad_B[0] * v[1], grad_B[1]))
-        return _PointDistance(p_GN, _dot(grad_W, _sub(p_WQ, X_WG.apply(p_GN))), grad_W)
-    raise AssertionError(kind)
-
-
-# ================================================================ libccd's MPR
-def _is_zero(x: float) -> bool:
-    return abs(x) < _EPS
-
-
-def _ccd_eq(a: float, b: float) -> bool:
-    """libccd's ccdEq: equal within ε, relative to the larger magnitude."""
-    ab = abs(a - b)
-    if ab < _EPS:
-        return True
-    return ab < _EPS * max(abs(a), abs(b))
-
-
-def _vec_eq(a: Vec, b: Vec) -> bool:
-    return _ccd_eq(a[0], b[0]) and _ccd_eq(a[1], b[1]) and _ccd_eq(a[2], b[2])
-
-
-def _ccd_sign(x: float) -> float:
-    """libccd's ccdSign: 0 within ε of zero."""
-    if _is_zero(x):
-        return 0.0
-    return -1.0 if x < 0 else 1.0
-
-
-def _ccd_unit(a: Vec) -> Vec:
-    """libccd's normalisation: ``a · (1/|a|)``."""
-    return _scale(a, 1.0 / math.sqrt(_dot(a, a)))
-
-
-Quat = tuple[float, float, float, float]
-
-
-def _quaternion(R: Mat) -> Quat:
-    """Eigen's Quaternion(R) as (x, y, z, w): the trace branch, else the largest diagonal."""
-    t = R[0][0] + R[1][1] + R[2][2]
-    if t > 0:
-        t = math.sqrt(t + 1.0)
-        w = 0.5 * t
-        t = 0.5 / t
-        return ((R[2][1] - R[1][2]) * t, (R[0][2] - R[2][0]) * t, (R[1][0] - R[0][1]) * t, w)
-    i = 0
-    if R[1][1] > R[0][0]:
-        i = 1
-    if R[2][2] > R[i][i]:
-        i = 2
-    j, k = (i + 1) % 3, (i + 2) % 3
-    t = math.sqrt(R[i][i] - R[j][j] - R[k][k] + 1.0)
-    q = [0.0, 0.0, 0.0, 0.0]
-    q[i] = 0.5 * t
-    t = 0.5 / t
-    q[3] = (R[k][j] - R[j][k]) * t
-    q[j] = (R[j][i] + R[i][j]) * t
-    q[k] = (R[k][i] + R[i][k]) * t
-    return (q[0], q[1], q[2], q[3])
-
-
-def _quat_rotate(q: Quat, v: Vec) -> Vec:
-    """libccd's ccdQuatRotVec: v + 2·q⃗ × (q⃗ × v + w·v)."""
-    x, y, z, w = q
-    vx, vy, vz = v
-    c1x = y * vz - z * vy + w * vx
-    c1y = z * vx - x * vz + w * vy
-    c1z = x * vy - y * vx + w * vz
-    return (
-        vx + 2 * (y * c1z - z * c1y),
-        vy + 2 * (z * c1x - x * c1z),
-        vz + 2 * (x * c1y - y * c1x),
-    )
-
-
-class _Convex:
-    """One shape as FCL hands it to libccd: position, quaternion, support mapping."""
-
-    __slots__ = ("kind", "m", "pos", "rot", "rot_inv")
-
-    def __init__(self, kind: str, m: tuple[float, ...], X_WG: _Pose) -> None:
-        self.kind, self.m, self.pos = kind, m, X_WG.p
-        self.rot = _quaternion(X_WG.R)
-        x, y, z, w = self.rot
-        inv = 1.0 / (x * x + y * y + z * z + w * w)
-        self.rot_inv = (-x * inv, -y * inv, -z * inv, w * inv)
-
-    def support(self, d_W: Vec) -> Vec:
-        """The point of the shape farthest along d (FCL's support functions)."""
-        d = _quat_rotate(self.rot_inv, d_W)
-        m, kind = self.m, self.kind
-        if kind == "Box":
-            # N.B. Drake's FCL picks a corner even for a zero component (±1, never 0).
-            v = (
-                (1.0 if d[0] >= 0 else -1.0) * m[0],
-                (1.0 if d[1] >= 0 else -1.0) * m[1],
-                (1.0 if d[2] >= 0 else -1.0) * m[2],
-            )
-        elif kind == "Capsule":
-            n = _scale(_ccd_unit(d), m[0])
-            v = (n[0], n[1], m[1] + n[2]) if d[2] > 0 else (n[0], n[1], -m[1] + n[2])
-        elif kind == "Cylinder":
-            rho = math.sqrt(d[0] * d[0] + d[1] * d[1])
-            if _is_zero(rho):
-                v = (0.0, 0.0, _ccd_sign(d[2]) * m[1])
-            else:
-                k = m[0] / rho
-                v = (k * d[0], k * d[1], _ccd_sign(d[2]) * m[1])
-        elif kind == "Sphere":
-            v = _scale(_scale(d, m[0]), 1.0 / math.sqrt(_dot(d, d)))
-        else:  # Ellipsoid
-            v = (m[0] * m[0] * d[0], m[1] * m[1] * d[1], m[2] * m[2] * d[2])
-            v = _scale(v, 1.0 / math.sqrt(_dot(v, d)))
-        return _add(_quat_rotate(self.rot, v), self.pos)
-
-
-class _Support(NamedTuple):
-    """A point of the Minkowski difference A ⊖ B: v = v1 − v2."""
-
-    v: Vec
-    v1: Vec
-    v2: Vec
-
-
-class _Mpr:
-    """libccd's Minkowski Portal Refinement, as FCL's GJKCollide calls it.
-
-    The portal is a tetrahedron (v0 inside A ⊖ B, v1 v2 v3 a face crossed by the
-    ray from v0 to the origin). Refinement moves the face outwards along its
-    normal until the origin is inside (intersection) or the face cannot move by
-    more than the tolerance (separation). Penetration keeps refining to the
-    tolerance; depth is the origin's distance to the final face.
-    """
-
-    def __init__(self, a: _Convex, b: _Convex, tolerance: float, max_iterations: int = 500):
-        self.a, self.b, self.tolerance, self.max_iterations = a, b, tolerance, max_iterations
-
-    def _support(self, d: Vec) -> _Support:
-        v1 = self.a.support(d)
-        v2 = self.b.support(_scale(d, -1.0))
-        return _Support(_sub(v1, v2), v1, v2)
-
-    def _discover(self, portal: list[_Support]) -> int:
-        """−1: origin outside; 1: origin on v1; 2: origin on segment v0–v1; 0: portal built."""
-        c1, c2 = self.a.pos, self.b.pos
-        v0 = _sub(c1, c2)
-        if _vec_eq(v0, _ORIGIN):
-            v0 = _add(v0, (_EPS * 10.0, 0.0, 0.0))
-        portal[:] = [_Support(v0, c1, c2)]
-        d = _ccd_unit(_scale(v0, -1.0))
-        portal.append(self._support(d))
-        dt = _dot(portal[1].v, d)
-        if _is_zero(dt) or dt < 0:
-            return -1
-        d = _cross(portal[0].v, portal[1].v)
-        if _is_zero(_dot(d, d)):
-            return 1 if _vec_eq(portal[1].v, _ORIGIN) else 2
-        d = _ccd_unit(d)
-        portal.append(self._support(d))
-        dt = _dot(portal[2].v, d)
-        if _is_zero(dt) or dt < 0:
-            return -1
-        d = _ccd_unit(_cross(_sub(portal[1].v, portal[0].v), _sub(portal[2].v, portal[0].v)))
-        if _dot(d, portal[0].v) > 0:
-            portal[1], portal[2] = portal[2], portal[1]
-            d = _scale(d, -1.0)
-        while len(portal) < 4:
-            s3 = self._support(d)
-            dt = _dot(s3.v, d)
-            if _is_zero(dt) or dt < 0:
-                return -1
-            dt = _dot(_cross(portal[1].v, s3.v), portal[0].v)
-            if dt < 0 and not _is_zero(dt):
-                portal[2] = s3
-            else:
-                dt = _dot(_cross(s3.v, portal[2].v), portal[0].v)
-                if dt < 0 and not _is_zero(dt):
-                    portal[1] = s3
-                else:
-                    portal.append(s3)
-                    continue
-            d = _ccd_unit(_cross(_sub(portal[1].v, portal[0].v), _sub(portal[2].v, portal[0].v)))
-        return 0
-
-    @staticmethod
-    def _direction(portal: list[_Support]) -> Vec:
-        return _ccd_unit(_cross(_sub(portal[2].v, portal[1].v), _sub(portal[3].v, portal[1].v)))
-
-    def _reaches_tolerance(self, portal: list[_Support], v4: _Support, d: Vec) -> bool:
-        dv4 = _dot(v4.v, d)
-        gap = min(dv4 - _dot(portal[1].v, d), dv4 - _dot(portal[2].v, d))
-        gap = min(gap, dv4 - _dot(portal[3].v, d))
-        return _ccd_eq(gap, self.tolerance) or gap < self.tolerance
-
-    @staticmethod
-    def _expand(portal: list[_Support], v4: _Support) -> None:
-        v4v0 = _cross(v4.v, portal[0].v)
-        if _dot(portal[1].v, v4v0) > 0:
-            portal[1 if _dot(portal[2].v, v4v0) > 0 else 3] = v4
-        else:
-            portal[2 if _dot(portal[3].v, v4v0) > 0 else 1] = v4
-
-    def _refine(self, portal: list[_Support]) -> bool:
-        """Whether the origin ends up inside the portal (the shapes intersect)."""
-        while True:
-            d = self._direction(portal)
-            dt = _dot(d, portal[1].v)
-            if _is_zero(dt) or dt > 0:
-                return True
-            v4 = self._support(d)
-            dt = _dot(v4.v, d)
-            if not (_is_zero(dt) or dt > 0) or self._reaches_tolerance(portal, v4, d):
-                return False
-            self._expand(portal, v4)
-
-    def intersect(self) -> bool:
-        """libccd's ccdMPRIntersect."""
-        portal: list[_Support] = []
-        found = self._discover(portal)
-        if found != 0:
-            return found > 0
-        return self._refine(portal)
-
-    def penetration(self) -> tuple[float, Vec, Vec] | None:
-        """libccd's ccdMPRPenetration: (depth, direction from A to B, position), or None."""
-        portal: list[_Support] = []
-        found = self._discover(portal)
-        if found < 0:
-            return None
-        if found in (1, 2):
-            pos = _scale(_add(portal[1].v1, portal[1].v2), 0.5)
-            if found == 1:
-                return 0.0, _ORIGIN, pos
-            return _norm(portal[1].v), _ccd_unit(portal[1].v), pos
-        if not self._refine(portal):
-            return None
-        iterations = 0
-        while True:
-            d = self._direction(portal)
-            v4 = self._support(d)
-            if self._reaches_tolerance(portal, v4, d) or iterations > self.max_iterations:
-                dist2, witness = _point_triangle(portal[1].v, portal[2].v, portal[3].v)
-                depth = math.sqrt(dist2)
-                direction = _ORIGIN if _is_zero(depth) else _ccd_unit(witness)
-                return depth, direction, self._position(portal)
-            self._expand(portal, v4)
-            iterations += 1
-
-    def _position(self, portal: list[_Support]) -> Vec:
-        """The contact point: barycentric weights of the origin in the portal, on A and B."""
-        v = [s.v for s in portal]
-        b = [
-            _dot(_cross(v[1], v[2]), v[3]),
-            _dot(_cross(v[3], v[2]), v[0]),
-            _dot(_cross(v[0], v[1]), v[3]),
-            _dot(_cross(v[2], v[1]), v[0]),
-        ]
-        total = b[0] + b[1] + b[2] + b[3]
-        if _is_zero(total) or total < 0:
-            d = self._direction(portal)
-            b = [0.0, _dot(_cross(v[2], v[3]), d), _dot(_cross(v[3], v[1]), d)]
-            b.append(_dot(_cross(v[1], v[2]), d))
-            total = b[1] + b[2] + b[3]
-        inv = 1.0 / total
-        p1, p2 = _ORIGIN, _ORIGIN
-        for i in range(4):
-            p1 = _add(p1, _scale(portal[i].v1, b[i]))
-            p2 = _add(p2, _scale(portal[i].v2, b[i]))
-        return _scale(_add(_scale(p1, inv), _scale(p2, inv)), 0.5)
-
-
-def _point_segment(x0: Vec, b: Vec) -> tuple[float, Vec]:
-    """Squared distance from the origin to segment x0–b, and the nearest point."""
-    d = _sub(b, x0)
-    t = -1.0 * _dot(x0, d) / _dot(d, d)
-    if t < 0 or _is_zero(t):
-        w = x0
-    elif t > 1 or _ccd_eq(t, 1.0):
-        w = b
-    else:
-        w = _add(_scale(d, t), x0)
-    return _dot(w, w), w
-
-
-def _point_triangle(x0: Vec, b: Vec, c: Vec) -> tuple[float, Vec]:
-    """Squared distance from the origin to triangle (x0, b, c), and the nearest point.
-
-    T(s, t) = x0 + s·(b − x0) + t·(c − x0); the unconstrained minimiser when it
-    lies in the triangle, else the nearest of the three edges.
-    """
-    d1, d2, a = _sub(b, x0), _sub(c, x0), x0
-    v, w = _dot(d1, d1), _dot(d2, d2)
-    p, q, r = _dot(a, d1), _dot(a, d2), _dot(d1, d2)
-    det = w * v - r * r
-    if _is_zero(det):
-        s = t = -1.0
-    else:
-        s = (q * r - w * p) / det
-        t = (-s * r - q) / w
-    if (
-        (_is_zero(s) or s > 0)
-        and (_ccd_eq(s, 1.0) or s < 1)
-        and (_is_zero(t) or t > 0)
-        and (_ccd_eq(t, 1.0) or t < 1)
-        and (_ccd_eq(t + s, 1.0) or t + s < 1)
-    ):
-        witness = _add(_add(x0, _scale(d1, s)), _scale(d2, t))
-        return _dot(witness, witness), witness
-    best = _point_segment(x0, b)
-    for candidate in (_point_segment(x0, c), _point_segment(b, c)):
-        if candidate[0] < best[0]:
-            best = candidate
-    return best
-
-
 # ============================================================ the geometries
 class _Poses:
     """The world poses of all proximity geometries for one posing: X_WG rows, and their
@@ -662,13 +97,13 @@ class _Poses:
 
     def __init__(self, R: Array, p: Array) -> None:
         self.R, self.p = R, p
-        self.floats: list[_Pose | None] = [None] * len(p)
+        self.floats: list[Pose | None] = [None] * len(p)
         # Slots whose FCL object still has an older rotation (see ProximityEngine.pose).
         self.stale: set[int] = set()
 
 
 class _Body:
-    """One proximity geometry as the engine holds it."""
+    """One proximity geometry as the engine holds it (a ``narrowphase.PosedGeometry``)."""
 
     __slots__ = ("dynamic", "frame", "geometry", "id", "kind", "m", "obj", "poses", "slot", "value")
 
@@ -691,127 +126,22 @@ class _Body:
         return self.obj
 
     @property
-    def pose(self) -> _Pose:
+    def pose(self) -> Pose:
         """X_WG as floats."""
         pose = self.poses.floats[self.slot]
         if pose is None:
             R, p = self.poses.R[self.slot].tolist(), self.poses.p[self.slot].tolist()
-            pose = _Pose((tuple(R[0]), tuple(R[1]), tuple(R[2])), tuple(p))
+            pose = Pose((tuple(R[0]), tuple(R[1]), tuple(R[2])), tuple(p))
             self.poses.floats[self.slot] = pose
         return pose
 
-
-class PairResult:
-    """A narrowphase answer in Drake's labelling: A and B, a value, two points and a normal.
-
-    For a penetration ``value`` is the depth and the rows of ``vectors`` are
-    p_WCa, p_WCb, nhat_BA_W; for a signed distance, φ and p_ACa, p_BCb, nhat_BA_W.
-    """
-
-    __slots__ = ("id_A", "id_B", "value", "vectors")
-
-    def __init__(self, id_A: GeometryId, id_B: GeometryId, value: float, vectors: Array):
-        self.id_A, self.id_B, self.value, self.vectors = id_A, id_B, value, vectors
-
-    @classmethod
-    def of(
-        cls, ids: tuple[GeometryId, GeometryId], value: float, points: tuple[Vec, Vec], nhat: Vec
-    ) -> PairResult:
-        return cls(ids[0], ids[1], value, np.array((points[0], points[1], nhat), dtype=float))
-
-    def swapped(self) -> PairResult:
-        """(A, B) → (B, A): the points trade places and ``nhat_AB_W = −nhat_BA_W``."""
-        vectors = self.vectors[[1, 0, 2]]
-        vectors[2] = -vectors[2]
-        return PairResult(self.id_B, self.id_A, self.value, vectors)
-
-
-_PENETRATION_UNSUPPORTED = (
-    "Penetration queries between shapes '{}' and '{}' are not supported for scalar type double. "
-    "See the documentation for QueryObject::ComputePointPairPenetration() for the full status "
-    "of supported geometries."
-)
-_DISTANCE_UNSUPPORTED = (
-    "Signed distance queries between shapes '{}' and '{}' are not supported for scalar type "
-    "double. See the documentation for "
-    "QueryObject::ComputeSignedDistancePairwiseClosestPoints() for the full status of "
-    "supported geometries."
-)
-
-#: Sphere–X pairs Drake answers in closed form (X the other shape).
-_CLOSED_FORM = frozenset({"Sphere", "Box", "Cylinder", "Capsule", "Halfspace"})
-#: Penetration pairs FCL answers in closed form (no MPR, no tolerance).
-_FCL_CLOSED = frozenset(
-    {
-        ("Box", "Box"),
-        *((k, "Halfspace") for k in ("Box", "Capsule", "Cylinder", "Ellipsoid")),
-        *(("Halfspace", k) for k in ("Box", "Capsule", "Cylinder", "Ellipsoid")),
-    }
-)
-#: Boolean collision pairs FCL answers in closed form (with any HalfSpace pair).
-_FCL_BOOLEAN = frozenset(
-    frozenset(pair)
-    for pair in (
-        ("Sphere", "Sphere"),
-        ("Sphere", "Box"),
-        ("Sphere", "Capsule"),
-        ("Sphere", "Cylinder"),
-        ("Box", "Box"),
-    )
-)
-#: Drake's gjk_tolerance for penetration and HasCollisions.
-_GJK_TOLERANCE = 2e-12
-
-
-def distance_supported(kind_A: str, kind_B: str) -> bool:
-    """Signed distance: anything but a HalfSpace with a shape other than a Sphere."""
-    return (kind_A != "Halfspace" or kind_B == "Sphere") and (
-        kind_B != "Halfspace" or kind_A == "Sphere"
-    )
-
-
-def _penetration(a: _Body, b: _Body) -> PairResult | None:
-    """A's and B's penetration (A's id lower), as Drake computes it; None if separated."""
-    if a.kind == "Halfspace" and b.kind == "Halfspace":
-        raise RuntimeError(_PENETRATION_UNSUPPORTED.format("Halfspace", "Halfspace"))
-    a_sphere = a.kind == "Sphere"
-    if (a_sphere or b.kind == "Sphere") and (b.kind if a_sphere else a.kind) in _CLOSED_FORM:
-        s, o = (a, b) if a_sphere else (b, a)
-        r = s.m[0]
-        near = _distance_to_point(o.kind, o.m, o.pose, s.pose.p)
-        depth = r - near.distance
-        if depth < 0:
-            return None
-        result = PairResult.of(
-            (s.id, o.id),
-            depth,
-            (_sub(s.pose.p, _scale(near.grad_W, r)), o.pose.apply(near.p_GN)),
-            near.grad_W,
-        )
-        return result if a_sphere else result.swapped()
-    contact = _contact(a, b)
-    if contact is None or contact[0] <= _EPS:
-        return None
-    depth, normal, pos = contact
-    nhat = _scale(normal, -1.0)
-    result = PairResult.of(
-        (a.id, b.id),
-        depth,
-        (_sub(pos, _scale(nhat, 0.5 * depth)), _add(pos, _scale(nhat, 0.5 * depth))),
-        nhat,
-    )
-    # N.B. Drake's sphere–ellipsoid path re-labels FCL's (A, B) answer when A is
-    # not the sphere, so the larger id ends up as id_A (measured on 1.51.1).
-    return result.swapped() if b.kind == "Sphere" and not a_sphere else result
-
-
-def _contact(a: _Body, b: _Body) -> tuple[float, Vec, Vec] | None:
-    """FCL's single contact (depth, normal from A to B, position) for a non-closed-form pair."""
-    if (a.kind, b.kind) in _FCL_CLOSED:
+    # ------------------------------------------------- FCL's narrowphase
+    def fcl_contact(self, other: _Body) -> tuple[float, Vec, Vec] | None:
+        """FCL's single contact (depth, normal from self to other, position), or None."""
         result = fcl.CollisionResult()
         fcl.collide(
-            a.fcl_object(),
-            b.fcl_object(),
+            self.fcl_object(),
+            other.fcl_object(),
             fcl.CollisionRequest(num_max_contacts=1, enable_contact=True),
             result,
         )
@@ -824,120 +154,22 @@ def _contact(a: _Body, b: _Body) -> tuple[float, Vec, Vec] | None:
             (float(n[0]), float(n[1]), float(n[2])),
             (float(pos[0]), float(pos[1]), float(pos[2])),
         )
-    mpr = _Mpr(_Convex(a.kind, a.m, a.pose), _Convex(b.kind, b.m, b.pose), _GJK_TOLERANCE)
-    return mpr.penetration()
 
+    def fcl_collides(self, other: _Body) -> bool:
+        """FCL's boolean collision test."""
+        return bool(fcl.collide(self.fcl_object(), other.fcl_object(), fcl.CollisionRequest()) > 0)
 
-def _collides(a: _Body, b: _Body) -> bool:
-    """FCL's boolean test at Drake's tolerance (HasCollisions): FCL's closed forms, and
-    MPR at ``gjk_tolerance = 2e-12`` for the rest."""
-    if frozenset((a.kind, b.kind)) in _FCL_BOOLEAN or "Halfspace" in (a.kind, b.kind):
-        return bool(fcl.collide(a.fcl_object(), b.fcl_object(), fcl.CollisionRequest()) > 0)
-    mpr = _Mpr(_Convex(a.kind, a.m, a.pose), _Convex(b.kind, b.m, b.pose), _GJK_TOLERANCE)
-    return mpr.intersect()
-
-
-def _signed_distance(a: _Body, b: _Body) -> PairResult:
-    """φ(A, B) with witnesses (A's id lower), as Drake computes it."""
-    a_sphere = a.kind == "Sphere"
-    if (a_sphere or b.kind == "Sphere") and (b.kind if a_sphere else a.kind) in _CLOSED_FORM:
-        s, o = (a, b) if a_sphere else (b, a)
-        r = s.m[0]
-        near = _distance_to_point(o.kind, o.m, o.pose, s.pose.p)
-        result = PairResult.of(
-            (s.id, o.id),
-            near.distance - r,
-            (_scale(_rot_t(s.pose.R, near.grad_W), -r), near.p_GN),
-            near.grad_W,
+    def fcl_signed_distance(self, other: _Body) -> tuple[float, Vec, Vec]:
+        """FCL's signed distance φ and its witnesses p_WCa (on self), p_WCb (on other)."""
+        request = fcl.DistanceRequest(enable_nearest_points=True, enable_signed_distance=True)
+        answer = fcl.DistanceResult()
+        fcl.distance(self.fcl_object(), other.fcl_object(), request, answer)
+        a, b = answer.nearest_points
+        return (
+            float(answer.min_distance),
+            (float(a[0]), float(a[1]), float(a[2])),
+            (float(b[0]), float(b[1]), float(b[2])),
         )
-        return result if a_sphere else result.swapped()
-    request = fcl.DistanceRequest(enable_nearest_points=True, enable_signed_distance=True)
-    answer = fcl.DistanceResult()
-    fcl.distance(a.fcl_object(), b.fcl_object(), request, answer)
-    p_WCa = tuple(float(x) for x in answer.nearest_points[0])
-    p_WCb = tuple(float(x) for x in answer.nearest_points[1])
-    distance = float(answer.min_distance)
-    p_ACa = a.pose.apply_inverse(p_WCa)  # type: ignore[arg-type]
-    p_BCb = b.pose.apply_inverse(p_WCb)  # type: ignore[arg-type]
-    if abs(distance) < 1e-14:
-        nhat = _touching_gradient(a, b, p_ACa, p_BCb)
-    else:
-        diff = _sub(p_WCa, p_WCb)  # type: ignore[arg-type]
-        nhat = (diff[0] / distance, diff[1] / distance, diff[2] / distance)
-    return PairResult.of((a.id, b.id), distance, (p_ACa, p_BCb), nhat)
-
-
-# ---------------------------------------------------- touching: Drake's rules
-def _touching_gradient(a: _Body, b: _Body, p_ACa: Vec, p_BCb: Vec) -> Vec:
-    """nhat_BA_W when φ ≈ 0: from a sphere's witness, Drake's box–box rules, else NaN."""
-    if a.kind == "Sphere":
-        return _rot(a.pose.R, _scale(_unit(p_ACa), -1.0))
-    if b.kind == "Sphere":
-        return _rot(b.pose.R, _unit(p_BCb))
-    if a.kind == "Box" and b.kind == "Box":
-        return _box_box_gradient(a, b, p_ACa, p_BCb)
-    return _NAN
-
-
-def _on_boundary(p: Vec, h: tuple[float, ...]) -> list[bool]:
-    return [abs(h[i] - abs(p[i])) <= 1e-14 for i in range(3)]
-
-
-def _box_box_gradient(a: _Body, b: _Body, p_ACa: Vec, p_BCb: Vec) -> Vec:
-    """Two touching boxes: a face normal if a witness lies strictly inside a face, else a
-    separating axis among the edge/vertex candidates (Drake's BoxBoxGradient)."""
-    on_A, on_B = _on_boundary(p_ACa, a.m), _on_boundary(p_BCb, b.m)
-    R_A, R_B = a.pose.R, b.pose.R
-    if sum(on_A) == 1:
-        i = on_A.index(True)
-        return _scale(_col(R_A, i), -1.0 if p_ACa[i] > 0 else 1.0)
-    if sum(on_B) == 1:
-        i = on_B.index(True)
-        return _scale(_col(R_B, i), 1.0 if p_BCb[i] > 0 else -1.0)
-    axis_A = on_A.index(False) if sum(on_A) == 2 else -1
-    axis_B = on_B.index(False) if sum(on_B) == 2 else -1
-    A = [_col(R_A, i) for i in range(3)]
-    B = [_col(R_B, i) for i in range(3)]
-    candidates: list[Vec]
-    if axis_A != -1 and axis_B != -1:
-        cross = _cross(A[axis_A], B[axis_B])
-        candidates = [cross] if _norm(cross) > 1e-14 else [A[(axis_A + 1) % 3], A[(axis_A + 2) % 3]]
-    elif axis_A != -1 and all(on_B):
-        candidates = [_cross(A[axis_A], B[i]) for i in range(3)]
-    elif axis_B != -1 and all(on_A):
-        candidates = [_cross(B[axis_B], A[i]) for i in range(3)]
-    else:
-        found = _separating(a, b, A + B)
-        if found is not None:
-            return found
-        candidates = [_cross(A[i], B[j]) for i in range(3) for j in range(3)]
-    found = _separating(a, b, candidates)
-    return _NAN if found is None else found
-
-
-def _projected(body: _Body, axis: Vec) -> tuple[float, float]:
-    values = [
-        _dot(axis, body.pose.apply((x, y, z)))
-        for x in (body.m[0], -body.m[0])
-        for y in (body.m[1], -body.m[1])
-        for z in (body.m[2], -body.m[2])
-    ]
-    return min(values), max(values)
-
-
-def _separating(a: _Body, b: _Body, candidates: list[Vec]) -> Vec | None:
-    """The first candidate axis that separates A from B, pointing from B to A."""
-    for v in candidates:
-        if _norm(v) < 1e-14:
-            continue
-        axis = _unit(v)
-        min_A, max_A = _projected(a, axis)
-        min_B, max_B = _projected(b, axis)
-        if max_A < min_B + 1e-14:
-            return _scale(axis, -1.0)
-        if max_B < min_A + 1e-14:
-            return axis
-    return None
 
 
 # ================================================================== the poses
@@ -1282,7 +514,7 @@ class ProximityEngine:
     def distance_pairs(self, max_distance: float) -> list[_Met]:
         """Pairs FCL's distance traversal visits when it prunes at ``max(max_distance, ε/10)``
         (Drake's callback keeps resetting the bound so), in the order it visits them."""
-        prune = max(max_distance, _EPS / 10)
+        prune = max(max_distance, EPS / 10)
         if prune not in self._visits:
             visited: list[_Met] = []
             failure: list[BaseException] = []
@@ -1328,16 +560,22 @@ class ProximityEngine:
             if p not in memo and bodies[p[0]].kind == "Sphere" == bodies[p[1]].kind
         ]
         if spheres:
-            memo.update(zip(spheres, self._sphere_sphere(spheres, penetration=True), strict=True))
+            memo.update(
+                zip(
+                    spheres,
+                    sphere_sphere(spheres, bodies, self._R_WG, self._p_WG, penetration=True),
+                    strict=True,
+                )
+            )
         for pair in ordered:
             if pair not in memo:
-                memo[pair] = _penetration(bodies[pair[0]], bodies[pair[1]])
+                memo[pair] = pair_penetration(bodies[pair[0]], bodies[pair[1]])
         return [memo[p] for p in ordered]
 
     def collides(self, a: Slot, b: Slot) -> bool:
         pair = self.ordered(a, b)
         if pair not in self._collisions:
-            self._collisions[pair] = _collides(self._bodies[pair[0]], self._bodies[pair[1]])
+            self._collisions[pair] = pair_collides(self._bodies[pair[0]], self._bodies[pair[1]])
         return self._collisions[pair]
 
     def signed_distances(self, pairs: Sequence[_Met]) -> list[PairResult]:
@@ -1347,7 +585,7 @@ class ProximityEngine:
         bodies = self._bodies
         for a, b in pairs:
             if not distance_supported(bodies[a].kind, bodies[b].kind):
-                raise RuntimeError(_DISTANCE_UNSUPPORTED.format(bodies[a].kind, bodies[b].kind))
+                raise RuntimeError(DISTANCE_UNSUPPORTED.format(bodies[a].kind, bodies[b].kind))
         v = self._values
         ordered = [(a, b) if v[a] < v[b] else (b, a) for a, b in pairs]
         memo = self._distances
@@ -1357,89 +595,16 @@ class ProximityEngine:
             if p not in memo and bodies[p[0]].kind == "Sphere" == bodies[p[1]].kind
         ]
         if spheres:
-            found = self._sphere_sphere(spheres, penetration=False)
+            found = sphere_sphere(spheres, bodies, self._R_WG, self._p_WG, penetration=False)
             memo.update(zip(spheres, found, strict=True))  # type: ignore[arg-type]
         for pair in ordered:
             if pair not in memo:
-                memo[pair] = _signed_distance(bodies[pair[0]], bodies[pair[1]])
+                memo[pair] = pair_signed_distance(bodies[pair[0]], bodies[pair[1]])
         return [memo[p] for p in ordered]
 
     def signed_distance(self, a: Slot, b: Slot) -> PairResult:
         """φ(a, b) (A the lower id); raises Drake's message, shapes named a then b."""
         return self.signed_distances([(a, b)])[0]
-
-    def _sphere_sphere(self, pairs: list[_Met], *, penetration: bool) -> list[PairResult | None]:
-        """Drake's sphere–sphere closed forms for many pairs at once, A the lower id.
-
-        With Q = Ao and G = B: p_GQ = R_BWᵀ·p_WQ + R_BWᵀ·(−p_WB), ∇φ_G = p_GQ/|p_GQ|
-        (+x within 1e-14·max(1, r_B) of the centre), N = r_B·∇φ_G,
-        φ_B(Q) = (p_GQ − N)·∇φ_G, ∇φ_W = R_WB·∇φ_G. The same operations, in the
-        same order, as the one-pair path (so the same bits).
-        """
-        a = np.array([p[0] for p in pairs])
-        b = np.array([p[1] for p in pairs])
-        r_A = np.array([self._bodies[i].m[0] for i in a])
-        r_B = np.array([self._bodies[i].m[0] for i in b])
-        R, pB, pA = self._R_WG[b], self._p_WG[b], self._p_WG[a]
-
-        def rot_t(v: Array) -> list[Array]:
-            return [
-                R[:, 0, j] * v[:, 0] + R[:, 1, j] * v[:, 1] + R[:, 2, j] * v[:, 2] for j in range(3)
-            ]
-
-        q1, q2 = rot_t(pA), rot_t(pB * -1.0)
-        q = np.stack([q1[j] + q2[j] for j in range(3)], axis=1)
-        dist = np.sqrt(q[:, 0] * q[:, 0] + q[:, 1] * q[:, 1] + q[:, 2] * q[:, 2])
-        inside = ~(dist > np.maximum(1.0, r_B) * 1e-14)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            grad = q / dist[:, None]
-        grad[inside] = (1.0, 0.0, 0.0)
-        N = grad * r_B[:, None]
-        d = q - N
-        phi = d[:, 0] * grad[:, 0] + d[:, 1] * grad[:, 1] + d[:, 2] * grad[:, 2]
-        grad_W = np.stack(
-            [
-                R[:, i, 0] * grad[:, 0] + R[:, i, 1] * grad[:, 1] + R[:, i, 2] * grad[:, 2]
-                for i in range(3)
-            ],
-            axis=1,
-        )
-        ids = [(self._bodies[i].id, self._bodies[j].id) for i, j in pairs]
-        if penetration:
-            depth = r_A - phi
-            p_WCa = pA - grad_W * r_A[:, None]
-            RN = np.stack(
-                [
-                    R[:, i, 0] * N[:, 0] + R[:, i, 1] * N[:, 1] + R[:, i, 2] * N[:, 2]
-                    for i in range(3)
-                ],
-                axis=1,
-            )
-            vectors = np.stack([p_WCa, RN + pB, grad_W], axis=1)
-            values = depth.tolist()
-            return [
-                None if value < 0 else PairResult(id_A, id_B, value, vectors[k])
-                for k, ((id_A, id_B), value) in enumerate(zip(ids, values, strict=True))
-            ]
-        RA = self._R_WG[a]
-        p_ACa = np.stack(
-            [
-                (
-                    RA[:, 0, j] * grad_W[:, 0]
-                    + RA[:, 1, j] * grad_W[:, 1]
-                    + RA[:, 2, j] * grad_W[:, 2]
-                )
-                * -r_A
-                for j in range(3)
-            ],
-            axis=1,
-        )
-        vectors = np.stack([p_ACa, N, grad_W], axis=1)
-        values = (phi - r_A).tolist()
-        return [
-            PairResult(id_A, id_B, value, vectors[k])
-            for k, ((id_A, id_B), value) in enumerate(zip(ids, values, strict=True))
-        ]
 
     def has_collisions(self, can_collide: Callable[[GeometryId, GeometryId], bool]) -> bool:
         """Whether any unfiltered pair collides; stops at the first that does."""
