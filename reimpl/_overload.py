@@ -12,7 +12,7 @@ keywords, or fails with the same exception type.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 __all__ = ["REQUIRED", "Overload", "Param", "any_of", "dispatch", "instance_of", "list_of"]
@@ -26,6 +26,7 @@ class _Required:
 
 
 REQUIRED: Any = _Required()
+_NO_RECEIVER: Any = object()
 
 
 def instance_of(*types: type) -> Check:
@@ -72,33 +73,52 @@ class Param:
 
 @dataclass(frozen=True)
 class Overload:
+    """One signature of an overload set and the function it calls.
+
+    Build overloads once (module or class level) and pass the same tuple to
+    ``dispatch`` on every call: binding is then the only per-call work.
+    """
+
     params: tuple[Param, ...]
     impl: Callable[..., Any]
+    names: frozenset[str] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "names", frozenset(p.name for p in self.params))
 
     def bind(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> dict[str, Any] | None:
-        if len(args) > len(self.params):
-            return None
-        names = [p.name for p in self.params]
-        if any(k not in names for k in kwargs):
-            return None
-        bound: dict[str, Any] = {}
-        for param, value in zip(self.params, args, strict=False):
-            bound[param.name] = value
-        for param in self.params[len(args) :]:
-            if param.name in kwargs:
-                bound[param.name] = kwargs[param.name]
-            elif param.default is not REQUIRED:
-                bound[param.name] = param.default
-            else:
-                return None
-        if any(p.name in kwargs for p in self.params[: len(args)]):
+        """The arguments by parameter name, or None if this overload does not take them.
+
+        A value given as the parameter's own default object is taken unchecked.
+        """
+        # The usual call names every argument: the keywords are the binding.
+        by_name = not args and kwargs.keys() == self.names
+        bound = kwargs if by_name else self._match(args, kwargs)
+        if bound is None:
             return None
         for param in self.params:
             value = bound[param.name]
-            if value is param.default and param.default is not REQUIRED:
-                continue
-            if not param.check(value):
+            if not (value is param.default or param.check(value)):
                 return None
+        return bound
+
+    def _match(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> dict[str, Any] | None:
+        """Names the arguments (positions, then keywords, then defaults), unchecked."""
+        params = self.params
+        if len(args) > len(params) or not kwargs.keys() <= self.names:
+            return None
+        bound: dict[str, Any] = {}
+        for i, param in enumerate(params):
+            if i < len(args):
+                if param.name in kwargs:
+                    return None
+                bound[param.name] = args[i]
+            elif param.name in kwargs:
+                bound[param.name] = kwargs[param.name]
+            elif param.default is REQUIRED:
+                return None
+            else:
+                bound[param.name] = param.default
         return bound
 
     def signature(self, owner: str) -> str:
@@ -117,12 +137,20 @@ def dispatch(
     overloads: Sequence[Overload],
     args: tuple[Any, ...],
     kwargs: dict[str, Any],
+    *,
+    receiver: object = _NO_RECEIVER,
 ) -> Any:
-    """Calls the first overload that binds; raises pybind11's TypeError otherwise."""
+    """Calls the first overload that binds; raises pybind11's TypeError otherwise.
+
+    With a ``receiver`` the overload's function is called as ``impl(receiver,
+    **bound)``, so a class can keep one overload table of plain functions.
+    """
     for overload in overloads:
         bound = overload.bind(args, kwargs)
         if bound is not None:
-            return overload.impl(**bound)
+            if receiver is _NO_RECEIVER:
+                return overload.impl(**bound)
+            return overload.impl(receiver, **bound)
     what = "constructor" if name == "__init__" else "function"
     lines = [
         f"{name}(): incompatible {what} arguments. The following argument types are supported:"

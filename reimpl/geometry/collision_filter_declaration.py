@@ -17,8 +17,7 @@ when the declaration is applied.
 from __future__ import annotations
 
 import enum
-from dataclasses import dataclass
-from typing import Any, Self
+from typing import Any, NamedTuple, Self
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl.geometry.geometry_set import GeometrySet
@@ -60,22 +59,29 @@ class StatementOp(enum.Enum):
     kExcludeBetween = (Pairing.BETWEEN, True)
     kExcludeWithin = (Pairing.WITHIN, True)
 
-    @property
-    def pairing(self) -> Pairing:
-        return self.value[0]
+    pairing: Pairing
+    filters: bool
 
-    @property
-    def filters(self) -> bool:
-        return self.value[1]
+    def __init__(self, pairing: Pairing, filters: bool) -> None:
+        self.pairing = pairing
+        self.filters = filters
 
 
-@dataclass(frozen=True)
-class Statement:
+class Statement(NamedTuple):
     """One recorded statement; ``set_B`` is empty for the *Within ops."""
 
     op: StatementOp
     set_A: GeometrySet
     set_B: GeometrySet
+
+
+_OWNER = "reimpl.geometry.CollisionFilterDeclaration"
+
+#: The constructor's overloads; each gives the declaration's scope.
+_OVERLOADS = (
+    Overload((), lambda: CollisionFilterScope.kAll),
+    Overload((Param("scope", instance_of(CollisionFilterScope)),), lambda scope: scope),
+)
 
 
 class CollisionFilterDeclaration:
@@ -91,23 +97,7 @@ class CollisionFilterDeclaration:
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         self._statements: list[Statement] = []
-        self._scope = CollisionFilterScope.kAll
-        dispatch(
-            "reimpl.geometry.CollisionFilterDeclaration",
-            "__init__",
-            (
-                Overload((), lambda: None),
-                Overload(
-                    (Param("scope", instance_of(CollisionFilterScope)),),
-                    self._set_scope,
-                ),
-            ),
-            args,
-            kwargs,
-        )
-
-    def _set_scope(self, scope: CollisionFilterScope) -> None:
-        self._scope = scope
+        self._scope: CollisionFilterScope = dispatch(_OWNER, "__init__", _OVERLOADS, args, kwargs)
 
     def _append(self, op: StatementOp, set_A: object, set_B: object) -> Self:
         for value in (set_A, set_B):

@@ -51,13 +51,13 @@ class CollisionFilterManager:
             RuntimeError: an id in the declaration is not registered (statements
                 before it stay applied), or transient history is active.
         """
-        self._state.collision_filter.apply(declaration.statements(), self._state.collect_ids)
+        state = self._state
+        state.collision_filter.apply(declaration.statements(), state.collect_ids)
 
     def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
         """Appends ``declaration`` to the transient history and returns its id."""
-        return self._state.collision_filter.apply_transient(
-            declaration.statements(), self._state.collect_ids
-        )
+        state = self._state
+        return state.collision_filter.apply_transient(declaration.statements(), state.collect_ids)
 
     def RemoveDeclaration(self, filter_id: FilterId) -> bool:
         """Removes a transient declaration; True iff ``IsActive(filter_id)`` was True."""

@@ -18,6 +18,30 @@ __all__ = ["GeometrySet"]
 _OWNER = "reimpl.geometry.GeometrySet"
 
 
+def _ids(
+    geometry_ids: tuple[GeometryId, ...] | list[GeometryId] = (),
+    frame_ids: tuple[FrameId, ...] | list[FrameId] = (),
+) -> tuple[tuple[GeometryId, ...] | list[GeometryId], tuple[FrameId, ...] | list[FrameId]]:
+    return geometry_ids, frame_ids
+
+
+#: The constructor's overloads, in pydrake's order; each gives (geometry ids, frame ids).
+_OVERLOADS = (
+    Overload((), _ids),
+    Overload(
+        (Param("geometry_id", instance_of(GeometryId)),),
+        lambda geometry_id: ((geometry_id,), ()),
+    ),
+    Overload((Param("frame_id", instance_of(FrameId)),), lambda frame_id: ((), (frame_id,))),
+    Overload((Param("geometry_ids", list_of(GeometryId)),), _ids),
+    Overload((Param("frame_ids", list_of(FrameId)),), _ids),
+    Overload(
+        (Param("geometry_ids", list_of(GeometryId)), Param("frame_ids", list_of(FrameId))),
+        _ids,
+    ),
+)
+
+
 class GeometrySet:
     """An unresolved union of geometry ids and frame ids.
 
@@ -29,46 +53,15 @@ class GeometrySet:
     __slots__ = ("_frame_ids", "_geometry_ids")
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
-        self._geometry_ids: dict[GeometryId, None] = {}
-        self._frame_ids: dict[FrameId, None] = {}
-        dispatch(_OWNER, "__init__", self._overloads(), args, kwargs)
+        geometry_ids, frame_ids = dispatch(_OWNER, "__init__", _OVERLOADS, args, kwargs)
+        self._geometry_ids: dict[GeometryId, None] = dict.fromkeys(geometry_ids)
+        self._frame_ids: dict[FrameId, None] = dict.fromkeys(frame_ids)
 
     def Add(self, *args: Any, **kwargs: Any) -> None:
         """Adds ids with the same overloads as the constructor (never another set)."""
-        overloads = self._overloads()[1:]
-        dispatch(_OWNER, "Add", overloads, args, kwargs)
-
-    def _overloads(self) -> tuple[Overload, ...]:
-        return (
-            Overload((), lambda: None),
-            Overload((Param("geometry_id", instance_of(GeometryId)),), self._add_geometry),
-            Overload((Param("frame_id", instance_of(FrameId)),), self._add_frame),
-            Overload((Param("geometry_ids", list_of(GeometryId)),), self._add_geometries),
-            Overload((Param("frame_ids", list_of(FrameId)),), self._add_frames),
-            Overload(
-                (
-                    Param("geometry_ids", list_of(GeometryId)),
-                    Param("frame_ids", list_of(FrameId)),
-                ),
-                self._add_both,
-            ),
-        )
-
-    def _add_geometry(self, geometry_id: GeometryId) -> None:
-        self._geometry_ids[geometry_id] = None
-
-    def _add_frame(self, frame_id: FrameId) -> None:
-        self._frame_ids[frame_id] = None
-
-    def _add_geometries(self, geometry_ids: list[GeometryId]) -> None:
+        geometry_ids, frame_ids = dispatch(_OWNER, "Add", _OVERLOADS[1:], args, kwargs)
         self._geometry_ids.update(dict.fromkeys(geometry_ids))
-
-    def _add_frames(self, frame_ids: list[FrameId]) -> None:
         self._frame_ids.update(dict.fromkeys(frame_ids))
-
-    def _add_both(self, geometry_ids: list[GeometryId], frame_ids: list[FrameId]) -> None:
-        self._add_geometries(geometry_ids)
-        self._add_frames(frame_ids)
 
     # reimpl-only accessors (pydrake binds none); PEP 8 names mark them as ours.
     def geometry_ids(self) -> tuple[GeometryId, ...]:
@@ -84,7 +77,7 @@ class GeometrySet:
         return len(self._frame_ids)
 
     def __copy__(self) -> GeometrySet:
-        copy = GeometrySet()
+        copy = object.__new__(GeometrySet)
         copy._geometry_ids = dict(self._geometry_ids)
         copy._frame_ids = dict(self._frame_ids)
         return copy

@@ -17,8 +17,8 @@ that tie the scene to C live here:
 
 from __future__ import annotations
 
-import copy
 from dataclasses import dataclass, field
+from typing import NoReturn
 
 from reimpl.geometry.collision_filter import CollisionFilter
 from reimpl.geometry.collision_filter_declaration import Statement, StatementOp
@@ -83,6 +83,10 @@ class _Geometry:
     def is_anchored(self) -> bool:
         return self.frame_id == WORLD_FRAME_ID
 
+    @property
+    def has_proximity(self) -> bool:
+        return Role.kProximity in self.properties
+
 
 class GeometryState:
     """Sources, frames, geometries, roles and the collision filter of one state."""
@@ -108,8 +112,14 @@ class GeometryState:
         """A deep copy, as a context's copy of the model is (filters and history too)."""
         other = object.__new__(GeometryState)
         other._internal_source = self._internal_source
-        other._sources = copy.deepcopy(self._sources)
-        other._frames = copy.deepcopy(self._frames)
+        other._sources = {
+            s: _Source(r.id, r.name, list(r.frames), list(r.anchored))
+            for s, r in self._sources.items()
+        }
+        other._frames = {
+            f: _Frame(r.id, r.name, r.source_id, r.parent_id, r.frame_group, list(r.geometries))
+            for f, r in self._frames.items()
+        }
         other._geometries = {
             g: _Geometry(
                 r.id,
@@ -450,6 +460,13 @@ class GeometryState:
     # ---------------------------------------------------------------- queries
     def collision_filtered(self, a: GeometryId, b: GeometryId) -> bool:
         """True iff (a, b) ∉ C, for two proximity geometries (SceneGraphInspector)."""
+        ga, gb = self._geometries.get(a), self._geometries.get(b)
+        if ga is None or gb is None or not (ga.has_proximity and gb.has_proximity):
+            self._raise_unqueryable(a, b)
+        return not self.collision_filter.can_collide_with(a, b)
+
+    def _raise_unqueryable(self, a: GeometryId, b: GeometryId) -> NoReturn:
+        """Drake's message for CollisionFiltered of a non-proximity or unknown geometry."""
         prefix = (
             f"Can't report collision filter status between geometries {a.get_value()} and "
             f"{b.get_value()}; "
@@ -461,14 +478,10 @@ class GeometryState:
             bad = a if not valid[0] else b
             raise UnqueryableGeometryError(prefix + f"{bad.get_value()} is not a valid geometry")
         proximity = [Role.kProximity in self._geometries[g].properties for g in (a, b)]
-        if not all(proximity):
-            if not any(proximity):
-                raise UnqueryableGeometryError(prefix + " neither id has a proximity role")
-            bad = a if not proximity[0] else b
-            raise UnqueryableGeometryError(
-                prefix + f"{bad.get_value()} does not have a proximity role"
-            )
-        return not self.collision_filter.can_collide_with(a, b)
+        if not any(proximity):
+            raise UnqueryableGeometryError(prefix + " neither id has a proximity role")
+        bad = a if not proximity[0] else b
+        raise UnqueryableGeometryError(prefix + f"{bad.get_value()} does not have a proximity role")
 
     def has_source(self, source_id: SourceId) -> bool:
         return source_id in self._sources

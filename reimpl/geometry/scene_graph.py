@@ -254,14 +254,7 @@ class SceneGraph(LeafSystem):
 
     def collision_filter_manager(self, *args: Any, **kwargs: Any) -> CollisionFilterManager:
         return dispatch(  # type: ignore[no-any-return]
-            _OWNER,
-            "collision_filter_manager",
-            (
-                Overload((Param("context", instance_of(Context)),), self._context_manager),
-                Overload((), self._model_manager),
-            ),
-            args,
-            kwargs,
+            _OWNER, "collision_filter_manager", _MANAGER_OVERLOADS, args, kwargs, receiver=self
         )
 
     # ------------------------------------------------------------ contexts
@@ -350,5 +343,11 @@ class SceneGraph(LeafSystem):
             # A duplicate-name RegisterFrame left a frame index without a frame.
             raise IndexError("_Map_base::at")
 
+
+#: collision_filter_manager(context) and collision_filter_manager(), in pydrake's order.
+_MANAGER_OVERLOADS = (
+    Overload((Param("context", instance_of(Context)),), SceneGraph._context_manager),
+    Overload((), SceneGraph._model_manager),
+)
 
 SceneGraph_ = scalar_template("reimpl.geometry", "SceneGraph_", SceneGraph)
