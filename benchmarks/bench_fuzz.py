@@ -14,8 +14,12 @@ median run's:
 - how many geometries an example has registered by its end, on average
   (operations add geometry to the initial scene).
 
+``--poses`` measures the posed machine (``fuzz --poses``: shapes, poses,
+near touches and the queries) instead; both backends need the ``queries``
+feature (``--backend`` chooses the one under test, reimpl by default).
+
 Usage: python benchmarks/bench_fuzz.py [--examples N] [--seed S] [--steps K] [--repeat R]
-                                       [--operations-per-step P]
+                                       [--operations-per-step P] [--poses] [--backend B]
 """
 
 from __future__ import annotations
@@ -24,6 +28,7 @@ import argparse
 import statistics
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -31,10 +36,13 @@ from hypothesis.stateful import Bundle, RuleBasedStateMachine, rule, run_state_m
 
 from conformance.backends.loader import load_backend
 from conformance.fuzz.campaign import DEFAULT_STEPS, Campaign, fuzz_settings
-from conformance.fuzz.lockstep import LockstepMachine
+from conformance.fuzz.lockstep import LockstepMachine, PosedLockstepMachine
 from conformance.protocol import Backend
 
 SIZES = ((5, 10), (10, 20), (20, 30))
+
+#: Typed alias, as in ``conformance.fuzz.campaign`` (Hypothesis releases differ in its annotations).
+_run_machine: Callable[..., None] = run_state_machine_as_test
 
 
 class _NoOpMachine(RuleBasedStateMachine):
@@ -57,9 +65,7 @@ def hypothesis_floor(examples: int, steps: int) -> float:
     """Steps/s of ``_NoOpMachine`` under the campaign's settings."""
     _NoOpMachine.steps = 0
     start = time.perf_counter()
-    run_state_machine_as_test(
-        _NoOpMachine, settings=fuzz_settings(max_examples=examples, steps=steps)
-    )
+    _run_machine(_NoOpMachine, settings=fuzz_settings(max_examples=examples, steps=steps))
     return _NoOpMachine.steps / (time.perf_counter() - start)
 
 
@@ -70,6 +76,13 @@ class _Sizing(LockstepMachine):
 
     def teardown(self) -> None:
         type(self).final_sizes.append(len(self.names["geometries"]))
+
+
+class _PosedSizing(_Sizing):
+    """``_Sizing`` on posed scenes, with ``PosedLockstepMachine``'s operations."""
+
+    OPERATIONS = PosedLockstepMachine.OPERATIONS
+    posed = True
 
 
 @dataclass(frozen=True)
@@ -94,7 +107,7 @@ def measure(
         seed=args.seed,
         max_examples=args.examples,
         steps=args.steps,
-        machine_base=_Sizing,
+        machine_base=_PosedSizing if args.poses else _Sizing,
         scene_frames=(2, 5),
         scene_geometries=sizes,
     )
@@ -126,11 +139,14 @@ def main(argv: list[str] | None = None) -> int:
         default=LockstepMachine.operations_per_step,
         help="operations per Hypothesis step (default: the machine's)",
     )
+    parser.add_argument("--poses", action="store_true", help="the posed machine (fuzz --poses)")
+    parser.add_argument("--backend", default="reimpl", help="the backend under test (reimpl)")
     args = parser.parse_args(argv)
     _Sizing.operations_per_step = args.operations_per_step
-    reimpl, pydrake = load_backend("reimpl"), load_backend("pydrake")
+    reimpl, pydrake = load_backend(args.backend), load_backend("pydrake")
     print(
-        f"reimpl against pydrake {pydrake.version()}, seed {args.seed}, {args.examples} "
+        f"{reimpl.name} against pydrake {pydrake.version()}{' (posed)' if args.poses else ''}, "
+        f"seed {args.seed}, {args.examples} "
         f"examples of up to {args.steps} Hypothesis steps of {args.operations_per_step} "
         f"operations per run, median of {args.repeat}"
     )

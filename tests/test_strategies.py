@@ -191,15 +191,20 @@ def test_posed_command_sequences_reach_every_op_the_posed_operations_issue() -> 
             lambda commands, op=op: op in {c.op for c in commands},
             settings=settings(max_examples=2000, database=None),
         )
-    with_shapes = find(
+    with_capsules = find(
         command_sequences(max_operations=8, posed=True),
         lambda commands: any(
-            c.op == "register_geometry" and c.args.get("shape", {}).get("type") == "halfspace"
+            c.op == "register_geometry" and c.args.get("shape", {}).get("type") == "capsule"
             for c in commands
         ),
         settings=settings(max_examples=2000, database=None),
     )
-    assert with_shapes
+    assert with_capsules
+    # HalfSpaces stay out of posed fuzzing (pydrake's AABB tree crashes on them, see the share).
+    assert cs.POSED_HALFSPACE_SHARE == 0
+    kinds = {cs.shape_of(bytes([b, 0, 0, 0]), halfspace=0)["type"] for b in range(256)}
+    assert kinds == set(cs.SHAPE_TYPES) - {"halfspace"}
+    assert cs.shape_of(bytes([255, 0, 0, 0]))["type"] == "halfspace"
 
 
 REIMPL = load_backend("reimpl")
@@ -293,16 +298,17 @@ def test_rotation_and_transform_products_are_pydrake_s_to_rounding() -> None:
     assert cs.Transform.of({"xyz": [1, 2, 3]}) == cs.Transform(translation=(1.0, 2.0, 3.0))
 
 
-def test_touch_bytes_give_a_unit_direction_a_frame_rotation_and_a_gap_of_at_most_1e_3() -> None:
+def test_touch_bytes_give_a_unit_direction_a_frame_rotation_and_a_gap_from_1e_9_to_1e_3() -> None:
     assert cs.Touch.decode(bytes(cs.TOUCH_BYTES)) == cs.Touch(
         0, 0, (0.0, 0.0, 1.0), (0.0, 0.0, 0.0), 5e-4
     )
     touch = cs.Touch.decode(bytes([3, 4, 1, 0, 0, 3, 0, 0, 1 | 2 * 3, 128]))
     assert touch.direction == (1.0, 0.0, 0.0)
     assert touch.rpy == (0.05, 0.0, 0.0)
-    assert touch.gap == -1e-6 * 1.5 / 2  # sign bit, scale GAP_SCALES[3], mantissa 128
-    exact = cs.Touch.decode(bytes([0] * 8 + [2 * (len(cs.GAP_SCALES) - 1), 77]))
-    assert exact.gap == 0.0
+    assert touch.gap == -1e-6 * 1.5  # sign bit, scale GAP_SCALES[3], mantissa 128
+    gaps = [cs.Touch.decode(bytes([0] * 8 + [b, m])).gap for b in range(256) for m in (0, 255)]
+    assert min(map(abs, gaps)) == 1e-9
+    assert max(map(abs, gaps)) < 1e-3
 
 
 #: pydrake's shapes for the grammar's SHAPE values.

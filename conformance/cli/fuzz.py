@@ -9,6 +9,15 @@ with the scenario runner to confirm that ``run`` reproduces it.
 each example is a random model case run by the corpus runner, not a lockstep
 command sequence; everything else (seeds, budgets, findings, exit codes) is
 the same.
+
+``--poses`` runs the lockstep machine on posed scenes
+(``PosedLockstepMachine``): random shapes and poses, near-touching offsets,
+set_poses and every QueryObject query, besides all the filter operations;
+both backends need the ``queries`` feature. It is a flag, not the default,
+so that ``fuzz --seed S`` draws what it always drew: the findings already
+written name their command (``fuzz --seed S``), and a backend without the
+queries (an older Drake release in a worker, a mutant) still fuzzes the
+filters. A finding's file name starts with ``poses-``.
 """
 
 from __future__ import annotations
@@ -29,7 +38,12 @@ from conformance.cli.options import refuse
 from conformance.cli.run import PROG
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
-from conformance.fuzz.lockstep import FuzzStats, HarnessError
+from conformance.fuzz.lockstep import (
+    FuzzStats,
+    HarnessError,
+    LockstepMachine,
+    PosedLockstepMachine,
+)
 from conformance.fuzz.model_campaign import ModelCampaign
 from conformance.fuzz.regression import drake_release, write_regression, write_reproducer
 from conformance.protocol import Backend, backend_id
@@ -143,6 +157,7 @@ def _report(
             seed=args.seed,
             backend_version=release,
             models=args.models,
+            poses=_posed(args),
         ),
         args.out,
         out,
@@ -187,7 +202,12 @@ def _broken(exc: HarnessError, args: argparse.Namespace, out: TextIO, err: TextI
     err.write(f"error: a backend broke (not a divergence): {exc}\n")
     path = _write_finding(
         lambda folder: write_reproducer(
-            exc, folder, backend=args.backend, reference=args.against, seed=args.seed
+            exc,
+            folder,
+            backend=args.backend,
+            reference=args.against,
+            seed=args.seed,
+            poses=_posed(args),
         ),
         args.out,
         out,
@@ -221,7 +241,22 @@ def _load_pair(args: argparse.Namespace) -> tuple[Backend, Backend]:
     reference = load_backend(args.against, **options)
     if backend.name == reference.name:
         raise BackendLoadError(f"--backend and --against are both named {backend.name!r}")
+    lacking = [b.name for b in (backend, reference) if "queries" not in b.features()]
+    if _posed(args) and lacking:
+        raise BackendLoadError(
+            f"--poses needs the posed queries (feature 'queries'), which "
+            f"{' and '.join(lacking)} lack"
+        )
     return backend, reference
+
+
+def _posed(args: argparse.Namespace) -> bool:
+    """``--poses`` was given (a parser without the option means no)."""
+    return bool(getattr(args, "poses", False))
+
+
+def _mode(args: argparse.Namespace) -> str:
+    return " --models" if args.models else " --poses" if _posed(args) else ""
 
 
 def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
@@ -231,6 +266,8 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         for option, path in (("--out", args.out), ("--database", args.database))
         if path is not None and (problem := unwritable_dir(path)) is not None
     ]
+    if args.models and _posed(args):
+        problems.append("--models and --poses are two different campaigns: choose one")
     if refuse(problems, err):
         return EXIT_USAGE
     try:
@@ -264,8 +301,10 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         strict_divergences=args.strict_divergences,
         step_timeout=args.step_timeout or None,
     )
+    if not args.models:
+        campaign.machine_base = PosedLockstepMachine if _posed(args) else LockstepMachine
     err.write(
-        f"fuzz{' --models' if args.models else ''}: {backend.name} {backend.version()} against "
+        f"fuzz{_mode(args)}: {backend.name} {backend.version()} against "
         f"{reference.name} {reference.version()}, seed {args.seed}, "
         + (f"{max_examples} examples" if max_examples else f"time budget {args.time_budget}s")
         + (", one model case each\n" if args.models else f", {args.steps} steps each\n")

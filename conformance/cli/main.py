@@ -112,6 +112,12 @@ def _add_fuzz(commands: Any) -> None:
         "SceneGraph command sequences",
     )
     fuzz.add_argument(
+        "--poses",
+        action="store_true",
+        help="fuzz posed scenes: shapes, poses, near touches and the QueryObject queries "
+        "(both backends need the 'queries' feature)",
+    )
+    fuzz.add_argument(
         "--steps", type=_positive(int), default=DEFAULT_STEPS, help="commands per example"
     )
     fuzz.add_argument(

@@ -24,7 +24,7 @@ To add an operation, subclass the machine with a larger table::
 with geometry registered with a drawn shape and pose, and with every op of
 the grammar's ``queries`` domain (set_poses and the QueryObject queries, in
 the model or a context), plus ``near_touch``: it moves one geometry's frame
-so that the geometry sits at a drawn gap of at most 1e-3 m from another
+so that the geometry sits at a drawn gap of 1e-9 to 1e-3 m from another
 (``strategies.Touch``, ``strategies.touching_position``), then queries
 there, so the decision between colliding and not is made at the boundary.
 ``PoseBook`` follows the commands to know where everything is: every
@@ -130,18 +130,34 @@ def register_source(m: Machine, picks: bytes) -> None:
     m.keep_if_made("sources", name, m.step("register_source", name=name))
 
 
-def register_frame(m: Machine, picks: bytes) -> None:
-    """A new frame; one time in four under another frame's Drake name (a duplicate)."""
-    parent, source, reuse = picks[:3]
+def _register_frame(m: Machine, picks: bytes, drake_name: str | None) -> None:
+    parent, source = picks[:2]
     name = m.fresh("f")
     result = m.step(
         "register_frame",
         name=name,
-        drake_name=m.name("reused_frame", reuse),
+        drake_name=drake_name,
         parent=m.name("parent", parent),
         source=m.name("owner", source),
     )
     m.keep_if_made("frames", name, result)
+
+
+def register_frame(m: Machine, picks: bytes) -> None:
+    """A new frame; one time in four under another frame's Drake name (a duplicate)."""
+    _register_frame(m, picks, m.name("reused_frame", picks[2]))
+
+
+def register_posed_frame(m: Machine, picks: bytes) -> None:
+    """``register_frame`` under its own Drake name (never another frame's).
+
+    N.B. pydrake 1.51.1 (and 1.58) leave a frame refused for its duplicate
+    name half-registered: every later query raises IndexError
+    ``_Map_base::at`` (measured). That is one fact, not something to find
+    again in every posed example whose queries would all fail after it;
+    the filter campaign still registers duplicates.
+    """
+    _register_frame(m, picks, None)
 
 
 def _registered(result: Result) -> bool:
@@ -171,7 +187,11 @@ def _register_batch(m: Machine, picks: bytes, placements: bytes, width: int) -> 
             roles=cs.role_list(code),
             source=m.name("owner", source),
             context=into if frame != cs.WORLD else None,
-            shape=cs.shape_of(solid[: cs.SHAPE_BYTES]) if solid else None,
+            shape=(
+                cs.shape_of(solid[: cs.SHAPE_BYTES], halfspace=cs.POSED_HALFSPACE_SHARE)
+                if solid
+                else None
+            ),
             pose=(cs.pose_of(solid[cs.SHAPE_BYTES :]) or None) if solid else None,
         )
         if _registered(result):
@@ -371,6 +391,8 @@ class PoseBook:
         self.geometries: dict[str, Placed] = {}
         #: location → frame → X_PF.
         self.stored: dict[str, dict[str, cs.Transform]] = {MODEL: {}}
+        #: location → the pairs its last penetration query found (a hint: poses change).
+        self.colliding: dict[str, list[tuple[str, str]]] = {}
 
     def record(self, command: Command, result: Result) -> None:
         """Follows ``command``, which answered ``result`` (on the reference)."""
@@ -392,6 +414,11 @@ class PoseBook:
         if result.error is None:
             stored = self.stored.setdefault(args.get("context", MODEL), {})
             stored.update({name: cs.Transform.of(pose) for name, pose in args["poses"].items()})
+
+    def _penetration(self, args: Mapping[str, Any], result: Result) -> None:
+        if result.error is None and isinstance(result.value, list):
+            pairs = [tuple(record["pair"]) for record in result.value]
+            self.colliding[args.get("context", MODEL)] = [(a, b) for a, b in pairs]
 
     def _new_context(self, args: Mapping[str, Any], result: Result) -> None:
         if result.error is None:
@@ -428,6 +455,7 @@ _FOLLOW: dict[str, Callable[[PoseBook, Mapping[str, Any], Result], None]] = {
     "register_frame": PoseBook._frame,
     "register_geometry": PoseBook._geometry,
     "set_poses": PoseBook._poses,
+    "compute_point_pair_penetration": PoseBook._penetration,
     "create_context": PoseBook._new_context,
     "clone_context": PoseBook._clone,
 }
@@ -480,8 +508,8 @@ def _movable(book: PoseBook, a: str, b: str) -> bool:
 def near_touch(m: Machine, picks: bytes, touch: cs.Touch) -> None:
     """Moves geometry B's frame so that B sits at ``touch.gap`` from geometry A; then a query.
 
-    A and B are picked among the geometries the book knows (B must be
-    movable without moving A: else they swap, else nothing happens). B's
+    A and B are two geometries the book knows (B must be movable without
+    moving A: else they swap, else nothing happens). B's
     frame F gets the drawn rotation ``R_PF`` in its parent P and the
     translation that puts B where ``strategies.touching_position`` says:
     ``p_WF = p_WB − R_WF p_FB``, ``p_PF = R_WPᵀ (p_WF − p_WP)``. The
@@ -491,9 +519,10 @@ def near_touch(m: Machine, picks: bytes, touch: cs.Touch) -> None:
     """
     book = m.poses
     known = [name for name in m.names["geometries"] if name in book.geometries]
-    if not known:
+    if len(known) < 2:
         return
-    a, b = known[touch.a % len(known)], known[touch.b % len(known)]
+    first = touch.a % len(known)
+    a, b = known[first], known[(first + 1 + touch.b % (len(known) - 1)) % len(known)]
     if not _movable(book, a, b):
         a, b = b, a
         if not _movable(book, a, b):
@@ -521,6 +550,57 @@ def near_touch(m: Machine, picks: bytes, touch: cs.Touch) -> None:
     query = _TOUCH_QUERIES[picks[1] % len(_TOUCH_QUERIES)]
     pair = {"pair": [a, b]} if query == "compute_signed_distance_pair_closest_points" else {}
     m.step(query, context=where, **pair)
+
+
+def query_through_filter(m: Machine, picks: bytes, template: cs.DeclarationTemplate) -> None:
+    """A transient declaration, a query (as ``near_touch`` picks one) there, then its removal.
+
+    Filters exist to shape what the queries return: this puts a fresh
+    declaration and a query side by side, at the picked location. One time
+    in two, if the last penetration query there found pairs
+    (``PoseBook.colliding``), the declaration excludes one of them
+    (``ExcludeBetween({A}, {B})``) and the query is the penetration again;
+    else the declaration is the drawn one.
+    """
+    label, where = m.fresh("t"), m.name("context", picks[0])
+    colliding = m.poses.colliding.get(where or MODEL, [])
+    query = _TOUCH_QUERIES[picks[1] % len(_TOUCH_QUERIES)]
+    if colliding and picks[3] & 1:
+        a, b = colliding[picks[3] // 2 % len(colliding)]
+        statement = {"op": "exclude_between", "a": {"geometries": [a]}, "b": {"geometries": [b]}}
+        declaration: dict[str, Any] = {"statements": [statement]}
+        query = "compute_point_pair_penetration"
+    else:
+        declaration = m.declaration(template)
+    result = m.step("apply_transient", declaration=declaration, label=label, context=where)
+    if query == "compute_signed_distance_pair_closest_points":
+        signed_distance_pair(m, picks[2:] + picks[:1])
+    else:
+        m.step(query, context=where)
+    if result.error is None:
+        m.step("remove_declaration", label=label, context=where)
+
+
+def signed_distance_pair(m: Machine, picks: bytes) -> None:
+    """compute_signed_distance_pair_closest_points of two different geometries, in either order.
+
+    Now and then the first is ``@unknown`` or ``@foreign``. A geometry is
+    never paired with itself: for a shape against itself the witness points
+    and the normal are arbitrary, and two pydrake SceneGraphs answer
+    differently for GJK pairs (cylinder-cylinder, measured: witness points
+    0.1 m and normals 0.2 apart).
+    """
+    names = m.names["geometries"]
+    first, second = m.name("any_geometry", picks[0]), m.name("geometry", picks[1])
+    if second is None or first == second:
+        second = names[(names.index(first) + 1) % len(names)] if first in names else second
+    if first is None or first == second:
+        return
+    m.step(
+        "compute_signed_distance_pair_closest_points",
+        pair=[first, second],
+        context=m.name("context", picks[2]),
+    )
 
 
 # ------------------------------------------------------------------- table
@@ -734,7 +814,7 @@ OPERATIONS: dict[str, Operation] = {
 QUERY_OPS = ops_of("queries")
 
 
-def _touchable(m: Machine) -> bool:
+def _pairs_queryable(m: Machine) -> bool:
     return m.queries and len(m.names["geometries"]) > 1
 
 
@@ -742,6 +822,7 @@ def _touchable(m: Machine) -> bool:
 #: generic operation for every query op, and ``near_touch`` (see the module doc).
 POSED_OPERATIONS: dict[str, Operation] = {
     **OPERATIONS,
+    "register_frame": Operation(register_posed_frame),
     "register_geometries": Operation(
         register_posed_geometries,
         (st.binary(min_size=_POSED_PLACEMENT, max_size=4 * _POSED_PLACEMENT),),
@@ -750,8 +831,17 @@ POSED_OPERATIONS: dict[str, Operation] = {
     "near_touch": Operation(
         near_touch,
         (cs.touches(),),
-        enabled=_touchable,
+        enabled=_pairs_queryable,
         issues=frozenset({"set_poses", *_TOUCH_QUERIES}),
     ),
     **{op: generic_operation(GRAMMAR[op]) for op in QUERY_OPS},
+    "compute_signed_distance_pair_closest_points": Operation(
+        signed_distance_pair, enabled=_pairs_queryable
+    ),
+    "query_through_filter": Operation(
+        query_through_filter,
+        (_DECLARATION,),
+        enabled=_pairs_queryable,
+        issues=frozenset({"apply_transient", "remove_declaration", *_TOUCH_QUERIES}),
+    ),
 }

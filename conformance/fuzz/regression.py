@@ -53,10 +53,14 @@ __all__ = [
 DEFAULT_REGRESSIONS = Path("scenarios/regressions")
 
 
-def _result_expectation(result: Result) -> dict[str, Any]:
+def _result_expectation(op: str, result: Result) -> dict[str, Any]:
+    """``error``, or ``returns`` for a bool, an int, or any value of a query op (a list of
+    records, a pose), which ``run`` compares as the op's ``CommandSpec.compare`` says."""
     if result.error is not None:
         return {"error": result.error.to_json()}
-    if isinstance(result.value, bool | int):
+    if isinstance(result.value, bool | int) or (
+        result.value is not None and GRAMMAR[op].domain == "queries"
+    ):
         return {"returns": result.value}
     return {}
 
@@ -91,13 +95,13 @@ def drake_release(backend: BackendId) -> str | None:
     return backend.version if real and parse_version(backend.version) else None
 
 
-def _step_expectations(result: Result, state: Observation | None) -> list[dict[str, Any]]:
+def _step_expectations(op: str, result: Result, state: Observation | None) -> list[dict[str, Any]]:
     """One side's expectations for a step: its result, then (last step) its whole state.
 
     An expectation without ``error`` says the step succeeded, so when the
     step raised, each location's expectation repeats the error.
     """
-    expectations = [_result_expectation(result)]
+    expectations = [_result_expectation(op, result)]
     if state is not None:
         error = {"error": result.error.to_json()} if result.error is not None else {}
         located = [{**error, **where} for where in _state_expectations(state)]
@@ -156,11 +160,12 @@ def regression_scenario(
     seed: int | None = None,
     backend_version: str | None = None,
     models: bool = False,
+    poses: bool = False,
 ) -> dict[str, Any]:
     """The scenario file (a JSON-able dict) for ``divergence``.
 
-    ``models``: found by ``fuzz --models``; the description and the command in
-    the comment say so.
+    ``models``/``poses``: found by ``fuzz --models``/``fuzz --poses``; the
+    description and the command in the comment say so.
 
     ``backend_version``: the Drake release the backend *is* (``drake_release``;
     None for reimpl and other implementations). When it differs from
@@ -179,9 +184,10 @@ def regression_scenario(
     for index, item in enumerate(divergence.trace, 1):
         step = item.command.to_json()
         last = index == len(divergence.trace)
+        op = item.command.op
         expectations = _expect(
-            _step_expectations(item.reference, divergence.reference_state if last else None),
-            _step_expectations(item.backend, divergence.backend_state if last else None),
+            _step_expectations(op, item.reference, divergence.reference_state if last else None),
+            _step_expectations(op, item.backend, divergence.backend_state if last else None),
             releases,
         )
         if expectations:
@@ -194,8 +200,9 @@ def regression_scenario(
     if any(result.error is not None for result in sides):
         features.append("errors")
     seeded = f" --seed {seed}" if seed is not None else ""
+    mode = _mode(models=models, poses=poses)
     found = (
-        f"Found by `python -m conformance fuzz{' --models' if models else ''} "
+        f"Found by `python -m conformance fuzz{mode} "
         f"--backend {backend} --against {reference}"
         f"{seeded}` and shrunk by Hypothesis."
     )
@@ -218,13 +225,16 @@ def regression_scenario(
             f"disagreement ({reference} {reference_version} as reference): {divergence.detail}"
         )
     return {
-        "description": f"Fuzz{' --models' if models else ''} finding: {backend} vs {reference}"[
-            :150
-        ],
+        "description": f"Fuzz{mode} finding: {backend} vs {reference}"[:150],
         "comment": comment,
         "features": sorted(set(features)),
         "cases": [{"description": description[:150], "steps": steps}],
     }
+
+
+def _mode(*, models: bool, poses: bool) -> str:
+    """The campaign's option on the command line: `` --models``, `` --poses`` or none."""
+    return " --models" if models else " --poses" if poses else ""
 
 
 def _features(commands: list[Command]) -> list[str]:
@@ -260,10 +270,12 @@ def write_regression(
     seed: int | None = None,
     backend_version: str | None = None,
     models: bool = False,
+    poses: bool = False,
 ) -> Path:
     """Writes the scenario for ``divergence`` into ``out_dir``; returns its path.
 
-    A ``models`` finding's file name starts with ``models-``."""
+    A ``models`` finding's file name starts with ``models-``, a ``poses`` one's with
+    ``poses-``."""
     scenario = regression_scenario(
         divergence,
         backend=backend,
@@ -272,13 +284,20 @@ def write_regression(
         seed=seed,
         backend_version=backend_version,
         models=models,
+        poses=poses,
     )
-    stem = f"{'models-' if models else ''}{_slug(backend)}-vs-{_slug(reference)}"
+    prefix = _mode(models=models, poses=poses).strip(" -")
+    stem = f"{prefix + '-' if prefix else ''}{_slug(backend)}-vs-{_slug(reference)}"
     return _write_checked(scenario, out_dir, stem)
 
 
 def reproducer_scenario(
-    error: HarnessError, *, backend: str, reference: str, seed: int | None = None
+    error: HarnessError,
+    *,
+    backend: str,
+    reference: str,
+    seed: int | None = None,
+    poses: bool = False,
 ) -> dict[str, Any]:
     """A scenario replaying the commands that broke a backend (no expectations).
 
@@ -290,7 +309,8 @@ def reproducer_scenario(
     return {
         "description": f"Fuzz reproducer: a backend broke ({backend} vs {reference})"[:150],
         "comment": (
-            f"Written by `python -m conformance fuzz --backend {backend} --against {reference}"
+            f"Written by `python -m conformance fuzz{_mode(models=False, poses=poses)} "
+            f"--backend {backend} --against {reference}"
             f"{seeded}` when a backend broke (not a divergence): {message[:500]}"
         ),
         "features": _features(error.commands),
@@ -304,10 +324,18 @@ def reproducer_scenario(
 
 
 def write_reproducer(
-    error: HarnessError, out_dir: Path, *, backend: str, reference: str, seed: int | None = None
+    error: HarnessError,
+    out_dir: Path,
+    *,
+    backend: str,
+    reference: str,
+    seed: int | None = None,
+    poses: bool = False,
 ) -> Path | None:
     """Writes ``reproducer_scenario`` into ``out_dir`` (None if there are no commands)."""
     if not error.commands:
         return None
-    scenario = reproducer_scenario(error, backend=backend, reference=reference, seed=seed)
+    scenario = reproducer_scenario(
+        error, backend=backend, reference=reference, seed=seed, poses=poses
+    )
     return _write_checked(scenario, out_dir, f"broken-{_slug(backend)}-vs-{_slug(reference)}")
