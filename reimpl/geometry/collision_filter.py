@@ -60,9 +60,10 @@ from __future__ import annotations
 import enum
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import NamedTuple, cast
 
 import numpy as np
+import numpy.typing as npt
 
 from reimpl.geometry._pair_bits import PairBits, mask_of
 from reimpl.geometry.collision_filter_declaration import Pairing, Statement, StatementOp
@@ -71,6 +72,10 @@ from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FilterId, GeometryId
 
 __all__ = ["CollisionFilter", "PairRelationship", "ResolvedStatement"]
+
+#: Up to this many slots, GetCollisionCandidates reads the rows bit by bit in
+#: Python; above, a block of rows at a time with numpy (fewer calls either way).
+_ROWS_READ_BY_BIT = 256
 
 _PERSISTENT_WITH_HISTORY = (
     "You cannot attempt to modify the persistent collision filter configuration when there "
@@ -161,6 +166,7 @@ class CollisionFilter:
         self._base = PairBits()  # the persistent part of U
         self._filtered = PairBits()  # U = replay(base, history), what C reads
         self._history: list[_Delta] = []
+        self._active: set[FilterId] = set()  # the history's FilterIds
         # Slots whose rows in U may hold leftovers of a failed, partial apply.
         self._leftover: set[int] = set()
 
@@ -180,6 +186,7 @@ class CollisionFilter:
         other._base = self._base.copy()
         other._filtered = self._filtered.copy()
         other._history = list(self._history)  # deltas are immutable
+        other._active = set(self._active)
         other._leftover = set(self._leftover)
         return other
 
@@ -325,6 +332,7 @@ class CollisionFilter:
             item.write(self._filtered)
         filter_id = FilterId.get_new_id()
         self._history.append(_Delta(filter_id, tuple(resolved)))
+        self._active.add(filter_id)
         return filter_id
 
     def remove_declaration(self, filter_id: FilterId) -> bool:
@@ -332,9 +340,10 @@ class CollisionFilter:
 
         Returns True iff ``filter_id`` was active.
         """
-        index = next((i for i, d in enumerate(self._history) if d.filter_id == filter_id), None)
-        if index is None:
+        if filter_id not in self._active:
             return False
+        self._active.remove(filter_id)
+        index = next(i for i, d in enumerate(self._history) if d.filter_id == filter_id)
         removed = self._history.pop(index)
         mentioned: set[int] = set()
         for statement in removed.statements:
@@ -362,7 +371,7 @@ class CollisionFilter:
                 statement.write(self._filtered, only=R)
 
     def is_active(self, filter_id: FilterId) -> bool:
-        return any(d.filter_id == filter_id for d in self._history)
+        return filter_id in self._active
 
     def has_transient_history(self) -> bool:
         return bool(self._history)
@@ -392,18 +401,42 @@ class CollisionFilter:
     def candidates(self) -> set[tuple[GeometryId, GeometryId]]:
         """C as pairs (a, b) with a.get_value() < b.get_value().
 
-        A block of live rows at a time: the rows V | U are unpacked to booleans
-        (about 4 MB a block), and the partners b > a of each row a are the live
-        slots whose bits are clear. O(n·w) in C plus O(|C|) to build the pairs.
+        Row by row: the partners b > a of a live slot a are the live slots
+        whose bits are clear in a's rows of V and U. O(n·w) plus O(|C|).
+        """
+        live = [r and not i for r, i in zip(self._registered, self._inactive, strict=True)]
+        live_slots = [slot for slot, is_live in enumerate(live) if is_live]
+        if len(live) > _ROWS_READ_BY_BIT:
+            return self._candidates_by_block(np.array(live, dtype=bool))
+        live_mask = mask_of(live_slots)
+        ids = cast(list[GeometryId], self._id_at)  # a live slot holds an id
+        invariant, filtered = self._invariant.rows, self._filtered.rows
+        pairs: set[tuple[GeometryId, GeometryId]] = set()
+        for a in live_slots:
+            ga = ids[a]
+            free = live_mask >> (a + 1) << (a + 1) & ~(invariant[a] | filtered[a])
+            while free:
+                lowest = free & -free
+                free ^= lowest
+                gb = ids[lowest.bit_length() - 1]
+                pairs.add((ga, gb) if ga < gb else (gb, ga))
+        return pairs
+
+    def _candidates_by_block(
+        self, live: npt.NDArray[np.bool_]
+    ) -> set[tuple[GeometryId, GeometryId]]:
+        """``candidates`` for many slots: a block of rows at a time, unpacked by numpy.
+
+        The rows V | U of a block are unpacked to booleans (about 4 MB a block);
+        the pairs are read with array operations, not bit by bit.
         """
         n = len(self._id_at)
-        live = np.array(self._registered, dtype=bool) & ~np.array(self._inactive, dtype=bool)
         ids = np.empty(n, dtype=object)
         ids[:] = self._id_at
         values = np.array([-1 if g is None else g.get_value() for g in self._id_at], np.int64)
         invariant, filtered = self._invariant.rows, self._filtered.rows
         width = (n + 7) >> 3
-        rows_per_block = max(1, (4 << 20) // max(n, 1))
+        rows_per_block = max(1, (4 << 20) // n)
         live_slots = np.flatnonzero(live)
         pairs: set[tuple[GeometryId, GeometryId]] = set()
         for start in range(0, live_slots.size, rows_per_block):
