@@ -36,6 +36,7 @@ from conformance.fuzz.lockstep import (
     FuzzStats,
     HarnessAbort,
     LockstepMachine,
+    ShrinkTimeUp,
     lockstep_machine,
 )
 from conformance.protocol import Backend
@@ -116,6 +117,8 @@ def fuzz_settings(
 class BatchResult:
     seed: int
     divergence: Divergence | None
+    #: Shrinking was stopped by ``Campaign.shrink_time`` (the divergence is the best so far).
+    shrink_stopped: bool = False
 
 
 @dataclass
@@ -155,6 +158,10 @@ class Campaign:
     strict_divergences: bool = False
     #: Seconds one backend call may take; None: no limit.
     step_timeout: float | None = None
+    #: Seconds shrinking may take after a batch's first divergence; None: no bound.
+    shrink_time: float | None = None
+    #: Called with each batch's first divergence and every smaller one, at once.
+    on_best: Callable[[Divergence], None] | None = None
 
     def run(self) -> CampaignResult:
         """Runs the campaign. On Ctrl-C, keeps the smallest divergence seen so far.
@@ -163,7 +170,9 @@ class Campaign:
         led there) at once, after the batches done so far were reported.
         """
         load_local_modules()
-        stats = FuzzStats(on_step=self.on_step)
+        stats = FuzzStats(
+            on_step=self.on_step, on_best=self.on_best, shrink_seconds=self.shrink_time
+        )
         result = CampaignResult(stats=stats)
         start = time.perf_counter()
         # One backend pair for the whole campaign (each example resets them).
@@ -173,7 +182,7 @@ class Campaign:
             while self._more(batch, start, result):
                 size = self.max_examples if self.time_budget is None else BATCH_EXAMPLES
                 seed = batch_seed(self.seed, batch)
-                outcome = BatchResult(seed, self._batch(backend, reference, stats, seed, size))
+                outcome = self._batch(backend, reference, stats, seed, size)
                 result.batches.append(outcome)
                 if self.on_batch is not None:
                     self.on_batch(outcome)
@@ -197,7 +206,7 @@ class Campaign:
 
     def _batch(
         self, backend: Backend, reference: Backend, stats: FuzzStats, seed: int, size: int | None
-    ) -> Divergence | None:
+    ) -> BatchResult:
         machine = lockstep_machine(
             lambda: backend,
             lambda: reference,
@@ -209,7 +218,7 @@ class Campaign:
             step_timeout=self.step_timeout,
         )
         hypothesis_seed(seed)(machine)
-        stats.best = None
+        stats.new_batch()
         try:
             _run_machine(
                 machine,
@@ -218,7 +227,9 @@ class Campaign:
                 ),
             )
         except Divergence as divergence:
-            return divergence
+            return BatchResult(seed, divergence)
+        except ShrinkTimeUp:
+            return BatchResult(seed, stats.best, shrink_stopped=True)
         except HarnessAbort as abort:
             raise abort.error from None
-        return None
+        return BatchResult(seed, None)

@@ -99,6 +99,7 @@ __all__ = [
     "HarnessError",
     "LockstepMachine",
     "PosedLockstepMachine",
+    "ShrinkTimeUp",
     "TraceStep",
     "lockstep_machine",
     "planned_operation",
@@ -171,6 +172,18 @@ class HarnessError(RuntimeError):
         self.commands = list(commands)
 
 
+class ShrinkTimeUp(KeyboardInterrupt):
+    """Shrinking ran out of ``FuzzStats.shrink_seconds``: the batch ends with the best so far.
+
+    N.B. A ``KeyboardInterrupt``, because that is the one exception Hypothesis
+    lets through at once from any point of a run, shrinking included: any
+    other, raised before the example draws anything, is a failure whose
+    draws differ from the one being shrunk (``FlakyStrategyDefinition``).
+    Hypothesis has no public bound on shrinking time. ``Campaign`` catches it
+    before a real interrupt.
+    """
+
+
 class HarnessAbort(BaseException):
     """Carries a ``HarnessError`` out through Hypothesis at once.
 
@@ -197,12 +210,36 @@ class FuzzStats:
     known: dict[str, int] = field(default_factory=dict)
     #: The smallest divergence seen so far (kept if the run is interrupted).
     best: Divergence | None = None
+    #: When (``time.perf_counter()``) this batch's first divergence was seen.
+    best_since: float | None = None
+    #: Seconds shrinking may take after the first divergence; None: no bound.
+    shrink_seconds: float | None = None
     on_step: Callable[[FuzzStats], None] | None = field(default=None, repr=False)
+    #: Called with every new ``best`` at once (for writing the finding before shrinking ends).
+    on_best: Callable[[Divergence], None] | None = field(default=None, repr=False)
 
     def record(self, divergence: Divergence) -> None:
+        """Counts ``divergence``; it becomes ``best`` if no longer than the best so far."""
         self.divergences_seen += 1
         if self.best is None or len(divergence.trace) <= len(self.best.trace):
+            if self.best is None:
+                self.best_since = time.perf_counter()
             self.best = divergence
+            if self.on_best is not None:
+                self.on_best(divergence)
+
+    def new_batch(self) -> None:
+        """Forgets the last batch's best divergence."""
+        self.best = None
+        self.best_since = None
+
+    def shrink_time_up(self) -> bool:
+        """A divergence was seen more than ``shrink_seconds`` ago."""
+        return (
+            self.shrink_seconds is not None
+            and self.best_since is not None
+            and time.perf_counter() - self.best_since > self.shrink_seconds
+        )
 
 
 @cache
@@ -278,6 +315,8 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
     contexts = Bundle("contexts")
 
     def __init__(self) -> None:
+        if type(self).stats.shrink_time_up():
+            raise ShrinkTimeUp
         super().__init__()
         self.backend, self.reference = self._backends()
         self.trace: list[TraceStep] = []

@@ -57,12 +57,13 @@ from hypothesis import strategies as st
 
 from conformance.corpus.loader import Case, ScenarioFile, Step
 from conformance.fuzz import strategies as cs
-from conformance.fuzz.campaign import Campaign, CampaignResult, fuzz_settings
+from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult, fuzz_settings
 from conformance.fuzz.lockstep import (
     Divergence,
     FuzzStats,
     HarnessAbort,
     HarnessError,
+    ShrinkTimeUp,
     TraceStep,
 )
 from conformance.fuzz.models import (
@@ -331,7 +332,7 @@ class ModelCampaign(Campaign):
 
     def _batch(
         self, backend: Backend, reference: Backend, stats: FuzzStats, seed: int, size: int | None
-    ) -> Divergence | None:
+    ) -> BatchResult:
         features = backend.features() & reference.features()
         missing = MODEL_FEATURES - features
         if missing:
@@ -347,6 +348,8 @@ class ModelCampaign(Campaign):
         @fuzz_settings(max_examples=size or 100, database=self.database)
         @given(strategy)
         def example(commands: list[Command]) -> None:
+            if stats.shrink_time_up():
+                raise ShrinkTimeUp
             start = time.perf_counter()
             try:
                 divergence = run_model_case(
@@ -367,11 +370,13 @@ class ModelCampaign(Campaign):
             stats.record(divergence)
             raise divergence
 
-        stats.best = None
+        stats.new_batch()
         try:
             example()
         except Divergence as divergence:
-            return divergence
+            return BatchResult(seed, divergence)
+        except ShrinkTimeUp:
+            return BatchResult(seed, stats.best, shrink_stopped=True)
         except HarnessAbort as abort:
             raise abort.error from None
-        return None
+        return BatchResult(seed, None)
