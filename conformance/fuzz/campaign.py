@@ -107,7 +107,7 @@ def fuzz_settings(
         database=DirectoryBasedExampleDatabase(str(database)) if database else None,
         suppress_health_check=list(HealthCheck),
         report_multiple_bugs=False,
-        phases=(Phase.explicit, Phase.reuse, Phase.generate, Phase.shrink),
+        phases=(Phase.explicit, Phase.reuse, Phase.generate, Phase.target, Phase.shrink),
         verbosity=verbosity,
         print_blob=False,
     )
