@@ -225,7 +225,12 @@ def worker(api_name: str, n: int, memory_gib: float) -> None:
     def report(stage: str, seconds: float) -> None:
         print(json.dumps({"stage": stage, "seconds": seconds}), flush=True)
 
-    cycle_ms, filtered, candidates = run_case(api, n, report)
+    try:
+        cycle_ms, filtered, candidates = run_case(api, n, report)
+    except BaseException:
+        # A failure (MemoryError from a cap, std::bad_alloc) still reports the peak.
+        print(json.dumps({"peak_rss_mb": peak_rss_mb()}), flush=True)
+        raise
     print(
         json.dumps(
             {
@@ -331,14 +336,12 @@ def plot(runs: list[Run], labels: list[str], path: Path) -> None:
     for axis, (title, value) in zip(axes, panels, strict=True):
         for label, marker in zip(labels, "os^", strict=False):
             ok = sorted((r.n, value(r)) for r in runs if r.label == label and r.ok)
+            failed = sorted(r.n for r in runs if r.label == label and not r.ok)
+            name = label + (f" (fails at n = {failed[0]:,})" if failed else "")
             if ok:
-                axis.plot(*zip(*ok, strict=True), marker=marker, label=label)
-            failed = [r for r in runs if r.label == label and not r.ok]
-            for r in failed:
-                axis.axvline(r.n, color="grey", linestyle=":", linewidth=0.8)
-                axis.annotate(
-                    f"{label}\nfails", (r.n, axis.get_ylim()[1]), fontsize=7, ha="right", va="top"
-                )
+                (line,) = axis.plot(*zip(*ok, strict=True), marker=marker, label=name)
+                for n in failed:  # an x at the top of the panel, in the line's colour
+                    axis.plot([n], [ok[-1][1]], marker="x", markersize=10, color=line.get_color())
         axis.set_xscale("log")
         axis.set_yscale("log")
         axis.set_xlabel("n (proximity geometries)")
@@ -362,7 +365,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--only", nargs="*", default=["reimpl", "1.51", "1.58"])
     parser.add_argument("--out", type=Path, default=OUT)
     parser.add_argument("--worker", nargs=3, metavar=("API", "N", "GIB"), help=argparse.SUPPRESS)
+    parser.add_argument("--plot-only", type=Path, help="redraw the plot from a scale.json")
     args = parser.parse_args(argv)
+    if args.plot_only:
+        saved = json.loads(args.plot_only.read_text())["runs"]
+        runs = [Run(**r) for r in saved]
+        labels = list(dict.fromkeys(r.label for r in runs))
+        plot(runs, labels, args.plot_only.with_suffix(".png"))
+        return 0
     if args.worker:
         worker(args.worker[0], int(args.worker[1]), float(args.worker[2]))
         return 0
