@@ -22,19 +22,24 @@ Releases strictly between the two are left unclaimed: run the file on them
 to narrow the range.
 
 The file name is a hash of the steps, so writing the same finding twice
-gives the same file.
+gives the same file. Files land whole (a temporary file moved over the
+name), so ``fuzz`` can write a finding as soon as it is seen and replace it
+as it shrinks.
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
+import os
 import re
+import secrets
+import tempfile
 from pathlib import Path
 from typing import Any
 
 from conformance.backends.subprocess_backend import SPEC_PREFIX
-from conformance.corpus.loader import ScenarioError, load_file
+from conformance.corpus.loader import load_file
 from conformance.fuzz.lockstep import Divergence, HarnessError
 from conformance.grammar import GRAMMAR
 from conformance.policy.versions import parse_version
@@ -43,6 +48,7 @@ from conformance.protocol import BackendId, Command, Observation, Result
 __all__ = [
     "DEFAULT_REGRESSIONS",
     "drake_release",
+    "prepare_writing",
     "regression_scenario",
     "reproducer_scenario",
     "write_regression",
@@ -241,21 +247,51 @@ def _features(commands: list[Command]) -> list[str]:
     return sorted({"core"} | {GRAMMAR[c.op].feature for c in commands})
 
 
-def _write_checked(scenario: dict[str, Any], out_dir: Path, stem: str) -> Path:
-    """Writes ``scenario`` as ``out_dir/<stem>-<hash of its steps>.json`` and validates it.
+def prepare_writing() -> None:
+    """Builds what checking a scenario file needs, now (about 0.5 s, once per process).
 
-    A file that fails validation is removed and ScenarioError raised, so a
-    bad file never lands.
+    ``fuzz`` calls it before its run, so that the first finding lands within
+    milliseconds of being seen: the first ``load_file`` of a process checks
+    the scenario schema itself, which takes most of a second.
     """
+    warm_up = {
+        "description": "warm-up",
+        "cases": [{"description": "a frame", "steps": [{"op": "register_frame", "name": "f1"}]}],
+    }
+    with tempfile.TemporaryDirectory(prefix="finding-") as private:
+        path = Path(private) / "warm-up.json"
+        path.write_text(json.dumps(warm_up))
+        load_file(path, root=Path(private))
+
+
+def _write_checked(scenario: dict[str, Any], out_dir: Path, stem: str) -> Path:
+    """Writes ``scenario`` as ``out_dir/<stem>-<hash of its steps>.json``, valid and whole.
+
+    The text is validated first (``load_file`` on a copy in a private
+    temporary folder: a ScenarioError leaves nothing in ``out_dir``), then
+    written to a hidden ``.tmp`` file in ``out_dir`` and moved over the final
+    name with ``os.replace``. So a reader of ``out_dir`` never sees a
+    half-written or invalid scenario, even if the process dies mid-write. A
+    run killed between the two may leave the ``.tmp`` file (not a scenario).
+    """
+    text = json.dumps(scenario, indent=2) + "\n"
     body = json.dumps(scenario["cases"][0]["steps"], sort_keys=True)
     digest = hashlib.sha256(body.encode()).hexdigest()[:10]
+    name = f"{stem}-{digest}.json"
+    with tempfile.TemporaryDirectory(prefix="finding-") as private:
+        draft = Path(private) / name
+        draft.write_text(text)
+        load_file(draft, root=Path(private))
     out_dir.mkdir(parents=True, exist_ok=True)
-    path = out_dir / f"{stem}-{digest}.json"
-    path.write_text(json.dumps(scenario, indent=2) + "\n")
+    path = out_dir / name
+    # Not mkstemp: its 0600 mode would stay on the finding; "x" keeps the umask's.
+    temporary = out_dir / f".{name}.{os.getpid()}-{secrets.token_hex(4)}.tmp"
     try:
-        load_file(path, root=out_dir)
-    except ScenarioError:
-        path.unlink()
+        with temporary.open("x") as file:
+            file.write(text)
+        os.replace(temporary, path)
+    except BaseException:  # an interrupt or a failed write: no stray temporary file
+        temporary.unlink(missing_ok=True)
         raise
     return path
 
