@@ -65,7 +65,7 @@ class RecordingMachine(LockstepMachine):
 
 
 def test_the_operations_issue_every_scenario_command_but_activation_on_pydrake_1_51() -> None:
-    run_state_machine_as_test(RecordingMachine, settings=SETTINGS)
+    run_state_machine_as_test(RecordingMachine, settings=settings(SETTINGS, max_examples=80))
     activation = "activation" in PYDRAKE.features()
     unsupported = set() if activation else {"activate", "deactivate"}
     assert RecordingMachine.issued == COMMANDS - unsupported

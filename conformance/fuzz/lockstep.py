@@ -68,7 +68,7 @@ from dataclasses import dataclass, field
 from functools import cache
 from typing import Any, ClassVar, TypeVar
 
-from hypothesis import note, reject
+from hypothesis import note, reject, target
 from hypothesis import strategies as st
 from hypothesis.control import current_build_context
 from hypothesis.errors import InvalidArgument
@@ -79,6 +79,7 @@ from conformance.backends.loader import load_backend
 from conformance.compare import Difference, diff_observations, diff_results
 from conformance.fuzz import operations as ops
 from conformance.fuzz import strategies as cs
+from conformance.fuzz.coverage import Coverage, CoverageBook
 from conformance.fuzz.names import NameBook, register_scene
 from conformance.fuzz.operations import PoseBook, planned_operation, register_posed_scene
 from conformance.policy.divergences import match_step
@@ -214,6 +215,8 @@ class FuzzStats:
     best_since: float | None = None
     #: Seconds shrinking may take after the first divergence; None: no bound.
     shrink_seconds: float | None = None
+    #: The state-space features reached (``conformance.fuzz.coverage``).
+    coverage: Coverage = field(default_factory=Coverage)
     on_step: Callable[[FuzzStats], None] | None = field(default=None, repr=False)
     #: Called with every new ``best`` at once (for writing the finding before shrinking ends).
     on_best: Callable[[Divergence], None] | None = field(default=None, repr=False)
@@ -277,7 +280,7 @@ def _steps(draw: st.DrawFn) -> Plan:
     enabled = machine.enabled_operations()
     plan: Plan = []
     for at in range(0, len(head), _SLOT):
-        name = planned_operation(head[at], enabled)
+        name = planned_operation(head[at], enabled, machine.weights)
         if name is not None:
             drawn = tuple(draw(argument) for argument in machine.OPERATIONS[name].arguments)
             plan.append((name, head[at + 1 : at + _SLOT], drawn))
@@ -333,8 +336,12 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         self.queries = "queries" in shared
         #: Where every frame and geometry is (``operations.PoseBook``).
         self.poses = PoseBook()
+        #: What the example reached (``coverage.CoverageBook``).
+        self.coverage = CoverageBook()
         #: Operations switched off for this example (swarm testing).
         self.switched_off: frozenset[str] = frozenset()
+        #: Each operation's weight for this example (swarm testing).
+        self.weights: dict[str, int] = {}
         self._noting = _is_final_run()  # Hypothesis shows only the final replay's notes.
         type(self).stats.examples += 1
 
@@ -399,6 +406,7 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         stats.steps += 1
         self.trace.append(TraceStep(command, want, got))
         self.poses.record(command, want)
+        stats.coverage.add(self.coverage.follow(command, want))
         differences = diff_results(want, got, op=op)
         if differences:
             self._diverge(differences, *self._observe())
@@ -462,17 +470,32 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         """Registers a scene (``scene_frames``/``scene_geometries`` bound its size; posed
         scenes through ``operations.register_posed_scene``).
 
-        ``swarm`` switches operations off for the example: byte 0 is a
-        threshold, and operation i is off when its byte (1 + i mod 31) is
-        below it. Both shrink towards 0, so towards every operation on.
+        ``swarm`` weighs the operations for the example (swarm testing): byte
+        0 is a threshold, and operation i, whose byte is ``b = swarm[1 + i mod
+        31]``, is off when ``b`` is below it, else has the weight ``1 + b // 64``
+        (1-4; ``planned_operation``). Both shrink towards 0, so towards every
+        operation on, all of weight 1.
         """
         threshold = swarm[0]
-        self.switched_off = frozenset(
-            name
-            for i, name in enumerate(self.OPERATIONS)
-            if swarm[1 + i % (_SWARM_BYTES - 1)] < threshold
-        )
+        weights = {
+            name: swarm[1 + i % (_SWARM_BYTES - 1)] for i, name in enumerate(self.OPERATIONS)
+        }
+        self.switched_off = frozenset(name for name, b in weights.items() if b < threshold)
+        self.weights = {name: 1 + b // 64 for name, b in weights.items()}
         (register_posed_scene if self.posed else register_scene)(self, scene)
+        self.coverage.sequence_started = True
+
+    def teardown(self) -> None:
+        """Takes the example's maxima into the run's coverage, and steers towards the rare.
+
+        ``hypothesis.target`` (the ``target`` phase) then favours examples
+        that crowd a location, stack transient declarations, and reach the
+        compound features (``CoverageBook.targets``).
+        """
+        book = self.coverage
+        type(self).stats.coverage.close(book)
+        for label, score in book.targets().items():
+            target(score, label=label)
 
     @rule(plan=_steps())
     def command(self, plan: Plan) -> None:

@@ -50,6 +50,7 @@ from conformance.protocol import MODEL, Command, ErrorKind, Result
 __all__ = [
     "CHOICES",
     "DEFAULT_SOURCE",
+    "GROW_UP_TO",
     "HAND_WRITTEN",
     "MAX_CONTEXTS",
     "MAX_SOURCES",
@@ -70,6 +71,9 @@ __all__ = [
 
 MAX_SOURCES = 3
 MAX_CONTEXTS = 3
+#: ``grow_scene`` adds 4-8 geometries while an example has at most this many: enough to
+#: take a location past 16 proximity geometries, no more (every comparison costs O(n²)).
+GROW_UP_TO = 20
 #: Picks every step draws (the operations read the first ones they need).
 PICKS_PER_STEP = 4
 
@@ -247,10 +251,21 @@ def remove_role(m: Machine, picks: bytes) -> None:
 
 
 def reassign_proximity(m: Machine, picks: bytes) -> None:
-    """Removes the proximity role and assigns it again: the geometry starts unfiltered."""
+    """Removes the proximity role and assigns it again: the geometry starts unfiltered.
+
+    One time in two the role is removed from every geometry on the geometry's
+    frame (RemoveRole by frame), and each of them gets it back.
+    """
     name, where = m.name("geometry", picks[0]), m.name("context", picks[1])
-    m.step("remove_role", geometry=name, role="proximity", context=where)
-    m.step("assign_role", geometry=name, role="proximity", context=where)
+    placed = m.poses.geometries.get(name or "")
+    if placed is None or not picks[2] & 1:
+        m.step("remove_role", geometry=name, role="proximity", context=where)
+        m.step("assign_role", geometry=name, role="proximity", context=where)
+        return
+    m.step("remove_role", frame=placed.frame, role="proximity", context=where)
+    for other, at in list(m.poses.geometries.items()):
+        if at.frame == placed.frame:
+            m.step("assign_role", geometry=other, role="proximity", context=where)
 
 
 def remove_geometry(m: Machine, picks: bytes) -> None:
@@ -358,6 +373,34 @@ def clone_context(m: Machine, picks: bytes) -> None:
     m.contexts_made += 1
     result = m.step("clone_context", name=name, **{"from": m.name("origin", picks[0])})
     m.keep_if_made("contexts", name, result)
+
+
+def clone_with_history(
+    m: Machine, picks: bytes, first: cs.DeclarationTemplate, second: cs.DeclarationTemplate
+) -> None:
+    """A transient declaration in a context, a clone of it, then edits in both.
+
+    The clone inherits the history (the declaration, and its FilterId); both
+    sides then apply one more and remove the inherited one, the clone first
+    or the origin first as a pick says. Each must go on as if alone.
+    """
+    origin = m.name("origin", picks[0])
+    label, clone = m.fresh("t"), m.fresh("c")
+    result = m.step(
+        "apply_transient", declaration=m.declaration(first), label=label, context=origin
+    )
+    m.keep_if_made("filter_ids", label, result)
+    m.contexts_made += 1
+    cloned = m.step("clone_context", name=clone, **{"from": origin})
+    m.keep_if_made("contexts", clone, cloned)
+    sides = (clone, origin) if picks[1] & 1 else (origin, clone)
+    for where in sides if cloned.error is None else (origin,):
+        more = m.fresh("t")
+        made = m.step(
+            "apply_transient", declaration=m.declaration(second), label=more, context=where
+        )
+        m.keep_if_made("filter_ids", more, made)
+        m.step("remove_declaration", label=label, context=where)
 
 
 def set_default_context(m: Machine, picks: bytes) -> None:
@@ -624,6 +667,12 @@ HAND_WRITTEN: dict[str, Operation] = {
     "register_geometries": Operation(
         register_geometries, (_PLACEMENTS,), issues=frozenset({"register_geometry"})
     ),
+    "grow_scene": Operation(
+        register_geometries,
+        (st.binary(min_size=4 * _PLACEMENT, max_size=8 * _PLACEMENT),),
+        enabled=lambda m: len(m.names["geometries"]) <= GROW_UP_TO,
+        issues=frozenset({"register_geometry"}),
+    ),
     "assign_role": Operation(assign_role, enabled=_has("geometries")),
     "remove_role": Operation(remove_role, enabled=_has("geometries")),
     "reassign_proximity": Operation(
@@ -650,6 +699,12 @@ HAND_WRITTEN: dict[str, Operation] = {
     "clone_context": Operation(
         clone_context,
         enabled=lambda m: m.contexts_made < MAX_CONTEXTS and bool(m.names["contexts"]),
+    ),
+    "clone_with_history": Operation(
+        clone_with_history,
+        (_DECLARATION, _DECLARATION),
+        enabled=lambda m: m.contexts_made < MAX_CONTEXTS and bool(m.names["contexts"]),
+        issues=frozenset({"apply_transient", "clone_context", "remove_declaration"}),
     ),
     "set_default_context": Operation(set_default_context, enabled=_has("contexts")),
 }
@@ -786,12 +841,26 @@ def generic_operation(command: CommandSpec) -> Operation:
     return Operation(run, arguments, enabled, frozenset({command.op}))
 
 
-def planned_operation(byte: int, enabled: Sequence[str]) -> str | None:
+def planned_operation(
+    byte: int, enabled: Sequence[str], weights: Mapping[str, int] | None = None
+) -> str | None:
     """The operation a plan byte names.
 
-    0 names none (bytes shrink to 0); any other byte ``enabled[(byte - 1) % len(enabled)]``.
+    0 names none (bytes shrink to 0). Without ``weights``, any other byte
+    names ``enabled[(byte - 1) % len(enabled)]``. With them (swarm testing:
+    a weight per operation, drawn per example), operation i of ``enabled``
+    owns ``weights[i]`` consecutive values of ``(byte - 1) % Σ weights``.
     """
-    return enabled[(byte - 1) % len(enabled)] if byte else None
+    if not byte:
+        return None
+    if weights is None:
+        return enabled[(byte - 1) % len(enabled)]
+    at = (byte - 1) % sum(weights.get(name, 1) for name in enabled)
+    for name in enabled:
+        at -= weights.get(name, 1)
+        if at < 0:
+            return name
+    raise AssertionError("unreachable: the weights cover every value")
 
 
 def issued_ops(operations: dict[str, Operation]) -> frozenset[str]:
@@ -826,6 +895,12 @@ POSED_OPERATIONS: dict[str, Operation] = {
     "register_geometries": Operation(
         register_posed_geometries,
         (st.binary(min_size=_POSED_PLACEMENT, max_size=4 * _POSED_PLACEMENT),),
+        issues=frozenset({"register_geometry"}),
+    ),
+    "grow_scene": Operation(
+        register_posed_geometries,
+        (st.binary(min_size=4 * _POSED_PLACEMENT, max_size=8 * _POSED_PLACEMENT),),
+        enabled=lambda m: len(m.names["geometries"]) <= GROW_UP_TO,
         issues=frozenset({"register_geometry"}),
     ),
     "near_touch": Operation(
