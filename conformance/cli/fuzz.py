@@ -1,9 +1,14 @@
 """``python -m conformance fuzz``: a campaign with progress lines and findings on disk.
 
 Progress goes to stderr about once a second: elapsed time, examples and steps
-(with rates), and findings. Each divergence is written as soon as its batch
-ends (or on Ctrl-C, the smallest one seen so far). The file is then replayed
-with the scenario runner to confirm that ``run`` reproduces it.
+(with rates), and findings. Each divergence is written as soon as it is first
+seen, raw and unshrunk (a line on stderr names the file), then replaced by
+every smaller one while Hypothesis shrinks it, and by the final one when its
+batch ends (``conformance.fuzz.findings``): a run that is killed leaves the
+best finding so far on disk. ``--shrink-time SEC`` ends shrinking SEC seconds
+after the first sighting, with the best so far. Ctrl-C and SIGTERM end the run
+with the best so far written. The final file is replayed with the scenario
+runner to confirm that ``run`` reproduces it.
 
 ``--models`` runs a ``ModelCampaign`` (``conformance.fuzz.model_campaign``):
 each example is a random model case run by the corpus runner, not a lockstep
@@ -23,11 +28,14 @@ filters. A finding's file name starts with ``poses-``.
 from __future__ import annotations
 
 import argparse
+import signal
 import tempfile
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
+from types import FrameType
 from typing import TextIO
 
 from hypothesis.errors import HypothesisException
@@ -38,14 +46,21 @@ from conformance.cli.options import refuse
 from conformance.cli.run import PROG
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
+from conformance.fuzz.findings import FindingFile
 from conformance.fuzz.lockstep import (
+    Divergence,
     FuzzStats,
     HarnessError,
     LockstepMachine,
     PosedLockstepMachine,
 )
 from conformance.fuzz.model_campaign import ModelCampaign
-from conformance.fuzz.regression import drake_release, write_regression, write_reproducer
+from conformance.fuzz.regression import (
+    drake_release,
+    prepare_writing,
+    write_regression,
+    write_reproducer,
+)
 from conformance.protocol import Backend, backend_id
 from conformance.run.outputs import unwritable_dir
 from conformance.run.runner import run_case
@@ -83,6 +98,11 @@ class Progress:
             f"  steps {stats.steps} ({stats.steps / elapsed:.0f}/s)"
             f"  divergences {self.found}{shrinking}"
         )
+
+    def say(self, text: str) -> None:
+        """Writes ``text`` to ``err`` at once, stamped with the elapsed time (even when quiet)."""
+        self.err.write(f"[fuzz {time.perf_counter() - self.start:6.1f}s] {text}\n")
+        self.err.flush()
 
     def __call__(self, stats: FuzzStats) -> None:
         now = time.perf_counter()
@@ -135,53 +155,124 @@ def cross_release(backend: Backend, reference: Backend) -> str | None:
     return mine if mine is not None and theirs is not None and mine != theirs else None
 
 
-def _report(
-    outcome: BatchResult,
-    args: argparse.Namespace,
-    backends: tuple[Backend, Backend],
-    out: TextIO,
-    written: list[Path],
-) -> None:
-    divergence = outcome.divergence
-    if divergence is None:
-        return
-    backend, reference = backends
-    release = cross_release(backend, reference)
-    path = _write_finding(
-        lambda folder: write_regression(
-            divergence,
-            folder,
-            backend=args.backend,
-            reference=args.against,
-            reference_version=reference.version(),
-            seed=args.seed,
-            backend_version=release,
-            models=args.models,
-            poses=_posed(args),
-        ),
-        args.out,
-        out,
-    )
-    if path is None:
-        out.write(f"DIVERGENCE (batch seed {outcome.seed}), not written: {divergence}\n")
-        written.append(args.out)
-        return
-    written.append(path)
-    reproduced = replays(path, [backend, reference])
-    out.write(
-        f"DIVERGENCE (batch seed {outcome.seed}): {divergence.what} after step "
-        f"{len(divergence.trace)} of the shrunk sequence\n  {divergence.detail}\n"
-        f"  written: {path}\n"
-        f"  replay:  {PROG} run {path} --backend {args.backend} --backend {args.against}"
-        f"  ({'reproduces' if reproduced else 'does NOT reproduce: a flaky backend?'})\n"
-    )
-    if release is not None:
-        alone = [b.name for b in backends if not passes_alone(path, b)]
-        out.write(
-            "  each release alone meets its own (since/until) expectations\n"
-            if not alone
-            else f"  NOT met alone by {', '.join(alone)}: see `{PROG} run {path} --backend NAME`\n"
+class _Findings:
+    """The run's findings on disk: each batch's divergence, from first sighting to report.
+
+    ``on_best`` (``Campaign.on_best``) writes a batch's first divergence at
+    once, then shorter ones over the same finding's file (at most about once
+    a second, ``FindingFile``; ``on_step`` writes one that waited);
+    ``on_batch`` writes the batch's final divergence over it, reports it and
+    replays it.
+    """
+
+    def __init__(
+        self,
+        args: argparse.Namespace,
+        backends: tuple[Backend, Backend],
+        out: TextIO,
+        progress: Progress,
+    ) -> None:
+        self.args = args
+        self.backends = backends
+        self.out = out
+        self.progress = progress
+        self.release = cross_release(*backends)
+        self.reference_version = backends[1].version()
+        #: The current batch's finding (None: no divergence seen in it yet).
+        self.current: FindingFile | None = None
+        #: The files reported (or ``--out`` for a finding that could not be written).
+        self.written: list[Path] = []
+
+    def write(self, divergence: Divergence) -> Path | None:
+        """Writes ``divergence``'s scenario into ``--out`` (or ``FALLBACK_FINDINGS``)."""
+        args = self.args
+        return _write_finding(
+            lambda folder: write_regression(
+                divergence,
+                folder,
+                backend=args.backend,
+                reference=args.against,
+                reference_version=self.reference_version,
+                seed=args.seed,
+                backend_version=self.release,
+                models=args.models,
+                poses=_posed(args),
+            ),
+            args.out,
+            self.out,
         )
+
+    def on_best(self, divergence: Divergence) -> None:
+        """Writes a new best divergence over the batch's file; names the file the first time."""
+        first = self.current is None
+        finding = self.current = self.current or FindingFile(self.write)
+        start = time.perf_counter()
+        try:
+            landed = finding.offer(divergence)
+        except ScenarioError as exc:  # the batch's final write says so, and ends the run
+            self.progress.say(f"the divergence cannot be written as a scenario yet: {exc}")
+            return
+        if first and landed:
+            took = (time.perf_counter() - start) * 1000
+            self.progress.say(
+                f"divergence seen: {divergence.what} after step {len(divergence.trace)}; "
+                f"written in {took:.0f} ms to {finding.path} (replaced as it shrinks)"
+            )
+
+    def on_batch(self, outcome: BatchResult) -> None:
+        """Writes the batch's final divergence over its file so far, says so, replays it."""
+        divergence = outcome.divergence
+        if divergence is None:
+            self.current = None
+            return
+        self.progress.found += 1
+        args, out = self.args, self.out
+        # Kept as current until settled: an interrupt in between reports into the same file.
+        finding = self.current = self.current or FindingFile(self.write)
+        path = finding.settle(divergence)
+        self.current = None
+        if path is None:
+            out.write(f"DIVERGENCE (batch seed {outcome.seed}), not written: {divergence}\n")
+            self.written.append(args.out)
+            return
+        self.written.append(path)
+        reproduced = replays(path, list(self.backends))
+        stopped = (
+            f"  shrinking stopped by --shrink-time {_shrink_time(args):g}s: "
+            "the sequence may not be minimal\n"
+            if outcome.shrink_stopped
+            else ""
+        )
+        out.write(
+            f"DIVERGENCE (batch seed {outcome.seed}): {divergence.what} after step "
+            f"{len(divergence.trace)} of the {'partly ' if outcome.shrink_stopped else ''}"
+            f"shrunk sequence\n  {divergence.detail}\n"
+            f"{stopped}  written: {path}\n"
+            f"  replay:  {PROG} run {path} --backend {args.backend} --backend {args.against}"
+            f"  ({'reproduces' if reproduced else 'does NOT reproduce: a flaky backend?'})\n"
+        )
+        if self.release is not None:
+            alone = [b.name for b in self.backends if not passes_alone(path, b)]
+            out.write(
+                "  each release alone meets its own (since/until) expectations\n"
+                if not alone
+                else f"  NOT met alone by {', '.join(alone)}: "
+                f"see `{PROG} run {path} --backend NAME`\n"
+            )
+
+    def on_step(self, stats: FuzzStats) -> None:
+        """After every step: a progress line now and then; the pending shorter finding if due."""
+        self.progress(stats)
+        if self.current is not None and self.current.pending is not None:
+            try:
+                self.current.flush()
+            except ScenarioError as exc:  # the batch's final write says so, and ends the run
+                self.progress.say(f"the divergence cannot be written as a scenario yet: {exc}")
+
+    def kept(self, err: TextIO) -> None:
+        """Names the divergence written before the run failed, if any (it stays on disk)."""
+        if self.current is not None and self.current.path is not None:
+            err.write(f"  a divergence seen before that is kept: {self.current.path}\n")
 
 
 def _write_finding(write: Callable[[Path], Path | None], folder: Path, out: TextIO) -> Path | None:
@@ -250,6 +341,34 @@ def _load_pair(args: argparse.Namespace) -> tuple[Backend, Backend]:
     return backend, reference
 
 
+def _shrink_time(args: argparse.Namespace) -> float | None:
+    """``--shrink-time`` (a parser without the option means no bound)."""
+    value = getattr(args, "shrink_time", None)
+    return None if value is None else float(value)
+
+
+@contextmanager
+def _sigterm_interrupts() -> Iterator[None]:
+    """In the block, SIGTERM raises KeyboardInterrupt, as Ctrl-C does; restored after.
+
+    So ``kill PID`` (a CI job's timeout, a container stop) writes the best
+    finding so far, as Ctrl-C does. Only the main thread can handle signals:
+    elsewhere the block runs with SIGTERM as it was.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def interrupt(signum: int, frame: FrameType | None) -> None:
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, interrupt)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def _posed(args: argparse.Namespace) -> bool:
     """``--poses`` was given (a parser without the option means no)."""
     return bool(getattr(args, "poses", False))
@@ -276,12 +395,7 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         err.write(f"error: {exc}\n")
         return EXIT_USAGE
     progress = Progress(err, quiet=args.quiet)
-    written: list[Path] = []
-
-    def on_batch(outcome: BatchResult) -> None:
-        if outcome.divergence is not None:
-            progress.found += 1
-            _report(outcome, args, (backend, reference), out, written)
+    findings = _Findings(args, (backend, reference), out, progress)
 
     max_examples = args.max_examples
     if max_examples is None and args.time_budget is None:
@@ -295,11 +409,13 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         time_budget=args.time_budget,
         steps=args.steps,
         database=args.database,
-        on_step=progress,
-        on_batch=on_batch,
+        on_step=findings.on_step,
+        on_batch=findings.on_batch,
         stop_at_first=not args.keep_going,
         strict_divergences=args.strict_divergences,
         step_timeout=args.step_timeout or None,
+        shrink_time=_shrink_time(args),
+        on_best=findings.on_best,
     )
     if not args.models:
         campaign.machine_base = PosedLockstepMachine if _posed(args) else LockstepMachine
@@ -309,10 +425,13 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         + (f"{max_examples} examples" if max_examples else f"time budget {args.time_budget}s")
         + (", one model case each\n" if args.models else f", {args.steps} steps each\n")
     )
+    prepare_writing()
     watching = progress.watch()
     try:
-        result = campaign.run()
+        with _sigterm_interrupts():
+            result = campaign.run()
     except HarnessError as exc:
+        findings.kept(err)
         return _broken(exc, args, out, err)
     except ScenarioError as exc:
         err.write(f"error: could not write the finding as a scenario: {exc}\n")
@@ -320,14 +439,17 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     except HypothesisException as exc:  # e.g. a flaky backend Hypothesis could not replay
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         err.write(f"error: the fuzz run failed ({type(exc).__name__}): {first}\n")
+        findings.kept(err)
         return EXIT_USAGE
     finally:
         watching.set()
     _summary(result, out, progress)
-    return _exit_code(result, written, err)
+    return _exit_code(result, findings.written, err)
 
 
 def _exit_code(result: CampaignResult, written: list[Path], err: TextIO) -> int:
+    if written and result.interrupted:
+        err.write(f"interrupted: the smallest divergence so far is written: {written[-1]}\n")
     if written:
         return EXIT_FAILURE
     if result.interrupted:

@@ -88,6 +88,17 @@ def _positive(kind: type[int] | type[float]) -> Callable[[str], float]:
     return parse
 
 
+def _non_negative(text: str) -> float:
+    """A number of seconds, 0 or more (``fuzz --shrink-time``)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not value >= 0:  # also refuses nan
+        raise argparse.ArgumentTypeError(f"must be 0 or more, got {text}")
+    return value
+
+
 def _add_fuzz(commands: Any) -> None:
     fuzz = commands.add_parser(
         "fuzz", help="differential fuzzing of two backends; findings become scenario files"
@@ -132,6 +143,14 @@ def _add_fuzz(commands: Any) -> None:
     )
     fuzz.add_argument(
         "--keep-going", action="store_true", help="with --time-budget, go on after a finding"
+    )
+    fuzz.add_argument(
+        "--shrink-time",
+        type=_non_negative,
+        metavar="SEC",
+        help="stop shrinking a divergence SEC seconds after it was first seen and keep the "
+        "best so far (default: no bound but Hypothesis' own 300 s); the finding is on disk "
+        "from its first sighting either way",
     )
     add_backend_options(
         fuzz,
