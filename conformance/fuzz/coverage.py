@@ -64,6 +64,7 @@ __all__ = [
     "Coverage",
     "CoverageBook",
     "LocationKind",
+    "campaign_features",
     "expected_features",
     "located_ops",
 ]
@@ -172,6 +173,19 @@ def expected_features(ops: Iterable[str]) -> list[str]:
     located = [f"{op}@{kind}" for op, kinds in located_ops(ops).items() for kind in kinds]
     errors = [f"error:{kind.value}" for kind in ERROR_KINDS]
     return [*FEATURES, *sorted(located), *errors]
+
+
+def campaign_features(operations: Iterable[str], shared: frozenset[str]) -> list[str]:
+    """``expected_features`` of the grammar ops a machine's operations issue
+    (``operations.issued_ops``), less those of a feature both backends lack
+    (``shared``: ``activation``, ``queries``)."""
+    return expected_features(
+        sorted(op for op in operations if GRAMMAR[op].feature not in _OPTIONAL - shared)
+    )
+
+
+#: Grammar features that some backends lack; their ops are expected only if both have them.
+_OPTIONAL = frozenset({"activation", "queries"})
 
 
 def _location_arg(command: Command) -> str | None:
