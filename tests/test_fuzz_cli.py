@@ -44,6 +44,8 @@ def test_fuzz_exits_2_with_a_message_for_a_bad_backend(argv: tuple[str, ...]) ->
         ("--max-examples", "0"),
         ("--max-examples", "3", "--time-budget", "1"),
         ("--time-budget", "soon"),
+        ("--shrink-time", "-1"),
+        ("--shrink-time", "nan"),
     ],
 )
 def test_fuzz_exits_2_on_bad_budget_arguments(argv: tuple[str, ...]) -> None:
