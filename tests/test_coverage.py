@@ -6,9 +6,14 @@ reaches every feature of its table at least ten times.
 
 from __future__ import annotations
 
+import io
+import json
+from pathlib import Path
 from typing import Any
 
 from conformance.backends.loader import load_backend
+from conformance.cli.exit_codes import EXIT_OK
+from conformance.cli.main import main
 from conformance.fuzz.campaign import Campaign
 from conformance.fuzz.coverage import Coverage, CoverageBook, campaign_features
 from conformance.fuzz.lockstep import LockstepMachine
@@ -131,3 +136,30 @@ def test_the_seed_1_campaign_of_300_examples_reaches_every_feature_ten_times() -
     assert result.stats.coverage.gaps(expected, at_least=10) == []
     assert result.stats.coverage.max_proximity > 16
     assert result.stats.coverage.max_transients >= 5
+
+
+def test_fuzz_coverage_prints_the_table_and_json_holds_it(tmp_path: Path) -> None:
+    out, err = io.StringIO(), io.StringIO()
+    stats = tmp_path / "stats.json"
+    argv = ["fuzz", "--seed", "1", "--max-examples", "5", "--coverage", "--json", str(stats)]
+    code = main([*argv, "--out", str(tmp_path), "-q"], out=out, err=err)
+    assert code == EXIT_OK, err.getvalue()
+    table = out.getvalue().split("coverage: ", 1)[1]
+    assert "features reached" in table.splitlines()[0]
+    assert "  register_geometry@model" in table
+    assert table.rstrip().splitlines()[-1].startswith("gaps: ")
+    data = json.loads(stats.read_text())
+    assert data["examples"] == 5
+    assert data["divergences"] == 0
+    assert data["coverage"]["features"]["register_geometry@model"] > 0
+    assert set(data["coverage"]["gaps"]) == {
+        name for name, count in data["coverage"]["features"].items() if count == 0
+    }
+
+
+def test_fuzz_models_says_it_tracks_no_coverage(tmp_path: Path) -> None:
+    out, err = io.StringIO(), io.StringIO()
+    argv = ["fuzz", "--models", "--seed", "1", "--max-examples", "2", "--coverage"]
+    code = main([*argv, "--out", str(tmp_path), "-q"], out=out, err=err)
+    assert code == EXIT_OK, err.getvalue()
+    assert "coverage: not tracked for --models" in out.getvalue()

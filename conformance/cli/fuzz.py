@@ -28,6 +28,7 @@ filters. A finding's file name starts with ``poses-``.
 from __future__ import annotations
 
 import argparse
+import json
 import signal
 import tempfile
 import threading
@@ -46,6 +47,7 @@ from conformance.cli.options import refuse
 from conformance.cli.run import PROG
 from conformance.corpus.loader import ScenarioError, load_file
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
+from conformance.fuzz.coverage import campaign_features
 from conformance.fuzz.findings import FindingFile
 from conformance.fuzz.lockstep import (
     Divergence,
@@ -55,6 +57,7 @@ from conformance.fuzz.lockstep import (
     PosedLockstepMachine,
 )
 from conformance.fuzz.model_campaign import ModelCampaign
+from conformance.fuzz.operations import issued_ops
 from conformance.fuzz.regression import (
     drake_release,
     prepare_writing,
@@ -326,6 +329,44 @@ def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
         out.write(f"fuzz: known divergence {divergence} met in {examples} example(s), set aside\n")
 
 
+def _expected(args: argparse.Namespace, pair: tuple[Backend, Backend]) -> list[str] | None:
+    """The coverage table's features for this campaign (None: ``--models`` tracks none)."""
+    if args.models:
+        return None
+    machine = PosedLockstepMachine if _posed(args) else LockstepMachine
+    shared = pair[0].features() & pair[1].features()
+    return campaign_features(issued_ops(machine.OPERATIONS), shared)
+
+
+def _coverage(result: CampaignResult, expected: list[str] | None, out: TextIO) -> None:
+    """``--coverage``: the table of state-space features reached, gaps last."""
+    if expected is None:
+        out.write("coverage: not tracked for --models (each example is one model case)\n")
+    else:
+        out.write(result.stats.coverage.table(expected) + "\n")
+
+
+def _stats_json(
+    result: CampaignResult, expected: list[str] | None, args: argparse.Namespace
+) -> dict[str, object]:
+    """``--json``: the run's numbers, its findings and (unless ``--models``) its coverage."""
+    stats = result.stats
+    return {
+        "seed": args.seed,
+        "mode": _mode(args).strip(" -") or "sequences",
+        "batches": len(result.batches),
+        "examples": stats.examples,
+        "steps": stats.steps,
+        "seconds": round(result.seconds, 3),
+        "backend_seconds": round(stats.backend_seconds, 3),
+        "divergences": len(result.divergences),
+        "shrink_stopped": any(batch.shrink_stopped for batch in result.batches),
+        "interrupted": result.interrupted,
+        "known_divergences": dict(sorted(stats.known.items())),
+        "coverage": None if expected is None else stats.coverage.to_json(expected),
+    }
+
+
 def _load_pair(args: argparse.Namespace) -> tuple[Backend, Backend]:
     options = {"python": args.python, "step_timeout": args.step_timeout or None}
     backend = load_backend(args.backend, **options)
@@ -380,9 +421,15 @@ def _mode(args: argparse.Namespace) -> str:
 
 def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Runs ``fuzz``; returns the exit code (see ``conformance.cli.exit_codes``)."""
+    json_path: Path | None = getattr(args, "json", None)
+    folders = (
+        ("--out", args.out),
+        ("--database", args.database),
+        ("--json", json_path.parent if json_path is not None else None),
+    )
     problems = [
         f"{option} {path}: {problem}"
-        for option, path in (("--out", args.out), ("--database", args.database))
+        for option, path in folders
         if path is not None and (problem := unwritable_dir(path)) is not None
     ]
     if args.models and _posed(args):
@@ -444,6 +491,12 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     finally:
         watching.set()
     _summary(result, out, progress)
+    expected = _expected(args, (backend, reference))
+    if getattr(args, "coverage", False):
+        _coverage(result, expected, out)
+    if json_path is not None:
+        json_path.write_text(json.dumps(_stats_json(result, expected, args), indent=1) + "\n")
+        err.write(f"fuzz: statistics written to {json_path}\n")
     return _exit_code(result, findings.written, err)
 
 

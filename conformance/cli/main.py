@@ -152,6 +152,17 @@ def _add_fuzz(commands: Any) -> None:
         "best so far (default: no bound but Hypothesis' own 300 s); the finding is on disk "
         "from its first sighting either way",
     )
+    fuzz.add_argument(
+        "--coverage",
+        action="store_true",
+        help="print the state-space features the run reached, and those it never did (gaps)",
+    )
+    fuzz.add_argument(
+        "--json",
+        type=Path,
+        metavar="FILE",
+        help="write the run's statistics, findings count and coverage as JSON",
+    )
     add_backend_options(
         fuzz,
         strict="report known divergences as findings (default: set aside and counted)",
