@@ -18,6 +18,9 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+# n frames with one proximity sphere each: bench_filter's scene (run from benchmarks/).
+from bench_filter import scene
+
 from conformance.backends.api import Api
 from conformance.backends.pydrake_api import pydrake_api
 from conformance.backends.reimpl_api import reimpl_api
@@ -37,23 +40,6 @@ _CALLS_PER_BATCH = {op: 2000 for op in OPERATIONS} | {
     "CollisionFiltered": 20000,
     "CreateDefaultContext": 300,
 }
-
-
-def scene(api: Api, n: int) -> tuple[Any, list[Any]]:
-    """n frames, one proximity sphere on each; returns the SceneGraph and the ids."""
-    g, m = api.geometry, api.math
-    sg = g.SceneGraph()
-    source = sg.RegisterSource(name="bench")
-    ids = []
-    for i in range(n):
-        frame = sg.RegisterFrame(source_id=source, frame=g.GeometryFrame(frame_name=f"f{i}"))
-        instance = g.GeometryInstance(
-            X_PG=m.RigidTransform(), shape=g.Sphere(radius=0.1), name=f"g{i}"
-        )
-        gid = sg.RegisterGeometry(source_id=source, frame_id=frame, geometry=instance)
-        sg.AssignRole(source_id=source, geometry_id=gid, properties=g.ProximityProperties())
-        ids.append(gid)
-    return sg, ids
 
 
 def calls(api: Api, n: int) -> dict[str, Callable[[], object]]:

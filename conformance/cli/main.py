@@ -28,7 +28,7 @@ from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
 from conformance.cli.legacy_diff import add_legacy_diff_parser, legacy_diff_command
 from conformance.cli.matrix import add_matrix_parser, matrix_command
-from conformance.cli.options import add_backend_options
+from conformance.cli.options import add_backend_options, seconds
 from conformance.cli.run import PROG, add_run_parser, run_command
 from conformance.fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
 from conformance.fuzz.regression import DEFAULT_REGRESSIONS
@@ -90,13 +90,7 @@ def _positive(kind: type[int] | type[float]) -> Callable[[str], float]:
 
 def _non_negative(text: str) -> float:
     """A number of seconds, 0 or more (``fuzz --shrink-time``)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not value >= 0:  # also refuses nan
-        raise argparse.ArgumentTypeError(f"must be 0 or more, got {text}")
-    return value
+    return seconds(text, zero="no shrinking")
 
 
 def _add_fuzz(commands: Any) -> None:

@@ -8,18 +8,23 @@ from typing import TextIO
 
 from conformance.backends.calls import DEFAULT_STEP_TIMEOUT
 
-__all__ = ["add_backend_options", "add_python", "add_step_timeout", "refuse"]
+__all__ = ["add_backend_options", "add_python", "add_step_timeout", "refuse", "seconds"]
 
 
-def _seconds(text: str) -> float:
-    """A non-negative number of seconds (0: no limit)."""
+def seconds(text: str, *, zero: str = "none") -> float:
+    """A non-negative number of seconds; ``zero`` says what 0 means in the message."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
     if not value >= 0:  # also refuses nan
-        raise argparse.ArgumentTypeError(f"must be 0 (none) or positive, got {text}")
+        raise argparse.ArgumentTypeError(f"must be 0 ({zero}) or positive, got {text}")
     return value
+
+
+def _seconds(text: str) -> float:
+    """A non-negative number of seconds (0: no limit)."""
+    return seconds(text)
 
 
 def add_step_timeout(parser: argparse.ArgumentParser, *, what: str) -> None:
