@@ -12,11 +12,13 @@ import ast
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 import pytest
 
 import conformance.testing.mutants
+import conformance.testing.mutants_state
 import reimpl.geometry
 import reimpl.math
 import reimpl.systems.framework
@@ -99,6 +101,23 @@ def last_error_and_candidates(r: Run) -> tuple[ErrorKind | None, set[str]]:
 
 def both_locations(r: Run) -> tuple[set[str], set[str]]:
     return candidates()(r), candidates("c")(r)
+
+
+def count(fact: Callable[[Run], set[str]]) -> Callable[[Run], int]:
+    return lambda r: len(fact(r))
+
+
+def active(label: str, location: str = MODEL) -> Callable[[Run], bool]:
+    """IsActive(``label``) at ``location``."""
+    return lambda r: r[1].locations[location].active[label]
+
+
+def in_context(context: str, command: Command) -> Command:
+    return Command(command.op, {**command.args, "context": context})
+
+
+#: 17 geometries: one past a 16-wide word.
+CROWD = [f"g{i:02}" for i in range(17)]
 
 
 # ---------------------------------------------------------------- witnesses
@@ -246,6 +265,158 @@ WITNESSES = [
         pydrake=set(),
         mutated={"a-b"},
     ),
+    # -------------------------------------------- mutants_state: sizes
+    Witness(
+        "candidate_scan_one_word",
+        on_own_frames(*CROWD),
+        count(candidates()),
+        pydrake=136,
+        mutated=120,
+    ),
+    Witness(
+        "invariant_word_overflow",
+        [*on_own_frames(*CROWD), geometry("h", "f_g00")],
+        lambda r: "g00-h" in candidates()(r),
+        pydrake=False,
+        mutated=True,
+    ),
+    # ----------------------------------------------------- sequences
+    Witness(
+        "history_ring_of_four",
+        [
+            *on_own_frames("a", "b"),
+            *(apply_transient(f"t{i}", exclude_within(gset("a", "b"))) for i in range(5)),
+        ],
+        active("t0"),
+        pydrake=True,
+        mutated=False,
+    ),
+    Witness(
+        "filter_ids_recycled",
+        [
+            *on_own_frames("a", "b"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            remove_declaration("t1"),
+            apply_transient("t2", exclude_within(gset("a", "b"))),
+        ],
+        active("t1"),
+        pydrake=False,
+        mutated=True,
+    ),
+    Witness(
+        "frame_index_stale_after_remove_role",
+        [
+            *on_own_frames("a", "x"),
+            Command("remove_role", {"frame": "f_a", "role": "proximity"}),
+            Command("assign_role", {"geometry": "a", "role": "proximity"}),
+            apply(exclude_between(gset(frames=["f_a"]), gset("x"))),
+        ],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-x"},
+    ),
+    # -------------------------------------------------------- replays
+    Witness(
+        "replay_newest_first",
+        [
+            *on_own_frames("a", "b"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            apply_transient("t2", allow_within(gset("a", "b"))),
+            apply_transient("t3", exclude_within(gset("a"))),
+            remove_declaration("t3"),
+        ],
+        candidates(),
+        pydrake={"a-b"},
+        mutated=set(),
+    ),
+    Witness(
+        "replay_skips_oldest",
+        [
+            *on_own_frames("a", "b"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            apply_transient("t2", exclude_within(gset("a"))),
+            remove_declaration("t2"),
+        ],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "erase_skips_successor",
+        [
+            *on_own_frames("a", "b"),
+            apply_transient("t1", exclude_within(gset("a"))),
+            apply_transient("t2", exclude_within(gset("a", "b"))),
+            apply_transient("t3", exclude_within(gset("b"))),
+            remove_declaration("t1"),
+        ],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "replay_allows_before_excludes",
+        [
+            *on_own_frames("a", "b"),
+            apply_transient("t1", exclude_within(gset("a", "b")), allow_within(gset("a", "b"))),
+            apply_transient("t2", exclude_within(gset("a"))),
+            remove_declaration("t2"),
+        ],
+        candidates(),
+        pydrake={"a-b"},
+        mutated=set(),
+    ),
+    # ------------------------------------------------------- contexts
+    Witness(
+        "clone_shares_history",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            in_context("c", apply_transient("t1", exclude_within(gset("a", "b")))),
+            Command("clone_context", {"name": "d", "from": "c"}),
+            Command("is_active", {"label": "t1", "context": "d"}),
+            in_context("c", remove_declaration("t1")),
+        ],
+        active("t1", "d"),
+        pydrake=True,
+        mutated=False,
+    ),
+    Witness(
+        "clone_renumbers_history",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            in_context("c", apply_transient("t1", exclude_within(gset("a", "b")))),
+            Command("clone_context", {"name": "d", "from": "c"}),
+        ],
+        active("t1", "d"),
+        pydrake=True,
+        mutated=False,
+    ),
+    Witness(
+        "model_edits_write_through",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            apply(exclude_within(gset("a", "b"))),
+        ],
+        candidates("c"),
+        pydrake={"a-b"},
+        mutated=set(),
+    ),
+    Witness(
+        "late_geometry_default_rows",
+        [
+            *on_own_frames("a"),
+            Command("create_context", {"name": "c"}),
+            *on_own_frames("b"),
+            apply(exclude_within(gset("a", "b"))),
+            Command("create_context", {"name": "d"}),
+        ],
+        candidates("d"),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
 ]
 
 
@@ -259,7 +430,7 @@ def reimpl_backend() -> SceneGraphBackend:
 
 def test_every_mutant_has_exactly_one_witness() -> None:
     assert sorted(w.mutant for w in WITNESSES) == sorted(MUTANTS)
-    assert len(MUTANTS) >= 12
+    assert len(MUTANTS) >= 25
 
 
 @pytest.mark.parametrize("witness", WITNESSES, ids=lambda w: w.mutant)
@@ -328,8 +499,13 @@ def test_a_mutant_replaces_public_classes_by_subclasses_only(name: str) -> None:
     assert geometry.SceneGraph is not reimpl.geometry.SceneGraph
 
 
-def test_the_mutants_module_uses_only_reimpls_public_names() -> None:
-    source = Path(conformance.testing.mutants.__file__).read_text(encoding="utf-8")
+@pytest.mark.parametrize(
+    "mutants_module",
+    [conformance.testing.mutants, conformance.testing.mutants_state],
+    ids=["mutants", "mutants_state"],
+)
+def test_the_mutants_modules_use_only_reimpls_public_names(mutants_module: ModuleType) -> None:
+    source = Path(str(mutants_module.__file__)).read_text(encoding="utf-8")
     exported = {m.__name__: set(m.__all__) for m in PUBLIC_REIMPL}
     tree = ast.parse(source)
     for node in ast.walk(tree):
@@ -414,3 +590,17 @@ def test_every_mutant_bug_is_one_sentence(name: str) -> None:
     assert MUTANTS[name].name == name
     assert bug.endswith(".")
     assert bug.count(". ") == 0
+
+
+#: Scenes one short of the size a size-dependent mutant needs (16 proximity
+#: geometries), with the edits its witness makes.
+ONE_SHORT = {
+    "candidate_scan_one_word": on_own_frames(*CROWD[:16]),
+    "invariant_word_overflow": [*on_own_frames(*CROWD[:15]), geometry("h", "f_g00")],
+}
+
+
+@pytest.mark.parametrize("name", sorted(ONE_SHORT))
+def test_a_size_mutant_matches_reimpl_one_short_of_its_size(name: str) -> None:
+    commands = ONE_SHORT[name]
+    assert run(mutant_backend(name), commands) == run(reimpl_backend(), commands)

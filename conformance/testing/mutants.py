@@ -944,6 +944,11 @@ MUTANTS: dict[str, Mutant] = {
 }
 
 
+# N.B. At the end: the state-dependent mutants subclass the classes above, and
+# add themselves to MUTANTS.
+import conformance.testing.mutants_state  # noqa: E402, F401
+
+
 def mutant_backend(name: str) -> MutantBackend:
     """A fresh backend for the mutant ``name`` (a key of MUTANTS)."""
     return MutantBackend(MUTANTS[name])
