@@ -9,14 +9,14 @@ names the ``conformance.fuzz.coverage.FEATURES`` entry that reaches it.
 - sequence-dependent: a fifth active declaration, a removal out of order, a
   removal then an apply, a filter edit after a RemoveRole by frame and a
   re-assignment;
-- context-dependent: clones, model edits after contexts exist, contexts made
-  after a geometry was added;
+- context-dependent: clones of a context with history, default contexts of a
+  model with history;
 - replay-order-dependent: how RemoveDeclaration replays what remains.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any, cast
 
@@ -90,22 +90,6 @@ def _reapply(manager: Manager, replays: Iterable[Replay], *, link: bool = True) 
         manager.graph.transients[new] = tuple(r.kept(live.__contains__) for r in remembered)
         if link:
             manager.graph.successors.setdefault(old, []).append(new)
-
-
-def _rewritten(
-    manager: Manager,
-    declaration: CollisionFilterDeclaration,
-    edit: Callable[[tuple[Resolved, ...]], tuple[Resolved, ...] | None],
-) -> CollisionFilterDeclaration:
-    """``declaration`` resolved here, edited; itself if unresolvable or ``edit`` says None."""
-    try:
-        resolved = manager.resolve(_statements(declaration))
-    except _LOOKUP_ERRORS:
-        return declaration
-    edited = edit(resolved)
-    return (
-        declaration if edited is None else cast(CollisionFilterDeclaration, _as_declaration(edited))
-    )
 
 
 class _RewritingManager(Manager):
@@ -472,96 +456,23 @@ class CloneRenumbersHistory(_TrackingSceneGraph):
         )
 
 
-class _WriteThroughManager(Manager):
-    def mark(self) -> None:
-        graph = cast(ModelEditsWriteThrough, self.graph)
-        if self.context is not None and not any(c is self.context for c in graph.written):
-            graph.written.append(self.context)
+class DefaultContextFlattensHistory(MutantSceneGraph):
+    """CreateDefaultContext copies the model's composite filter into the new context's
+    base: the model's active transient declarations are not active there, nor removable
+    (the filters are right).
 
-    def Apply(self, declaration: CollisionFilterDeclaration) -> None:
-        super().Apply(declaration)
-        self.mark()
-        if self.context is None:
-            cast(ModelEditsWriteThrough, self.graph).write_through(
-                self.resolve(_statements(declaration))
-            )
-
-    def ApplyTransient(self, declaration: CollisionFilterDeclaration) -> FilterId:
-        filter_id = super().ApplyTransient(declaration)
-        self.mark()
-        return filter_id
-
-    def RemoveDeclaration(self, filter_id: FilterId) -> bool:
-        removed = super().RemoveDeclaration(filter_id)
-        self.mark()
-        return removed
-
-
-class ModelEditsWriteThrough(_TrackingSceneGraph):
-    """A context made by CreateDefaultContext shares the model's filter rows until its
-    own first filter edit (copy on write), so model Applies before that show in it.
-
-    Reached by ``model_edit_after_context``.
+    Reached by ``create_context@model`` while the model has transient declarations.
     """
-
-    manager_class = _WriteThroughManager
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.written: list[Context] = []
-
-    def SetDefaultContext(self, context: Context) -> None:
-        super().SetDefaultContext(context)
-        self.written = [c for c in self.written if c is not context]
-
-    def write_through(self, resolved: tuple[Resolved, ...]) -> None:
-        for context in self.made:
-            if any(c is context for c in self.written):
-                continue
-            inner = self.real_manager(context)
-            if inner.has_transient_history():
-                continue
-            live = set(self.real_inspector(context).GetAllGeometryIds(role=Role.kProximity))
-            inner.Apply(declaration=_as_declaration(r.kept(live.__contains__) for r in resolved))
-
-
-class LateGeometryDefaultRows(_TrackingSceneGraph):
-    """CreateDefaultContext copies filter rows only for the proximity geometries the model
-    had at the first context; later ones get default rows (unfiltered but for invariants).
-
-    Reached by ``model_edit_after_context`` (a geometry, and a filter on it, added
-    to the model after a context, then a new context).
-    """
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.first: set[GeometryId] | None = None
-
-    def default_rows(self, context: Context) -> None:
-        model = set(self.real_inspector(None).GetAllGeometryIds(role=Role.kProximity))
-        if self.first is None:
-            self.first = model
-            return
-        late = model - self.first
-        manager = self.real_manager(context)
-        if not late or manager.has_transient_history():
-            return
-        here = set(self.real_inspector(context).GetAllGeometryIds(role=Role.kProximity))
-        by_value = GeometryId.get_value
-        declaration = CollisionFilterDeclaration().AllowBetween(
-            set_A=GeometrySet(geometry_ids=sorted(late & here, key=by_value)),
-            set_B=GeometrySet(geometry_ids=sorted(here, key=by_value)),
-        )
-        manager.Apply(declaration=declaration)
 
     def CreateDefaultContext(self) -> Context:
         context = super().CreateDefaultContext()
-        self.default_rows(context)
+        manager = Manager(self, self.real_manager(context), context)
+        history = _lift(manager)
+        live = _live(manager)
+        for filter_id in history:
+            resolved = (r.kept(live.__contains__) for r in self.transients[filter_id])
+            manager.inner.Apply(declaration=_as_declaration(resolved))
         return context
-
-    def SetDefaultContext(self, context: Context) -> None:
-        super().SetDefaultContext(context)
-        self.default_rows(context)
 
 
 # ------------------------------------------------------------------- table
@@ -625,16 +536,10 @@ STATE_MUTANTS: tuple[Mutant, ...] = (
         CloneRenumbersHistory,
     ),
     Mutant(
-        "model_edits_write_through",
-        "A default context sees the model's persistent filter edits until its own first "
-        "filter edit.",
-        ModelEditsWriteThrough,
-    ),
-    Mutant(
-        "late_geometry_default_rows",
-        "Contexts made after the first have no persistent filters for proximity geometries "
-        "the model got after the first context.",
-        LateGeometryDefaultRows,
+        "default_context_flattens_history",
+        "CreateDefaultContext gives the model's transient declarations to the new context "
+        "as persistent filters.",
+        DefaultContextFlattensHistory,
     ),
 )
 
