@@ -24,7 +24,7 @@ from conformance.testing.mutants import MUTANTS, mutant_backend
 PYDRAKE = load_backend("pydrake")
 #: Shrinking bound per mutant: the coverage-weighted draws of issue 16 make longer
 #: sequences, which some mutants shrink for minutes; the file replays either way.
-SHRINK_SECONDS = 60.0
+SHRINK_SECONDS = 20.0
 
 
 def _run(*argv: str) -> int:
