@@ -368,7 +368,7 @@ WITNESSES = [
     ),
     # ------------------------------------------------------- contexts
     Witness(
-        "clone_shares_history",
+        "copies_share_history",
         [
             *on_own_frames("a", "b"),
             Command("create_context", {"name": "c"}),

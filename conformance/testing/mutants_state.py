@@ -423,19 +423,21 @@ class _SharedRemovalManager(Manager):
         current = self.current(filter_id)
         removed = super().RemoveDeclaration(filter_id)
         graph = cast(_TrackingSceneGraph, self.graph)
-        if removed and self.context is not None:
-            for other in graph.seen:
+        if removed:
+            for other in [None, *graph.seen]:
                 inner = graph.real_manager(other)
                 if other is not self.context and inner.IsActive(filter_id=current):
-                    graph.manager(other).RemoveDeclaration(current)
+                    inner.RemoveDeclaration(filter_id=current)
         return removed
 
 
-class CloneSharesHistory(_TrackingSceneGraph):
-    """Context.Clone copies the filters but shares the history's deltas with its origin:
-    removing an inherited declaration in one removes it in both.
+class CopiesShareHistory(_TrackingSceneGraph):
+    """A copied context (a clone, or a default context of a model with history) copies
+    the filters but shares the history's deltas with where it was copied from: removing
+    an inherited declaration in one removes it in both.
 
-    Reached by ``clone_with_history_edited_both``.
+    Reached by ``clone_with_history_edited_both``, and by ``model_edit_after_context``
+    (a removal at the model after a context was made under its history).
     """
 
     manager_class = _SharedRemovalManager
@@ -526,9 +528,10 @@ STATE_MUTANTS: tuple[Mutant, ...] = (
         ReplayAllowsBeforeExcludes,
     ),
     Mutant(
-        "clone_shares_history",
-        "Removing an inherited declaration in a clone or its origin removes it in both.",
-        CloneSharesHistory,
+        "copies_share_history",
+        "Removing an inherited transient declaration in a context or where it was copied "
+        "from removes it in both.",
+        CopiesShareHistory,
     ),
     Mutant(
         "clone_renumbers_history",
