@@ -18,6 +18,7 @@ from typing import Any
 import pytest
 
 import conformance.testing.mutants
+import conformance.testing.mutants_basic
 import conformance.testing.mutants_state
 import reimpl.geometry
 import reimpl.math
@@ -488,8 +489,12 @@ def test_a_mutant_replaces_public_classes_by_subclasses_only(name: str) -> None:
 
 @pytest.mark.parametrize(
     "mutants_module",
-    [conformance.testing.mutants, conformance.testing.mutants_state],
-    ids=["mutants", "mutants_state"],
+    [
+        conformance.testing.mutants,
+        conformance.testing.mutants_basic,
+        conformance.testing.mutants_state,
+    ],
+    ids=["mutants", "mutants_basic", "mutants_state"],
 )
 def test_the_mutants_modules_use_only_reimpls_public_names(mutants_module: ModuleType) -> None:
     source = Path(str(mutants_module.__file__)).read_text(encoding="utf-8")

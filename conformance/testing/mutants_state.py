@@ -20,8 +20,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any, cast
 
-from conformance.testing.mutants import (
-    MUTANTS,
+from conformance.testing.mutants_basic import (
     Inspector,
     Manager,
     Mutant,
@@ -545,5 +544,3 @@ STATE_MUTANTS: tuple[Mutant, ...] = (
         DefaultContextFlattensHistory,
     ),
 )
-
-MUTANTS.update((mutant.name, mutant) for mutant in STATE_MUTANTS)
