@@ -51,6 +51,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
+from functools import cache
 from typing import Any
 
 from conformance.grammar import GRAMMAR, ArgKind
@@ -188,10 +189,16 @@ def campaign_features(operations: Iterable[str], shared: frozenset[str]) -> list
 _OPTIONAL = frozenset({"activation", "queries"})
 
 
+@cache
+def _location_keys(op: str) -> tuple[str, ...]:
+    """The keys of ``op``'s arguments that name a context."""
+    return tuple(arg.key for arg in GRAMMAR[op].args if arg.kind is ArgKind.CONTEXT)
+
+
 def _location_arg(command: Command) -> str | None:
-    for arg in GRAMMAR[command.op].args:
-        if arg.kind is ArgKind.CONTEXT and arg.key in command.args:
-            return str(command.args[arg.key])
+    for key in _location_keys(command.op):
+        if key in command.args:
+            return str(command.args[key])
     return None
 
 
@@ -213,7 +220,7 @@ class CoverageBook:
     #: Geometries whose proximity role was removed by frame.
     lost_by_frame: set[str] = field(default_factory=set)
     reassigned: bool = False
-    #: Clones of a location with history → the sides edited since (clone, origin).
+    #: Clones of a location with history → the sides (the clone, its origin) not edited since.
     watched: dict[str, set[str]] = field(default_factory=dict)
     #: The largest count of proximity geometries at a location, and of active declarations.
     max_proximity: int = 0
@@ -286,13 +293,9 @@ class CoverageBook:
             self.stretch.clear()
 
     def _edited_both(self, where: str) -> Iterator[str]:
-        for clone, origin_and_edits in list(self.watched.items()):
-            origin = next(iter(origin_and_edits - {"clone", "origin"}))
-            if where == clone:
-                origin_and_edits.add("clone")
-            elif where == origin:
-                origin_and_edits.add("origin")
-            if {"clone", "origin"} <= origin_and_edits:
+        for clone, unedited in list(self.watched.items()):
+            unedited.discard(where)
+            if not unedited:
                 del self.watched[clone]
                 yield "clone_with_history_edited_both"
 
@@ -356,7 +359,7 @@ class CoverageBook:
         origin = args["from"]
         if self.active.get(origin):
             yield "clone_with_history"
-            self.watched[args["name"]] = {origin}
+            self.watched[args["name"]] = {origin, args["name"]}
         self.proximity[args["name"]] = set(self.proximity.get(origin, ()))
         self.active[args["name"]] = list(self.active.get(origin, ()))
         self.clones.add(args["name"])
