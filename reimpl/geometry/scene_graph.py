@@ -84,22 +84,6 @@ class SceneGraph(LeafSystem):
         self.ValidateContext(context)
         return context._geometry_state
 
-    def _with_context(
-        self, name: str, params: tuple[Param, ...], impl: Any, args: Any, kwargs: Any
-    ) -> Any:
-        """Dispatches ``name`` over its model overload and its context overload."""
-        context_param = Param("context", instance_of(Context))
-        return dispatch(
-            _OWNER,
-            name,
-            (
-                Overload(params, lambda **kw: impl(None, **kw)),
-                Overload((context_param, *params), lambda context, **kw: impl(context, **kw)),
-            ),
-            args,
-            kwargs,
-        )
-
     # -------------------------------------------------------- registration
     def RegisterSource(self, name: str = "") -> SourceId:
         model = self._edit_model()
@@ -117,47 +101,28 @@ class SceneGraph(LeafSystem):
         return self._num_input_ports
 
     def RegisterFrame(self, *args: Any, **kwargs: Any) -> FrameId:
-        source = Param("source_id", instance_of(SourceId))
-        frame = Param("frame", instance_of(GeometryFrame))
         return dispatch(  # type: ignore[no-any-return]
-            _OWNER,
-            "RegisterFrame",
-            (
-                Overload(
-                    (source, frame),
-                    lambda source_id, frame: self._edit_model().register_frame(
-                        source_id, WORLD_FRAME_ID, frame
-                    ),
-                ),
-                Overload(
-                    (source, Param("parent_id", instance_of(FrameId)), frame),
-                    lambda **kw: self._edit_model().register_frame(**kw),
-                ),
-            ),
-            args,
-            kwargs,
+            _OWNER, "RegisterFrame", _REGISTER_FRAME, args, kwargs, receiver=self
         )
+
+    def _register_frame(
+        self, source_id: SourceId, frame: GeometryFrame, parent_id: FrameId = WORLD_FRAME_ID
+    ) -> FrameId:
+        return self._edit_model().register_frame(source_id, parent_id, frame)
 
     def RegisterGeometry(self, *args: Any, **kwargs: Any) -> GeometryId:
-        def register(
-            context: Context | None,
-            source_id: SourceId,
-            frame_id: FrameId,
-            geometry: GeometryInstance,
-        ) -> GeometryId:
-            return self._state_of(context).register_geometry(source_id, frame_id, geometry)
-
-        return self._with_context(  # type: ignore[no-any-return]
-            "RegisterGeometry",
-            (
-                Param("source_id", instance_of(SourceId)),
-                Param("frame_id", instance_of(FrameId)),
-                Param("geometry", instance_of(GeometryInstance)),
-            ),
-            register,
-            args,
-            kwargs,
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER, "RegisterGeometry", _REGISTER_GEOMETRY, args, kwargs, receiver=self
         )
+
+    def _register_geometry(
+        self,
+        source_id: SourceId,
+        frame_id: FrameId,
+        geometry: GeometryInstance,
+        context: Context | None = None,
+    ) -> GeometryId:
+        return self._state_of(context).register_geometry(source_id, frame_id, geometry)
 
     def RegisterAnchoredGeometry(
         self, source_id: SourceId, geometry: GeometryInstance
@@ -166,73 +131,45 @@ class SceneGraph(LeafSystem):
 
     # --------------------------------------------------------------- roles
     def AssignRole(self, *args: Any, **kwargs: Any) -> None:
-        def assign_role(
-            context: Context | None,
-            source_id: SourceId,
-            geometry_id: GeometryId,
-            properties: ProximityProperties,
-            assign: RoleAssign,
-        ) -> None:
-            self._state_of(context).assign_role(source_id, geometry_id, properties, assign)
+        dispatch(_OWNER, "AssignRole", _ASSIGN_ROLE, args, kwargs, receiver=self)
 
-        self._with_context(
-            "AssignRole",
-            (
-                Param("source_id", instance_of(SourceId)),
-                Param("geometry_id", instance_of(GeometryId)),
-                Param("properties", _properties),
-                Param("assign", instance_of(RoleAssign), RoleAssign.kNew),
-            ),
-            assign_role,
-            args,
-            kwargs,
-        )
+    def _assign_role(
+        self,
+        source_id: SourceId,
+        geometry_id: GeometryId,
+        properties: ProximityProperties,
+        assign: RoleAssign,
+        context: Context | None = None,
+    ) -> None:
+        self._state_of(context).assign_role(source_id, geometry_id, properties, assign)
 
     def RemoveRole(self, *args: Any, **kwargs: Any) -> int:
         """Removes ``role`` from one geometry, or from a frame's geometries; returns a count."""
-        context_param = Param("context", instance_of(Context))
-        source = Param("source_id", instance_of(SourceId))
-        role = Param("role", instance_of(Role))
-        frame = Param("frame_id", instance_of(FrameId))
-        geometry = Param("geometry_id", instance_of(GeometryId))
-
-        def by_frame(
-            source_id: SourceId, frame_id: FrameId, role: Role, context: Context | None = None
-        ) -> int:
-            return self._state_of(context).remove_frame_role(source_id, frame_id, role)
-
-        def by_geometry(
-            source_id: SourceId, geometry_id: GeometryId, role: Role, context: Context | None = None
-        ) -> int:
-            return self._state_of(context).remove_role(source_id, geometry_id, role)
-
         return dispatch(  # type: ignore[no-any-return]
-            _OWNER,
-            "RemoveRole",
-            (
-                Overload((source, frame, role), by_frame),
-                Overload((context_param, source, frame, role), by_frame),
-                Overload((source, geometry, role), by_geometry),
-                Overload((context_param, source, geometry, role), by_geometry),
-            ),
-            args,
-            kwargs,
+            _OWNER, "RemoveRole", _REMOVE_ROLE, args, kwargs, receiver=self
         )
+
+    def _remove_frame_role(
+        self, source_id: SourceId, frame_id: FrameId, role: Role, context: Context | None = None
+    ) -> int:
+        return self._state_of(context).remove_frame_role(source_id, frame_id, role)
+
+    def _remove_geometry_role(
+        self,
+        source_id: SourceId,
+        geometry_id: GeometryId,
+        role: Role,
+        context: Context | None = None,
+    ) -> int:
+        return self._state_of(context).remove_role(source_id, geometry_id, role)
 
     def RemoveGeometry(self, *args: Any, **kwargs: Any) -> None:
-        def remove(context: Context | None, source_id: SourceId, geometry_id: GeometryId) -> None:
-            self._state_of(context).remove_geometry(source_id, geometry_id)
+        dispatch(_OWNER, "RemoveGeometry", _REMOVE_GEOMETRY, args, kwargs, receiver=self)
 
-        self._with_context(
-            "RemoveGeometry",
-            (
-                Param("source_id", instance_of(SourceId)),
-                Param("geometry_id", instance_of(GeometryId)),
-            ),
-            remove,
-            args,
-            kwargs,
-        )
+    def _remove_geometry(
+        self, source_id: SourceId, geometry_id: GeometryId, context: Context | None = None
+    ) -> None:
+        self._state_of(context).remove_geometry(source_id, geometry_id)
 
     # -------------------------------------------------------------- names
     def RenameFrame(self, frame_id: FrameId, name: str) -> None:
@@ -343,6 +280,50 @@ class SceneGraph(LeafSystem):
             # A duplicate-name RegisterFrame left a frame index without a frame.
             raise IndexError("_Map_base::at")
 
+
+# pydrake's overload sets, in pydrake's order, built once: binding is the only per-call work.
+_CONTEXT = Param("context", instance_of(Context))
+_SOURCE = Param("source_id", instance_of(SourceId))
+_FRAME = Param("frame_id", instance_of(FrameId))
+_GEOMETRY = Param("geometry_id", instance_of(GeometryId))
+_ROLE = Param("role", instance_of(Role))
+
+
+def _model_then_context(params: tuple[Param, ...], impl: Any) -> tuple[Overload, Overload]:
+    """The model overload ``params``, then the context overload ``(context, *params)``."""
+    return Overload(params, impl), Overload((_CONTEXT, *params), impl)
+
+
+_REGISTER_FRAME = (
+    Overload((_SOURCE, Param("frame", instance_of(GeometryFrame))), SceneGraph._register_frame),
+    Overload(
+        (
+            _SOURCE,
+            Param("parent_id", instance_of(FrameId)),
+            Param("frame", instance_of(GeometryFrame)),
+        ),
+        SceneGraph._register_frame,
+    ),
+)
+_REGISTER_GEOMETRY = _model_then_context(
+    (_SOURCE, _FRAME, Param("geometry", instance_of(GeometryInstance))),
+    SceneGraph._register_geometry,
+)
+_ASSIGN_ROLE = _model_then_context(
+    (
+        _SOURCE,
+        _GEOMETRY,
+        Param("properties", _properties),
+        Param("assign", instance_of(RoleAssign), RoleAssign.kNew),
+    ),
+    SceneGraph._assign_role,
+)
+#: RemoveRole by frame, then by geometry, each without and with a context.
+_REMOVE_ROLE = (
+    *_model_then_context((_SOURCE, _FRAME, _ROLE), SceneGraph._remove_frame_role),
+    *_model_then_context((_SOURCE, _GEOMETRY, _ROLE), SceneGraph._remove_geometry_role),
+)
+_REMOVE_GEOMETRY = _model_then_context((_SOURCE, _GEOMETRY), SceneGraph._remove_geometry)
 
 #: collision_filter_manager(context) and collision_filter_manager(), in pydrake's order.
 _MANAGER_OVERLOADS = (

@@ -111,28 +111,18 @@ class RotationMatrix:
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         self._R = np.eye(3)
-
-        def copy_from(other: RotationMatrix) -> None:
-            self._R = other._R.copy()
-
-        def from_matrix(R: npt.NDArray[np.float64]) -> None:
-            self._R = np.asarray(R, dtype=float).copy()
-
-        def from_rpy(rpy: RollPitchYaw) -> None:
-            self._R = rpy.ToRotationMatrix()._R
-
         dispatch(
-            "reimpl.math.RotationMatrix",
-            "__init__",
-            (
-                Overload((), lambda: None),
-                Overload((Param("other", instance_of(RotationMatrix)),), copy_from),
-                Overload((Param("R", _is_matrix((3, 3))),), from_matrix),
-                Overload((Param("rpy", instance_of(RollPitchYaw)),), from_rpy),
-            ),
-            args,
-            kwargs,
+            "reimpl.math.RotationMatrix", "__init__", _ROTATION_INIT, args, kwargs, receiver=self
         )
+
+    def _copy_from(self, other: RotationMatrix) -> None:
+        self._R = other._R.copy()
+
+    def _from_matrix(self, R: npt.NDArray[np.float64]) -> None:
+        self._R = np.asarray(R, dtype=float).copy()
+
+    def _from_rpy(self, rpy: RollPitchYaw) -> None:
+        self._R = rpy.ToRotationMatrix()._R
 
     @staticmethod
     def _about(axis: int, theta: float) -> RotationMatrix:
@@ -182,44 +172,25 @@ class RigidTransform:
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         self._R = RotationMatrix()
         self._p = np.zeros(3)
-
-        def set_pose(R: RotationMatrix | None = None, p: Vector3 | None = None) -> None:
-            if R is not None:
-                self._R = RotationMatrix(R)
-            if p is not None:
-                self._p = np.asarray(p, dtype=float).reshape(3).copy()
-
-        def copy_from(other: RigidTransform) -> None:
-            set_pose(other._R, other._p)
-
-        def from_rpy(rpy: RollPitchYaw, p: Vector3) -> None:
-            set_pose(rpy.ToRotationMatrix(), p)
-
-        def from_matrix(pose: npt.NDArray[np.float64]) -> None:
-            m = np.asarray(pose, dtype=float)
-            set_pose(RotationMatrix(m[:3, :3]), m[:3, 3])
-
-        rotation = instance_of(RotationMatrix)
         dispatch(
-            "reimpl.math.RigidTransform",
-            "__init__",
-            (
-                Overload((), lambda: None),
-                Overload((Param("other", instance_of(RigidTransform)),), copy_from),
-                Overload((Param("R", rotation), Param("p", _is_vector3)), set_pose),
-                Overload(
-                    (Param("rpy", instance_of(RollPitchYaw)), Param("p", _is_vector3)), from_rpy
-                ),
-                Overload((Param("R", rotation),), set_pose),
-                Overload((Param("p", _is_vector3),), set_pose),
-                Overload(
-                    (Param("pose", any_of(_is_matrix((4, 4)), _is_matrix((3, 4)))),),
-                    from_matrix,
-                ),
-            ),
-            args,
-            kwargs,
+            "reimpl.math.RigidTransform", "__init__", _TRANSFORM_INIT, args, kwargs, receiver=self
         )
+
+    def _set_pose(self, R: RotationMatrix | None = None, p: Vector3 | None = None) -> None:
+        if R is not None:
+            self._R = RotationMatrix(R)
+        if p is not None:
+            self._p = np.asarray(p, dtype=float).reshape(3).copy()
+
+    def _copy_from(self, other: RigidTransform) -> None:
+        self._set_pose(other._R, other._p)
+
+    def _from_rpy(self, rpy: RollPitchYaw, p: Vector3) -> None:
+        self._set_pose(rpy.ToRotationMatrix(), p)
+
+    def _from_matrix(self, pose: npt.NDArray[np.float64]) -> None:
+        m = np.asarray(pose, dtype=float)
+        self._set_pose(RotationMatrix(m[:3, :3]), m[:3, 3])
 
     @staticmethod
     def Identity() -> RigidTransform:
@@ -258,6 +229,30 @@ class RigidTransform:
         p = ", ".join(repr(float(x)) for x in self._p)
         return f"RigidTransform(\n  R=RotationMatrix([\n{R}\n  ]),\n  p=[{p}],\n)"
 
+
+# The constructors' overload sets, in pydrake's order, built once.
+_ROTATION_INIT = (
+    Overload((), lambda self: None),
+    Overload((Param("other", instance_of(RotationMatrix)),), RotationMatrix._copy_from),
+    Overload((Param("R", _is_matrix((3, 3))),), RotationMatrix._from_matrix),
+    Overload((Param("rpy", instance_of(RollPitchYaw)),), RotationMatrix._from_rpy),
+)
+_ROTATION = instance_of(RotationMatrix)
+_TRANSFORM_INIT = (
+    Overload((), lambda self: None),
+    Overload((Param("other", instance_of(RigidTransform)),), RigidTransform._copy_from),
+    Overload((Param("R", _ROTATION), Param("p", _is_vector3)), RigidTransform._set_pose),
+    Overload(
+        (Param("rpy", instance_of(RollPitchYaw)), Param("p", _is_vector3)),
+        RigidTransform._from_rpy,
+    ),
+    Overload((Param("R", _ROTATION),), RigidTransform._set_pose),
+    Overload((Param("p", _is_vector3),), RigidTransform._set_pose),
+    Overload(
+        (Param("pose", any_of(_is_matrix((4, 4)), _is_matrix((3, 4)))),),
+        RigidTransform._from_matrix,
+    ),
+)
 
 RigidTransform_ = scalar_template("reimpl.math", "RigidTransform_", RigidTransform)
 RotationMatrix_ = scalar_template("reimpl.math", "RotationMatrix_", RotationMatrix)
