@@ -28,8 +28,7 @@ from __future__ import annotations
 
 import signal
 import threading
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from typing import Any, TypeVar
 
 from conformance.protocol import Backend, UnknownNameError
@@ -39,6 +38,7 @@ __all__ = [
     "BackendCrashError",
     "BackendError",
     "StepTimeoutError",
+    "Where",
     "call",
     "call_function",
     "deadline",
@@ -71,37 +71,75 @@ class BackendCrashError(BackendError):
     """The backend's own process died (a signal, or an exit) during a call."""
 
 
-@contextmanager
-def deadline(seconds: float | None, backend: str, where: str) -> Iterator[None]:
+class _Alarm:
+    """The one SIGALRM handler: raises ``StepTimeoutError`` for the call it is armed for.
+
+    Installed once and then left in place (installing a handler per call cost
+    most of a fuzz step's harness time); with nothing armed it hands the
+    signal to the handler it replaced.
+    """
+
+    armed: tuple[str, Where, float] | None = None
+    previous: Any = signal.SIG_DFL
+
+    @classmethod
+    def install(cls) -> None:
+        if signal.getsignal(signal.SIGALRM) != cls.fire:  # (a new bound method each time)
+            cls.previous = signal.signal(signal.SIGALRM, cls.fire)
+
+    @classmethod
+    def fire(cls, signum: int, frame: Any) -> None:
+        if cls.armed is not None:
+            backend, where, seconds = cls.armed
+            raise StepTimeoutError(
+                backend, _text(where), f"no answer within {seconds:g} s (--step-timeout)"
+            )
+        previous = cls.previous
+        if callable(previous):
+            previous(signum, frame)
+        elif previous != signal.SIG_IGN:  # the default action: end the process
+            signal.signal(signal.SIGALRM, signal.SIG_DFL)
+            signal.raise_signal(signal.SIGALRM)
+
+
+class deadline:  # noqa: N801 (a context manager, used as ``with deadline(...)``)
     """Raises ``StepTimeoutError`` in the block after ``seconds`` (None or 0: no limit).
 
     Outside the main thread, or where there is no ``setitimer``, there is no limit.
     """
-    if (
-        not seconds
-        or threading.current_thread() is not threading.main_thread()
-        or not hasattr(signal, "setitimer")
-    ):
-        yield
-        return
 
-    def expire(signum: int, frame: object) -> None:
-        raise StepTimeoutError(backend, where, f"no answer within {seconds:g} s (--step-timeout)")
+    def __init__(self, seconds: float | None, backend: str, where: Where) -> None:
+        self.armed = (
+            (backend, where, seconds)
+            if seconds
+            and hasattr(signal, "setitimer")
+            and threading.current_thread() is threading.main_thread()
+            else None
+        )
+        self.outer: tuple[str, Where, float] | None = None
 
-    previous = signal.signal(signal.SIGALRM, expire)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+    def __enter__(self) -> None:
+        if self.armed is not None:
+            _Alarm.install()
+            self.outer, _Alarm.armed = _Alarm.armed, self.armed
+            signal.setitimer(signal.ITIMER_REAL, self.armed[2])
+
+    def __exit__(self, *exc_info: object) -> None:
+        if self.armed is not None:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            _Alarm.armed = self.outer
+
+
+#: Where a call is, for its error message: the text, or a function that makes it
+#: (called only when the call goes wrong, so a step need not format it up front).
+Where = str | Callable[[], str]
 
 
 def call(
     backend: Backend,
     method: str,
     *args: Any,
-    where: str,
+    where: Where,
     returns: type[T],
     timeout: float | None = None,
 ) -> T:
@@ -121,7 +159,7 @@ def call_function(
     function: Callable[[], Any],
     method: str,
     *,
-    where: str,
+    where: Where,
     returns: type[T] | tuple[type, ...],
     timeout: float | None = None,
 ) -> T:
@@ -130,25 +168,29 @@ def call_function(
     if getattr(backend, "times_itself", False):  # a worker keeps its own deadline
         timeout = None
     try:
-        with deadline(timeout, name, where):
+        with deadline(timeout, name, where):  # a Where function is called only if it fires
             value = function()
     except _PASS_THROUGH:
         raise
     except StepTimeoutError as exc:  # the deadline's, or a worker's own (naming its call)
-        raise StepTimeoutError(name, where, exc.message) from exc
+        raise StepTimeoutError(name, _text(where), exc.message) from exc
     except BackendCrashError as exc:
-        raise BackendCrashError(name, where, exc.message) from exc
+        raise BackendCrashError(name, _text(where), exc.message) from exc
     except BaseException as exc:
-        raise BackendError(name, where, f"{method}() raised {_describe(exc)}") from exc
+        raise BackendError(name, _text(where), f"{method}() raised {_describe(exc)}") from exc
     if not isinstance(value, returns):
         kinds = returns if isinstance(returns, tuple) else (returns,)
         raise BackendError(
             name,
-            where,
+            _text(where),
             f"{method}() returned {type(value).__name__}, "
             f"not {' or '.join(k.__name__ for k in kinds)}",
         )
     return value  # type: ignore[return-value]
+
+
+def _text(where: Where) -> str:
+    return where if isinstance(where, str) else where()
 
 
 def _describe(exc: BaseException) -> str:

@@ -74,7 +74,7 @@ from hypothesis.control import current_build_context
 from hypothesis.errors import InvalidArgument
 from hypothesis.stateful import Bundle, RuleBasedStateMachine, initialize, invariant, rule
 
-from conformance.backends.calls import BackendError, call
+from conformance.backends.calls import BackendError, Where, call
 from conformance.backends.loader import load_backend
 from conformance.compare import Difference, diff_observations, diff_results
 from conformance.fuzz import operations as ops
@@ -375,7 +375,7 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         method: str,
         *args: Any,
         returns: type[T],
-        where: str,
+        where: Where,
         command: Command | None = None,
     ) -> T:
         """``backends.calls.call``; a broken backend aborts the run (``HarnessAbort``)."""
@@ -390,7 +390,11 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
             raise HarnessAbort(HarnessError(str(exc), commands)) from exc
 
     def _execute(self, backend: Backend, command: Command) -> Result:
-        where = f"step {len(self.trace) + 1} ({json.dumps(command.to_json())})"
+        number = len(self.trace) + 1
+
+        def where() -> str:  # formatted only if the call goes wrong
+            return f"step {number} ({json.dumps(command.to_json())})"
+
         return self._call(backend, "execute", command, returns=Result, where=where, command=command)
 
     def step(self, op: str, **args: Any) -> Result:
