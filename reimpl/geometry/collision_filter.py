@@ -410,16 +410,17 @@ class CollisionFilter:
             return self._candidates_by_block(np.array(live, dtype=bool))
         live_mask = mask_of(live_slots)
         ids = cast(list[GeometryId], self._id_at)  # a live slot holds an id
+        value = [-1 if g is None else g.get_value() for g in self._id_at]  # ints compare faster
         invariant, filtered = self._invariant.rows, self._filtered.rows
         pairs: set[tuple[GeometryId, GeometryId]] = set()
         for a in live_slots:
-            ga = ids[a]
+            ga, va = ids[a], value[a]
             free = live_mask >> (a + 1) << (a + 1) & ~(invariant[a] | filtered[a])
             while free:
                 lowest = free & -free
                 free ^= lowest
-                gb = ids[lowest.bit_length() - 1]
-                pairs.add((ga, gb) if ga < gb else (gb, ga))
+                b = lowest.bit_length() - 1
+                pairs.add((ga, ids[b]) if va < value[b] else (ids[b], ga))
         return pairs
 
     def _candidates_by_block(
