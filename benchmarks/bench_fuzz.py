@@ -12,7 +12,15 @@ median run's:
   shrinking engine plus the harness's own bookkeeping) divided by the time
   inside them. The target is below 0.5;
 - how many geometries an example has registered by its end, on average
-  (operations add geometry to the initial scene).
+  (operations add geometry to the initial scene);
+- each backend's own time per step (its ``execute``, ``observe`` and
+  ``reset``), and their ratio reimpl / pydrake, taken in the same run.
+
+``--reimpl-from REV`` also runs the same campaigns with the reimpl of git
+revision REV (in a worktree of HEAD whose ``reimpl/`` is REV's, in a
+subprocess), and prints the ratio of steps/s, HEAD's over REV's: how much a
+change to reimpl alone moved fuzzing throughput, on the same machine, in the
+same run. ``--json FILE`` writes the rows.
 
 ``--poses`` measures the posed machine (``fuzz --poses``: shapes, poses,
 near touches and the queries) instead; both backends need the ``queries``
@@ -20,17 +28,23 @@ feature (``--backend`` chooses the one under test, reimpl by default).
 
 Usage: python benchmarks/bench_fuzz.py [--examples N] [--seed S] [--steps K] [--repeat R]
                                        [--operations-per-step P] [--poses] [--backend B]
+                                       [--bands 5-10 ...] [--reimpl-from REV] [--json FILE]
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import statistics
+import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import ClassVar
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any, ClassVar
 
 from hypothesis.stateful import Bundle, RuleBasedStateMachine, rule, run_state_machine_as_test
 
@@ -40,6 +54,7 @@ from conformance.fuzz.lockstep import LockstepMachine, PosedLockstepMachine
 from conformance.protocol import Backend
 
 SIZES = ((5, 10), (10, 20), (20, 30))
+ROOT = Path(__file__).resolve().parent.parent
 
 #: Typed alias, as in ``conformance.fuzz.campaign`` (Hypothesis releases differ in its annotations).
 _run_machine: Callable[..., None] = run_state_machine_as_test
@@ -85,8 +100,36 @@ class _PosedSizing(_Sizing):
     posed = True
 
 
+class _Timed:
+    """A backend whose own calls (``execute``, ``observe``, ``reset``) are timed."""
+
+    def __init__(self, backend: Backend) -> None:
+        self._backend = backend
+        self.seconds = 0.0
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._backend, name)
+
+    def _timed(self, method: str, *args: Any) -> Any:
+        start = time.perf_counter()
+        try:
+            return getattr(self._backend, method)(*args)
+        finally:
+            self.seconds += time.perf_counter() - start
+
+    def execute(self, command: Any) -> Any:
+        return self._timed("execute", command)
+
+    def observe(self) -> Any:
+        return self._timed("observe")
+
+    def reset(self) -> Any:
+        return self._timed("reset")
+
+
 @dataclass(frozen=True)
 class Row:
+    band: str
     examples_per_s: float
     steps_per_s: float
     in_backends: float
@@ -94,6 +137,8 @@ class Row:
     overhead_ratio: float
     final_geometries: float
     divergences: int
+    backend_us_per_step: float
+    reference_us_per_step: float
 
 
 def measure(
@@ -101,9 +146,10 @@ def measure(
 ) -> Row:
     """One campaign of ``args.examples`` examples on initial scenes of ``sizes`` geometries."""
     _Sizing.final_sizes = []
+    timed_backend, timed_reference = _Timed(reimpl), _Timed(pydrake)
     campaign = Campaign(
-        backend=lambda: reimpl,
-        reference=lambda: pydrake,
+        backend=lambda: timed_backend,
+        reference=lambda: timed_reference,
         seed=args.seed,
         max_examples=args.examples,
         steps=args.steps,
@@ -117,6 +163,7 @@ def measure(
     stats = result.stats
     inside = stats.backend_seconds
     return Row(
+        band=f"{sizes[0]}-{sizes[1]}",
         examples_per_s=stats.examples / wall,
         steps_per_s=stats.steps / wall,
         in_backends=inside / wall,
@@ -124,7 +171,35 @@ def measure(
         overhead_ratio=(wall - inside) / inside,
         final_geometries=statistics.fmean(_Sizing.final_sizes),
         divergences=len(result.divergences),
+        backend_us_per_step=1e6 * timed_backend.seconds / stats.steps,
+        reference_us_per_step=1e6 * timed_reference.seconds / stats.steps,
     )
+
+
+def _band(text: str) -> tuple[int, int]:
+    low, _, high = text.partition("-")
+    return int(low), int(high)
+
+
+def other_reimpl(revision: str, argv: list[str]) -> list[dict[str, Any]]:
+    """This script's rows with the reimpl of ``revision`` and HEAD's harness, in a subprocess."""
+    with tempfile.TemporaryDirectory(prefix="bench-fuzz-") as scratch:
+        tree, rows = Path(scratch) / "tree", Path(scratch) / "rows.json"
+        git = ["git", "-C", str(ROOT)]
+        subprocess.run([*git, "worktree", "add", "--detach", "-q", str(tree), "HEAD"], check=True)
+        try:
+            subprocess.run(
+                ["git", "-C", str(tree), "checkout", "-q", revision, "--", "reimpl"], check=True
+            )
+            env = {**os.environ, "PYTHONPATH": str(tree)}
+            script = tree / "benchmarks" / "bench_fuzz.py"
+            subprocess.run(
+                [sys.executable, str(script), *argv, "--json", str(rows)], env=env, check=True
+            )
+            loaded: list[dict[str, Any]] = json.loads(rows.read_text())["rows"]
+            return loaded
+        finally:
+            subprocess.run([*git, "worktree", "remove", "--force", str(tree)], check=False)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -141,7 +216,22 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--poses", action="store_true", help="the posed machine (fuzz --poses)")
     parser.add_argument("--backend", default="reimpl", help="the backend under test (reimpl)")
-    args = parser.parse_args(argv)
+    parser.add_argument(
+        "--bands",
+        nargs="+",
+        type=_band,
+        default=list(SIZES),
+        metavar="LOW-HIGH",
+        help="initial scene sizes, one row each (default: 5-10 10-20 20-30)",
+    )
+    parser.add_argument(
+        "--reimpl-from",
+        metavar="REV",
+        help="also run with the reimpl of git revision REV and print the steps/s ratio",
+    )
+    parser.add_argument("--json", type=Path, help="write the rows to this file")
+    raw = sys.argv[1:] if argv is None else argv
+    args = parser.parse_args(raw)
     _Sizing.operations_per_step = args.operations_per_step
     reimpl, pydrake = load_backend(args.backend), load_backend("pydrake")
     print(
@@ -152,16 +242,22 @@ def main(argv: list[str] | None = None) -> int:
     )
     header = (
         f"{'geometries':>10}  {'examples/s':>10}  {'steps/s':>8}  {'in backends':>11}  "
+        f"{'us/step ' + reimpl.name:>16}  {'us/step pydrake':>15}  {'ratio':>5}  "
         f"{'overhead us/step':>16}  {'overhead ratio':>14}  {'at end':>6}  {'divergences':>11}"
     )
     print(header)
     print("-" * len(header))
-    for low, high in SIZES:
+    rows: list[Row] = []
+    for low, high in args.bands:
         runs = [measure(reimpl, pydrake, (low, high), args) for _ in range(args.repeat)]
-        row = sorted(runs, key=lambda r: r.overhead_ratio)[len(runs) // 2]
+        row = sorted(runs, key=lambda r: r.steps_per_s)[len(runs) // 2]
+        rows.append(row)
         print(
-            f"{f'{low}-{high}':>10}  {row.examples_per_s:>10.1f}  {row.steps_per_s:>8.0f}  "
-            f"{row.in_backends:>11.0%}  {row.overhead_us_per_step:>16.0f}  "
+            f"{row.band:>10}  {row.examples_per_s:>10.1f}  {row.steps_per_s:>8.0f}  "
+            f"{row.in_backends:>11.0%}  {row.backend_us_per_step:>16.0f}  "
+            f"{row.reference_us_per_step:>15.0f}  "
+            f"{row.backend_us_per_step / row.reference_us_per_step:>5.2f}  "
+            f"{row.overhead_us_per_step:>16.0f}  "
             f"{row.overhead_ratio:>14.2f}  {row.final_geometries:>6.1f}  {row.divergences:>11}"
         )
         sys.stdout.flush()
@@ -170,7 +266,37 @@ def main(argv: list[str] | None = None) -> int:
         f"Hypothesis alone (a no-op machine): {floor:.0f} steps/s, "
         f"{1000 / floor:.2f} ms per step before any backend call"
     )
+    if args.json is not None:
+        args.json.write_text(
+            json.dumps({"hypothesis_steps_per_s": floor, "rows": [asdict(r) for r in rows]}) + "\n"
+        )
+    if args.reimpl_from:
+        passed = _without_option(_without_option(raw, "--reimpl-from"), "--json")
+        print(f"\nThe same campaigns with the reimpl of {args.reimpl_from} (HEAD's harness):")
+        sys.stdout.flush()
+        theirs = other_reimpl(args.reimpl_from, passed)
+        theirs_label = f"steps/s {args.reimpl_from}"
+        print(f"\n{'geometries':>10}  {'steps/s HEAD':>12}  {theirs_label:>16}  ratio")
+        for ours, other in zip(rows, theirs, strict=True):
+            print(
+                f"{ours.band:>10}  {ours.steps_per_s:>12.0f}  {other['steps_per_s']:>16.0f}  "
+                f"{ours.steps_per_s / other['steps_per_s']:.2f}"
+            )
     return 0
+
+
+def _without_option(argv: list[str], option: str) -> list[str]:
+    """``argv`` without ``option`` and its value (either ``--opt V`` or ``--opt=V``)."""
+    kept: list[str] = []
+    skip = False
+    for item in argv:
+        if skip:
+            skip = False
+        elif item == option:
+            skip = True
+        elif not item.startswith(option + "="):
+            kept.append(item)
+    return kept
 
 
 if __name__ == "__main__":
