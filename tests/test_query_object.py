@@ -25,6 +25,7 @@ import pytest
 from conformance.backends.pydrake_api import pydrake_api
 from conformance.backends.reimpl_api import reimpl_api
 from conformance.backends.scene_graph import Api
+from reimpl.common._std_unordered_map import IdentifierUnorderedMap
 from tests.dropin import as_reimpl, run_script
 
 SHAPES = ("Sphere", "Box", "Cylinder", "Capsule", "Ellipsoid", "HalfSpace")
@@ -517,30 +518,76 @@ def test_a_pose_vector_must_hold_each_frame_of_its_source(api: Api) -> None:
     )
 
 
-def test_of_two_unposed_sources_one_is_named_in_the_order_of_their_ids_hashes(api: Api) -> None:
-    """Measured: Drake walks its sources in an unordered_map's order.
+def _walk_of_unposed_sources(api: Api, count: int) -> tuple[list[int], list[int]]:
+    """Which sources a query names, one after another, as each named one gets its pose.
 
-    Which source is named depends on the two ids' values (their hash buckets),
-    not on their age: with ids 1455 and 1471 pydrake 1.51.1 named the older.
-    N.B. reimpl always names the newest; walking sources in Drake's
-    unordered_map order (as reimpl.common._std_unordered_map does for
-    property names) is not built, so this test accepts either message.
+    Returns the named sources' id values, in naming order, and GetAllSourceIds().
     """
-    built = two_spheres(api)
-    g = api.geometry
-    second = built.sg.RegisterSource(name="second")
-    frame = built.sg.RegisterFrame(source_id=second, frame=g.GeometryFrame(frame_name="h"))
-    context = built.sg.CreateDefaultContext()
-    query = built.sg.get_query_output_port().Eval(context)
-    with pytest.raises(RuntimeError) as error:
-        query.HasCollisions()
-    unposed = {"second": second, "source": built.source}
-    assert str(error.value) in {
-        f"Source '{name}' (id: {source.get_value()}) has registered dynamic frames but is not "
-        "connected to the appropriate input port."
-        for name, source in unposed.items()
-    }
-    assert frame.is_valid()
+    g, m = api.geometry, api.math
+    sg = g.SceneGraph()
+    frames = {}
+    for i in range(count):
+        source = sg.RegisterSource(name=f"s{i}")
+        frames[f"s{i}"] = (
+            source,
+            sg.RegisterFrame(source_id=source, frame=g.GeometryFrame(frame_name="f")),
+        )
+    context = sg.CreateDefaultContext()
+    named: list[int] = []
+    for _ in range(count):
+        with pytest.raises(RuntimeError) as error:
+            sg.get_query_output_port().Eval(context).HasCollisions()
+        name = str(error.value).split("'")[1]
+        source, frame = frames[name]
+        assert str(error.value) == (
+            f"Source '{name}' (id: {source.get_value()}) has "
+            "registered dynamic frames but is not connected to the appropriate input port."
+        )
+        named.append(source.get_value())
+        poses = g.FramePoseVector()
+        poses.set_value(id=frame, value=m.RigidTransform())
+        sg.get_source_pose_port(source).FixValue(context, poses)
+    assert not sg.get_query_output_port().Eval(context).HasCollisions()
+    every = [s.get_value() for s in sg.model_inspector().GetAllSourceIds()]
+    return named, every
+
+
+@dataclass(frozen=True)
+class _Id:
+    value: int
+
+    def get_value(self) -> int:
+        return self.value
+
+
+@pytest.mark.parametrize("count", [2, 3, 10, 11, 12, 29])
+def test_unposed_sources_are_named_in_drakes_unordered_map_order_of_their_ids(
+    api: Api, count: int
+) -> None:
+    """Measured: not registration order, but libstdc++'s unordered_map order for FNV-1a.
+
+    Every source, SceneGraph's own first, is a key (11 and 12 sources cross
+    a rehash); of those without poses the first in that order is named.
+    GetAllSourceIds lists them sorted by value.
+    """
+    named, every = _walk_of_unposed_sources(api, count)
+    assert every == sorted(every)
+    assert len(every) == count + 1
+    walk: IdentifierUnorderedMap[_Id, None] = IdentifierUnorderedMap()
+    for value in every:
+        walk[_Id(value)] = None
+    assert named == [key.value for key in walk if key.value != every[0]]
+
+
+def test_the_walk_of_29_sources_is_pydrake_1_51_1s() -> None:
+    """Measured on pydrake 1.51.1: SceneGraph's source 27, then 29 sources 39, 41, ..., 95."""
+    walk: IdentifierUnorderedMap[_Id, None] = IdentifierUnorderedMap()
+    for value in [27, *range(39, 97, 2)]:
+        walk[_Id(value)] = None
+    assert [key.value for key in walk if key.value != 27] == [
+        95, 71, 93, 55, 75, 53, 73, 51, 87, 85, 47, 45, 59, 65, 61,
+        81, 43, 41, 57, 77, 39, 67, 63, 83, 49, 69, 79, 89, 91,
+    ]  # fmt: skip
 
 
 def test_a_query_object_reads_poses_fixed_after_its_evaluation(api: Api) -> None:

@@ -1,11 +1,23 @@
-"""The iteration order of ``std::unordered_map<std::string, T>`` (libstdc++, 64-bit).
+"""The iteration order of libstdc++'s ``std::unordered_map`` (64-bit).
 
-Drake stores geometry properties in such maps, so pydrake prints groups and
-lists a group's properties in this order. It is deterministic: it depends on
-the keys' hashes (``std::hash<std::string>``, a MurmurHash2 variant seeded
-with 0xc70f6907), the bucket count (grown by the prime rehash policy, maximum
-load factor 1), and the insertion history. Measured against pydrake 1.51.1
-(tests/upstream/test_common_upstream.py).
+Drake keeps geometry properties in ``unordered_map<std::string, T>``, so
+pydrake prints groups and lists a group's properties in this order, and keeps
+its sources in ``unordered_map<SourceId, T>``, so of several sources whose
+poses are missing it names the one this order walks first. The order is
+deterministic: it depends on the keys' hashes, the bucket count (grown by the
+prime rehash policy, maximum load factor 1), and the insertion history.
+
+========================  ====================================================
+key                        hash, as measured against pydrake 1.51.1 and 1.58
+========================  ====================================================
+``str``                    ``std::hash<std::string>``: a MurmurHash2 variant
+                           seeded with 0xc70f6907, over the UTF-8 bytes
+                           (tests/upstream/test_common_upstream.py)
+an Identifier              FNV-1a (64-bit) over the 8 little-endian bytes of
+(``SourceId``)             its value (250 of 250 random source sets, in
+                           tests/test_query_object.py, with SceneGraph's own
+                           source as the first key)
+========================  ====================================================
 
 The order rules, as observed: a key whose bucket already holds keys goes in
 front of them; a key in an empty bucket goes to the front of the whole list.
@@ -17,10 +29,17 @@ from __future__ import annotations
 
 import bisect
 from collections.abc import Iterator, MutableMapping
-from typing import Generic, TypeVar
+from typing import Generic, Protocol, Self, TypeVar
 
-__all__ = ["StdUnorderedMap", "std_string_hash"]
+__all__ = ["IdentifierUnorderedMap", "StdUnorderedMap", "fnv1a_int64_hash", "std_string_hash"]
 
+
+class _Identifier(Protocol):
+    def get_value(self) -> int: ...
+
+
+K = TypeVar("K")
+I = TypeVar("I", bound=_Identifier)  # noqa: E741
 V = TypeVar("V")
 
 _MASK = (1 << 64) - 1
@@ -49,6 +68,18 @@ def std_string_hash(key: str) -> int:
     return _shift_mix(h)
 
 
+_FNV_OFFSET = 0xCBF29CE484222325
+_FNV_PRIME = 0x100000001B3
+
+
+def fnv1a_int64_hash(value: int) -> int:
+    """FNV-1a (64-bit) of ``value`` as 8 little-endian bytes: how Drake hashes an Identifier."""
+    h = _FNV_OFFSET
+    for byte in (value & _MASK).to_bytes(8, "little"):
+        h = ((h ^ byte) * _FNV_PRIME) & _MASK
+    return h
+
+
 # The bucket counts the policy picks from: small requests through a fast table,
 # larger ones from libstdc++'s list of primes.
 _FAST_BUCKETS = (2, 2, 2, 3, 5, 5, 7, 7, 11, 11, 11, 11, 13, 13)
@@ -68,27 +99,33 @@ def _next_bucket_count(n: int) -> int:
     return _PRIMES[min(bisect.bisect_left(_PRIMES, n), len(_PRIMES) - 1)]
 
 
-class StdUnorderedMap(MutableMapping[str, V], Generic[V]):
-    """A str-keyed mapping that iterates in libstdc++'s unordered_map order."""
+class _UnorderedMap(MutableMapping[K, V], Generic[K, V]):
+    """A mapping that iterates in libstdc++'s unordered_map order for ``_hash``."""
 
     def __init__(self) -> None:
-        self._values: dict[str, V] = {}
-        self._order: list[str] = []
+        self._values: dict[K, V] = {}
+        self._hashes: dict[K, int] = {}  # N.B. libstdc++ may not cache them; the order is the same
+        self._order: list[K] = []
         self._buckets = 1
         self._next_resize = 0
 
-    def copy(self) -> StdUnorderedMap[V]:
-        other: StdUnorderedMap[V] = StdUnorderedMap()
+    @staticmethod
+    def _hash(key: K) -> int:
+        raise NotImplementedError
+
+    def copy(self) -> Self:
+        other = type(self)()
         other._values = dict(self._values)
+        other._hashes = dict(self._hashes)
         other._order = list(self._order)
         other._buckets = self._buckets
         other._next_resize = self._next_resize
         return other
 
-    def _link(self, order: list[str], key: str, buckets: int) -> None:
-        bucket = std_string_hash(key) % buckets
+    def _link(self, order: list[K], key: K, buckets: int) -> None:
+        bucket = self._hashes[key] % buckets
         for i, other in enumerate(order):
-            if std_string_hash(other) % buckets == bucket:
+            if self._hashes[other] % buckets == bucket:
                 order.insert(i, key)
                 return
         order.insert(0, key)
@@ -102,7 +139,7 @@ class StdUnorderedMap(MutableMapping[str, V], Generic[V]):
         if wanted >= self._buckets:
             buckets = _next_bucket_count(max(wanted + 1, self._buckets * 2))
             self._next_resize = buckets
-            order: list[str] = []
+            order: list[K] = []
             for key in self._order:
                 self._link(order, key, buckets)
             self._order = order
@@ -110,24 +147,46 @@ class StdUnorderedMap(MutableMapping[str, V], Generic[V]):
         else:
             self._next_resize = self._buckets
 
-    def __setitem__(self, key: str, value: V) -> None:
+    def __setitem__(self, key: K, value: V) -> None:
         if key not in self._values:
             self._grow_for(len(self._values) + 1)
+            self._hashes[key] = self._hash(key)
             self._link(self._order, key, self._buckets)
         self._values[key] = value
 
-    def __getitem__(self, key: str) -> V:
+    def __getitem__(self, key: K) -> V:
         return self._values[key]
 
-    def __delitem__(self, key: str) -> None:
+    def __contains__(self, key: object) -> bool:
+        return key in self._values
+
+    def __delitem__(self, key: K) -> None:
         del self._values[key]
+        del self._hashes[key]
         self._order.remove(key)
 
-    def __iter__(self) -> Iterator[str]:
+    def __iter__(self) -> Iterator[K]:
         return iter(list(self._order))
 
     def __len__(self) -> int:
         return len(self._values)
 
     def __repr__(self) -> str:
-        return f"StdUnorderedMap({dict((k, self._values[k]) for k in self._order)!r})"
+        items = ", ".join(f"{k!r}: {self._values[k]!r}" for k in self._order)
+        return f"{type(self).__name__}({{{items}}})"
+
+
+class StdUnorderedMap(_UnorderedMap[str, V]):
+    """A str-keyed mapping in the order of ``std::unordered_map<std::string, T>``."""
+
+    @staticmethod
+    def _hash(key: str) -> int:
+        return std_string_hash(key)
+
+
+class IdentifierUnorderedMap(_UnorderedMap[I, V]):
+    """An Identifier-keyed mapping in the order of ``std::unordered_map<SourceId, T>``."""
+
+    @staticmethod
+    def _hash(key: I) -> int:
+        return fnv1a_int64_hash(key.get_value())

@@ -20,6 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import NoReturn
 
+from reimpl.common._std_unordered_map import IdentifierUnorderedMap
 from reimpl.geometry.collision_filter import CollisionFilter
 from reimpl.geometry.collision_filter_declaration import Statement, StatementOp
 from reimpl.geometry.errors import (
@@ -94,9 +95,10 @@ class GeometryState:
     def __init__(self) -> None:
         internal = SourceId.get_new_id()
         self._internal_source = internal
-        self._sources: dict[SourceId, _Source] = {
-            internal: _Source(internal, _INTERNAL_SOURCE_NAME)
-        }
+        # N.B. In Drake's unordered_map order, which decides which of several
+        # sources without poses a query names (source_ids).
+        self._sources: IdentifierUnorderedMap[SourceId, _Source] = IdentifierUnorderedMap()
+        self._sources[internal] = _Source(internal, _INTERNAL_SOURCE_NAME)
         self._frames: dict[FrameId, _Frame] = {
             WORLD_FRAME_ID: _Frame(WORLD_FRAME_ID, _WORLD_FRAME_NAME, internal, WORLD_FRAME_ID, 0)
         }
@@ -112,10 +114,9 @@ class GeometryState:
         """A deep copy, as a context's copy of the model is (filters and history too)."""
         other = object.__new__(GeometryState)
         other._internal_source = self._internal_source
-        other._sources = {
-            s: _Source(r.id, r.name, list(r.frames), list(r.anchored))
-            for s, r in self._sources.items()
-        }
+        other._sources = self._sources.copy()  # the same order
+        for s, r in self._sources.items():
+            other._sources[s] = _Source(r.id, r.name, list(r.frames), list(r.anchored))
         other._frames = {
             f: _Frame(r.id, r.name, r.source_id, r.parent_id, r.frame_group, list(r.geometries))
             for f, r in self._frames.items()
@@ -533,6 +534,11 @@ class GeometryState:
         return role in self._geometry(geometry_id).properties
 
     def source_ids(self) -> list[SourceId]:
+        """Every source, SceneGraph's own first among them, in the order Drake walks them.
+
+        N.B. That is libstdc++'s unordered_map order for Drake's hash of the ids
+        (reimpl.common._std_unordered_map), not registration order.
+        """
         return list(self._sources)
 
     def internal_source(self) -> SourceId:

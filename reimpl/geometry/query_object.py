@@ -267,8 +267,8 @@ class PosedState:
             for f in state.frame_ids()
             if f != WORLD_FRAME_ID
         ]
-        # N.B. Drake walks the sources in its unordered_map's order: newest first for
-        # a few sources (measured: with two unposed sources it names the second).
+        # N.B. In the order Drake walks its sources, which names the first source
+        # without poses (GeometryState.source_ids).
         sources = [
             PoseInput(
                 s,
@@ -276,7 +276,7 @@ class PosedState:
                 tuple(state.frames_of_source(s)),
                 tuple(f.get_value() for f in state.frames_of_source(s)),
             )
-            for s in reversed(state.source_ids())
+            for s in state.source_ids()
             if state.frames_of_source(s)
         ]
         geometries = [

@@ -95,7 +95,8 @@ class SceneGraphInspector:
         return WORLD_FRAME_ID
 
     def GetAllSourceIds(self) -> list[SourceId]:
-        return self._state.source_ids()
+        # N.B. Measured: sorted by value, where Drake walks them in another order.
+        return sorted(self._state.source_ids(), key=lambda s: s.get_value())
 
     def GetAllFrameIds(self) -> list[FrameId]:
         return self._state.frame_ids()
