@@ -590,6 +590,186 @@ def test_the_walk_of_29_sources_is_pydrake_1_51_1s() -> None:
     ]  # fmt: skip
 
 
+class _PoseScene:
+    """Sphere A (r = 1) anchored at the origin, and frames of one source with spheres (r = 1)."""
+
+    def __init__(self, api: Api) -> None:
+        self.api, self.g, self.m = api, api.geometry, api.math
+        self.sg = self.g.SceneGraph()
+        self.source = self.sg.RegisterSource(name="s")
+        self.A = self.sphere(self.sg.world_frame_id(), "A")
+
+    def sphere(self, frame: Any, name: str, y: float = 0.0, source: Any = None) -> Any:
+        source = source or self.source
+        geometry = self.sg.RegisterGeometry(
+            source_id=source,
+            frame_id=frame,
+            geometry=self.g.GeometryInstance(
+                X_PG=self.m.RigidTransform(p=[0.0, y, 0.0]),
+                shape=self.g.Sphere(radius=1.0),
+                name=name,
+            ),
+        )
+        self.sg.AssignRole(
+            source_id=source, geometry_id=geometry, properties=self.g.ProximityProperties()
+        )
+        return geometry
+
+    def frame(self, name: str, parent: Any = None, source: Any = None) -> Any:
+        frame = self.g.GeometryFrame(frame_name=name)
+        source = source or self.source
+        if parent is None:
+            return self.sg.RegisterFrame(source_id=source, frame=frame)
+        return self.sg.RegisterFrame(source_id=source, parent_id=parent, frame=frame)
+
+    def fix(self, context: Any, poses: dict[Any, float], source: Any = None) -> None:
+        """Fixes X_PF = (x, 0, 0) for each frame given."""
+        vector = self.g.FramePoseVector()
+        for frame, x in poses.items():
+            vector.set_value(id=frame, value=self.m.RigidTransform(p=[x, 0.0, 0.0]))
+        self.sg.get_source_pose_port(source or self.source).FixValue(context, vector)
+
+    def query(self, context: Any) -> Any:
+        return self.sg.get_query_output_port().Eval(context)
+
+    def x_world(self, context: Any, **ids: Any) -> list[float]:
+        return [float(v) for v in self.query(context).GetPoseInWorld(**ids).translation()]
+
+
+class TestPoseUpdate:
+    """Measured on pydrake 1.51.1 and 1.58: the table in reimpl.geometry.pose_update."""
+
+    def test_set_default_context_after_a_query_gives_the_models_poses_unchecked(
+        self, api: Api
+    ) -> None:
+        """f1 was posed at x = 10; after SetDefaultContext every frame is at I, X_WG = X_FG."""
+        scene = _PoseScene(api)
+        f1 = scene.frame("f1")
+        g1 = scene.sphere(f1, "g1")
+        context = scene.sg.CreateDefaultContext()
+        scene.fix(context, {f1: 10.0})
+        assert not scene.query(context).HasCollisions()
+        old = scene.sphere(f1, "old", y=3.0)
+        f2 = scene.frame("f2", parent=f1)  # its port is never given f2's pose
+        new = scene.sphere(f2, "new", y=5.0)
+        scene.sg.SetDefaultContext(context=context)
+        assert scene.x_world(context, frame_id=f1) == [0.0, 0.0, 0.0]
+        assert scene.x_world(context, frame_id=f2) == [0.0, 0.0, 0.0]
+        X_PF2 = scene.query(context).GetPoseInParent(frame_id=f2)
+        assert [float(v) for v in X_PF2.translation()] == [0.0, 0.0, 0.0]
+        assert scene.x_world(context, geometry_id=g1) == [0.0, 0.0, 0.0]
+        assert scene.x_world(context, geometry_id=old) == [0.0, 3.0, 0.0]
+        assert scene.x_world(context, geometry_id=new) == [0.0, 5.0, 0.0]
+        pairs = {
+            frozenset((p.id_A.get_value(), p.id_B.get_value()))
+            for p in scene.query(context).ComputePointPairPenetration()
+        }
+        ids = {
+            n: i.get_value() for n, i in {"A": scene.A, "g1": g1, "old": old, "new": new}.items()
+        }
+        # A and g1 at the origin overlap; old (y = 3) and new (y = 5) just touch.
+        assert pairs == {frozenset((ids["A"], ids["g1"])), frozenset((ids["old"], ids["new"]))}
+
+    def test_fix_value_makes_the_update_check_every_source_again(self, api: Api) -> None:
+        scene = _PoseScene(api)
+        f1 = scene.frame("f1")
+        scene.sphere(f1, "g1")
+        other = scene.sg.RegisterSource(name="other")
+        context = scene.sg.CreateDefaultContext()
+        scene.fix(context, {f1: 10.0})
+        assert not scene.query(context).HasCollisions()
+        h = scene.frame("h", source=other)
+        scene.sphere(h, "h", source=other)
+        scene.sg.SetDefaultContext(context=context)
+        assert scene.query(context).HasCollisions()  # h at the origin meets A
+        scene.fix(context, {f1: 20.0})  # the other source's port, never fixed
+        with pytest.raises(RuntimeError) as error:
+            scene.query(context).HasCollisions()
+        assert str(error.value) == (
+            f"Source 'other' (id: {other.get_value()}) has registered dynamic frames but is not "
+            "connected to the appropriate input port."
+        )
+
+    def test_the_same_value_fixed_again_makes_the_update_out_of_date(self, api: Api) -> None:
+        scene = _PoseScene(api)
+        f1 = scene.frame("f1")
+        scene.sphere(f1, "g1")
+        context = scene.sg.CreateDefaultContext()
+        scene.fix(context, {f1: 10.0})
+        assert scene.x_world(context, frame_id=f1) == [10.0, 0.0, 0.0]
+        scene.sg.SetDefaultContext(context=context)
+        assert scene.x_world(context, frame_id=f1) == [0.0, 0.0, 0.0]
+        scene.fix(context, {f1: 10.0})
+        assert scene.x_world(context, frame_id=f1) == [10.0, 0.0, 0.0]
+
+    def test_set_default_context_before_any_query_leaves_the_update_out_of_date(
+        self, api: Api
+    ) -> None:
+        scene = _PoseScene(api)
+        context = scene.sg.CreateDefaultContext()
+        scene.query(context)  # evaluated, but no query has posed it
+        f1 = scene.frame("f1")
+        scene.sphere(f1, "g1")
+        scene.sg.SetDefaultContext(context=context)
+        with pytest.raises(RuntimeError, match="has registered dynamic frames but is not"):
+            scene.query(context).HasCollisions()
+        with pytest.raises(RuntimeError, match="has registered dynamic frames but is not"):
+            context.Clone()
+
+    def test_a_wrong_size_vector_is_checked_once_the_update_is_stale(self, api: Api) -> None:
+        scene = _PoseScene(api)
+        context = scene.sg.CreateDefaultContext()
+        assert scene.query(context).HasCollisions() is False
+        f1 = scene.frame("f1")
+        scene.sphere(f1, "g1")
+        scene.sg.SetDefaultContext(context=context)
+        assert scene.query(context).HasCollisions() is True
+        scene.fix(context, {})
+        with pytest.raises(RuntimeError) as error:
+            scene.query(context).HasCollisions()
+        assert str(error.value) == (
+            "Disagreement in expected number of frames (1) and the given number of frames (0)."
+        )
+
+    def test_geometry_registered_in_a_posed_context_is_posed_on_its_frame(self, api: Api) -> None:
+        scene = _PoseScene(api)
+        f1 = scene.frame("f1")
+        scene.sphere(f1, "g1")
+        context = scene.sg.CreateDefaultContext()
+        scene.fix(context, {f1: 10.0})
+        assert not scene.query(context).HasCollisions()
+        added = scene.sg.RegisterGeometry(
+            context=context,
+            source_id=scene.source,
+            frame_id=f1,
+            geometry=scene.g.GeometryInstance(
+                X_PG=scene.m.RigidTransform(p=[0.0, 3.0, 0.0]),
+                shape=scene.g.Sphere(radius=1.0),
+                name="added",
+            ),
+        )
+        assert scene.x_world(context, geometry_id=added) == [10.0, 3.0, 0.0]
+
+    def test_clones_copy_the_update_and_an_unevaluated_clone_never_checks(self, api: Api) -> None:
+        """Clone of an evaluated context poses it first; a clone made before the query port
+        was evaluated holds no query value, so cloning it checks nothing."""
+        scene = _PoseScene(api)
+        context = scene.sg.CreateDefaultContext()
+        early = context.Clone()
+        scene.query(context)
+        clone = context.Clone()  # poses context (no frames yet): both up to date
+        f1 = scene.frame("f1")
+        scene.sphere(f1, "g1")
+        for each in (context, clone, early):
+            scene.sg.SetDefaultContext(context=each)
+        assert scene.query(context).HasCollisions()
+        assert context.Clone().Clone() is not None
+        assert scene.query(clone).HasCollisions()
+        assert early.Clone() is not None
+        with pytest.raises(RuntimeError, match="has registered dynamic frames but is not"):
+            scene.query(early).HasCollisions()
+
+
 def test_a_query_object_reads_poses_fixed_after_its_evaluation(api: Api) -> None:
     built = two_spheres(api)
     assert built.query.HasCollisions()

@@ -25,13 +25,6 @@ PERSISTENT_WITH_HISTORY = (
     "are active, transient filter declarations"
 )
 
-REIMPL_CLONE_CHECKS_BAKED_CLONES = (
-    "reimpl bug: Clone() checks the pose ports of every evaluated context; pydrake skips the "
-    "check for a context that was itself cloned from an evaluated context (the clone holds a "
-    "copied, baked QueryObject), so reimpl raises 'has registered dynamic frames but is not "
-    "connected to the appropriate input port' where pydrake clones"
-)
-
 
 def v(identifier: Any) -> int:
     """An id's integer value, as Drake prints it in messages."""
@@ -46,11 +39,6 @@ def instance(scene: Scene, name: str) -> Any:
     return scene.g.GeometryInstance(
         X_PG=scene.api.math.RigidTransform(), shape=scene.g.Sphere(radius=0.1), name=name
     )
-
-
-def mark_reimpl_xfail(request: pytest.FixtureRequest, scene: Scene, reason: str) -> None:
-    if scene.api.name == "reimpl":
-        request.applymarker(pytest.mark.xfail(strict=True, reason=reason))
 
 
 def fix_poses(scene: Scene, context: Any) -> None:
@@ -1221,10 +1209,9 @@ class TestContextClone:
         assert scene.C() == all_pairs("a", "b", "c")
 
     def test_clone_of_a_clone_of_an_evaluated_context_does_not_check_poses(
-        self, scene: Scene, request: pytest.FixtureRequest
+        self, scene: Scene
     ) -> None:
-        """The clone holds a copied ("baked") QueryObject, so cloning it needs no pose update."""
-        mark_reimpl_xfail(request, scene, REIMPL_CLONE_CHECKS_BAKED_CLONES)
+        """Cloning ran the pose update, and the clone copies it up to date (pose_update's table)."""
         scene.geometry("A", "world")
         context = scene.sg.CreateDefaultContext()
         scene.sg.get_query_output_port().Eval(context)

@@ -250,6 +250,10 @@ def _role_text(state: GeometryState, geometry_id: GeometryId) -> str:
     return "no role"
 
 
+#: The engine's pose key for the model's default poses (PosedState.pose_model_defaults).
+_MODEL_DEFAULTS = object()
+
+
 class PosedState:
     """One context's GeometryState with its proximity engine, posed from its pose ports.
 
@@ -319,6 +323,13 @@ class PosedState:
         self.engine.pose(
             tuple(self._validated),
             lambda: [self._block(s, v) for s, v in zip(self.sources, blocks, strict=True)],
+        )
+
+    def pose_model_defaults(self) -> None:
+        """Poses as the model is posed: X_PF = X_WF = I and X_WG = X_FG; no port is read."""
+        self.engine.pose(
+            (_MODEL_DEFAULTS,),
+            lambda: [np.tile(np.eye(4), (len(s.frames), 1, 1)) for s in self.sources],
         )
 
     @staticmethod

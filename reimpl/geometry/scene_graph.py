@@ -32,6 +32,12 @@ from reimpl.geometry.geometry_roles import (
 )
 from reimpl.geometry.geometry_state import WORLD_FRAME_ID, GeometryState
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
+from reimpl.geometry.pose_update import (
+    PoseMode,
+    on_set_default_context,
+    pose_mode,
+    posed_from_ports,
+)
 from reimpl.geometry.query_object import PosedState, QueryObject
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
 from reimpl.systems.framework import Context, InputPort, LeafContext, LeafSystem, OutputPort
@@ -209,8 +215,12 @@ class SceneGraph(LeafSystem):
         return context
 
     def SetDefaultContext(self, context: Context) -> None:
-        """Resets the context's geometry state to a copy of the (cached) model."""
+        """Resets the context's geometry state to a copy of the (cached) model.
+
+        N.B. With the model's poses: see reimpl.geometry.pose_update.
+        """
         self._state_of(context)
+        on_set_default_context(context, tracked=self._pose_tracked(context))
         context._geometry_state = self._default_state()
 
     def get_query_output_port(self) -> OutputPort:
@@ -236,8 +246,12 @@ class SceneGraph(LeafSystem):
         context._clone_check = self._check_pose_inputs
         return QueryObject._make(lambda: context._geometry_state, lambda: self._posed(context))
 
+    def _pose_tracked(self, context: Context) -> bool:
+        """Whether reimpl sees every change to the pose ports' values (none is connected)."""
+        return all(port._source(context) is None for port in self._pose_ports.values())
+
     def _posed(self, context: Context) -> PosedState:
-        """The context's state posed from its pose ports now (Drake's FullPoseUpdate).
+        """The context's state, posed as its pose update says (reimpl.geometry.pose_update).
 
         The engine is rebuilt when the context's state changed, re-posed when a
         pose port's vector changed, and otherwise reused as it is.
@@ -247,16 +261,26 @@ class SceneGraph(LeafSystem):
         if posed is None or posed.state is not state or posed.revision != state.revision:
             posed = PosedState(state)
             self._posed_states[context] = posed
+        tracked = self._pose_tracked(context)
+        if pose_mode(context, tracked=tracked) is PoseMode.MODEL_DEFAULTS:
+            posed.pose_model_defaults()
+            return posed
         posed.pose([self._pose_ports[s.source_id]._eval(context) for s in posed.sources])
+        if tracked:
+            posed_from_ports(context)
         return posed
 
     def _check_pose_inputs(self, context: Context) -> None:
         """Why Clone() fails after the query port was evaluated without poses.
 
         N.B. Measured on pydrake: once the query port has been evaluated,
-        cloning the context needs every source with frames to have its pose
-        port fixed with one pose per frame.
+        cloning the context runs the pose update if it is out of date, which
+        needs every source with frames to have its pose port fixed with one
+        pose per frame.
         """
+        tracked = self._pose_tracked(context)
+        if pose_mode(context, tracked=tracked) is not PoseMode.OUT_OF_DATE:
+            return
         state = context._geometry_state
         for source_id in state.source_ids():
             frames = state.frames_of_source(source_id)
@@ -279,6 +303,8 @@ class SceneGraph(LeafSystem):
         if state.ghost_frames:
             # A duplicate-name RegisterFrame left a frame index without a frame.
             raise IndexError("_Map_base::at")
+        if tracked:
+            posed_from_ports(context)
 
 
 # pydrake's overload sets, in pydrake's order, built once: binding is the only per-call work.

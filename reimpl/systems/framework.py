@@ -140,6 +140,10 @@ class Context:
     _fixed_inputs: dict[int, Any]
     _clone_check: Callable[[Context], None] | None
     _num_input_ports: int
+    #: Bumped by every FixValue on one of the system's input ports.
+    _input_revision: int
+    #: A system's cached values in this context (SceneGraph's pose update), copied by Clone.
+    _cache: dict[str, Any]
     #: A system's own values in this context (a plant's positions), copied by Clone.
     _values: dict[str, Any]
 
@@ -154,6 +158,8 @@ class Context:
         context._fixed_inputs = {}
         context._clone_check = None
         context._values = {}
+        context._input_revision = 0
+        context._cache = {}
         # N.B. Fixed at creation: ports of sources registered later are missing.
         context._num_input_ports = num_input_ports
         return context
@@ -176,6 +182,10 @@ class Context:
         clone = type(self)._for(self._system, self._num_input_ports)
         clone._pathname = self._pathname
         clone._fixed_inputs = dict(self._fixed_inputs)
+        # N.B. The clone holds a copy of the query port's value, so it checks too.
+        clone._clone_check = self._clone_check
+        clone._input_revision = self._input_revision
+        clone._cache = dict(self._cache)
         clone._values = copy.deepcopy(self._values)
         if hasattr(self, "_geometry_state"):
             clone._geometry_state = self._geometry_state.clone()
@@ -248,6 +258,7 @@ class InputPort:
         # does not change what the context holds.
         held = copy.copy(value)
         context._fixed_inputs[self._index] = held
+        context._input_revision += 1
         return FixedInputPortValue(held)
 
     def _source(self, context: Context) -> tuple[OutputPort, Context] | None:
