@@ -25,7 +25,7 @@ import pytest
 from conformance.backends.pydrake_api import pydrake_api
 from conformance.backends.reimpl_api import reimpl_api
 from conformance.backends.scene_graph import Api
-from reimpl.common._std_unordered_map import IdentifierUnorderedMap
+from reimpl.common._std_unordered_map import IdentifierUnorderedMap, identifier_set_order
 from tests.dropin import as_reimpl, run_script
 
 SHAPES = ("Sphere", "Box", "Cylinder", "Capsule", "Ellipsoid", "HalfSpace")
@@ -590,6 +590,41 @@ def test_the_walk_of_29_sources_is_pydrake_1_51_1s() -> None:
     ]  # fmt: skip
 
 
+@pytest.mark.parametrize("count", [2, 5, 12, 29])
+def test_of_several_missing_frames_the_first_in_drakes_unordered_set_order_is_named(
+    api: Api, count: int
+) -> None:
+    """Measured: a vector of the right size that lacks frames names the first missing one
+    in libstdc++'s unordered_set order of the source's frame ids (FNV-1a), not the last."""
+    g, m = api.geometry, api.math
+    sg = g.SceneGraph()
+    source = sg.RegisterSource(name="s")
+    frames = [
+        sg.RegisterFrame(source_id=source, frame=g.GeometryFrame(frame_name=f"f{i}"))
+        for i in range(count)
+    ]
+    context = sg.CreateDefaultContext()
+    given: list[Any] = []
+    named: list[int] = []
+    for _ in range(count):
+        vector = g.FramePoseVector()
+        for frame in given:
+            vector.set_value(id=frame, value=m.RigidTransform())
+        for _ in range(count - len(given)):
+            vector.set_value(id=g.FrameId.get_new_id(), value=m.RigidTransform())
+        sg.get_source_pose_port(source).FixValue(context, vector)
+        with pytest.raises(RuntimeError) as error:
+            sg.get_query_output_port().Eval(context).HasCollisions()
+        value = int(str(error.value).split("(")[1].split(")")[0])
+        assert str(error.value) == (
+            f"Registered frame id ({value}) belonging to source {source.get_value()} was not "
+            "found in the provided kinematics data."
+        )
+        named.append(value)
+        given.append(next(f for f in frames if f.get_value() == value))
+    assert named == [f.get_value() for f in identifier_set_order(frames)]
+
+
 class _PoseScene:
     """Sphere A (r = 1) anchored at the origin, and frames of one source with spheres (r = 1)."""
 
@@ -749,6 +784,45 @@ class TestPoseUpdate:
             ),
         )
         assert scene.x_world(context, geometry_id=added) == [10.0, 3.0, 0.0]
+
+    def test_clone_runs_the_querys_checks_a_missing_frame_included(self, api: Api) -> None:
+        scene = _PoseScene(api)
+        f1, f2 = scene.frame("f1"), scene.frame("f2")
+        scene.query(context := scene.sg.CreateDefaultContext())
+        vector = scene.g.FramePoseVector()
+        for frame in (f1, scene.g.FrameId.get_new_id()):
+            vector.set_value(id=frame, value=scene.m.RigidTransform())
+        scene.sg.get_source_pose_port(scene.source).FixValue(context, vector)
+        message = (
+            f"Registered frame id ({f2.get_value()}) belonging to source "
+            f"{scene.source.get_value()} was not found in the provided kinematics data."
+        )
+        for call in (context.Clone, lambda: scene.query(context).HasCollisions()):
+            with pytest.raises(RuntimeError) as error:
+                call()
+            assert str(error.value) == message
+
+    def test_a_failed_duplicate_name_frame_fails_every_pose_update_after_the_port_checks(
+        self, api: Api
+    ) -> None:
+        """Queries raise IndexError as Clone does, and the update never becomes up to date."""
+        scene = _PoseScene(api)
+        f1 = scene.frame("f1")
+        with pytest.raises(RuntimeError, match="with a duplicate name 'f1'"):
+            scene.frame("f1")
+        context = scene.sg.CreateDefaultContext()
+        with pytest.raises(RuntimeError, match="has registered dynamic frames but is not"):
+            scene.query(context).HasCollisions()
+        scene.fix(context, {f1: 5.0})
+        for call in (
+            lambda: scene.query(context).HasCollisions(),
+            context.Clone,
+            context.Clone,
+            lambda: scene.query(context).HasCollisions(),
+        ):
+            # 1.52 and later say 'unordered_map::at' (clone-error-wording-since-1.52).
+            with pytest.raises(IndexError, match=r"^(_Map_base|unordered_map)::at$"):
+                call()
 
     def test_clones_copy_the_update_and_an_unevaluated_clone_never_checks(self, api: Api) -> None:
         """Clone of an evaluated context poses it first; a clone made before the query port

@@ -14,9 +14,10 @@ key                        hash, as measured against pydrake 1.51.1 and 1.58
                            seeded with 0xc70f6907, over the UTF-8 bytes
                            (tests/upstream/test_common_upstream.py)
 an Identifier              FNV-1a (64-bit) over the 8 little-endian bytes of
-(``SourceId``)             its value (250 of 250 random source sets, in
-                           tests/test_query_object.py, with SceneGraph's own
-                           source as the first key)
+(``SourceId``,             its value (250 of 250 random source sets, with
+``FrameId``)               SceneGraph's own source as the first key; 100 of
+                           100 random frame sets of one source; in
+                           tests/test_query_object.py)
 ========================  ====================================================
 
 The order rules, as observed: a key whose bucket already holds keys goes in
@@ -28,10 +29,16 @@ erase removes the key and leaves the others in place. A copy keeps the order.
 from __future__ import annotations
 
 import bisect
-from collections.abc import Iterator, MutableMapping
+from collections.abc import Iterable, Iterator, MutableMapping
 from typing import Generic, Protocol, Self, TypeVar
 
-__all__ = ["IdentifierUnorderedMap", "StdUnorderedMap", "fnv1a_int64_hash", "std_string_hash"]
+__all__ = [
+    "IdentifierUnorderedMap",
+    "StdUnorderedMap",
+    "fnv1a_int64_hash",
+    "identifier_set_order",
+    "std_string_hash",
+]
 
 
 class _Identifier(Protocol):
@@ -190,3 +197,11 @@ class IdentifierUnorderedMap(_UnorderedMap[I, V]):
     @staticmethod
     def _hash(key: I) -> int:
         return fnv1a_int64_hash(key.get_value())
+
+
+def identifier_set_order(keys: Iterable[I]) -> list[I]:
+    """The order of an ``unordered_set`` of Identifiers after inserting ``keys`` in order."""
+    walk: IdentifierUnorderedMap[I, None] = IdentifierUnorderedMap()
+    for key in keys:
+        walk[key] = None
+    return list(walk)

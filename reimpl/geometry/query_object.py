@@ -26,6 +26,7 @@ import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
+from reimpl.common._std_unordered_map import identifier_set_order
 from reimpl.common.value import register_value_type
 from reimpl.geometry.geometry_roles import Role
 from reimpl.geometry.geometry_state import WORLD_FRAME_ID
@@ -303,6 +304,7 @@ class PosedState:
         Raises:
             RuntimeError: a source with frames has no value, or its vector's size
                 differs from its frame count, or lacks one of its frames.
+            IndexError: a failed duplicate-name RegisterFrame left a trace.
         """
         blocks = []
         for k, (source, value) in enumerate(zip(self.sources, values, strict=True)):
@@ -320,6 +322,10 @@ class PosedState:
                 self._validate(source, value)
                 self._validated[k] = value._stamp
             blocks.append(value)
+        if self.state.ghost_frames:
+            # Measured: after the ports are checked, a frame index left by a failed
+            # duplicate-name RegisterFrame fails the update (queries and Clone alike).
+            raise IndexError("_Map_base::at")
         self.engine.pose(
             tuple(self._validated),
             lambda: [self._block(s, v) for s, v in zip(self.sources, blocks, strict=True)],
@@ -341,7 +347,7 @@ class PosedState:
                 f"Disagreement in expected number of frames ({len(source.frames)}) and the "
                 f"given number of frames ({value.size()})."
             )
-        for frame in reversed(source.frames):
+        for frame in identifier_set_order(source.frames):  # Drake's walk of the source's frames
             if not value.has_id(frame):
                 raise RuntimeError(
                     f"Registered frame id ({frame.get_value()}) belonging to source "

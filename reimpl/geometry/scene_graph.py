@@ -274,37 +274,11 @@ class SceneGraph(LeafSystem):
         """Why Clone() fails after the query port was evaluated without poses.
 
         N.B. Measured on pydrake: once the query port has been evaluated,
-        cloning the context runs the pose update if it is out of date, which
-        needs every source with frames to have its pose port fixed with one
-        pose per frame.
+        cloning the context runs the pose update if it is out of date, with
+        the checks and messages of a query's.
         """
-        tracked = self._pose_tracked(context)
-        if pose_mode(context, tracked=tracked) is not PoseMode.OUT_OF_DATE:
-            return
-        state = context._geometry_state
-        for source_id in state.source_ids():
-            frames = state.frames_of_source(source_id)
-            if not frames:
-                continue
-            port = self._pose_ports[source_id]
-            if not port.HasValue(context):
-                raise RuntimeError(
-                    f"Source '{state.source_name(source_id)}' (id: {source_id.get_value()}) "
-                    "has registered dynamic frames but is not connected to the appropriate "
-                    "input port."
-                )
-            given = port._eval(context)  # fixed, or computed by a connected output
-            size = given.size() if hasattr(given, "size") else len(frames)
-            if size != len(frames):
-                raise RuntimeError(
-                    f"Disagreement in expected number of frames ({len(frames)}) and the given "
-                    f"number of frames ({size})."
-                )
-        if state.ghost_frames:
-            # A duplicate-name RegisterFrame left a frame index without a frame.
-            raise IndexError("_Map_base::at")
-        if tracked:
-            posed_from_ports(context)
+        if pose_mode(context, tracked=self._pose_tracked(context)) is PoseMode.OUT_OF_DATE:
+            self._posed(context)
 
 
 # pydrake's overload sets, in pydrake's order, built once: binding is the only per-call work.
