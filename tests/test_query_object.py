@@ -664,6 +664,14 @@ class _PoseScene:
             vector.set_value(id=frame, value=self.m.RigidTransform(p=[x, 0.0, 0.0]))
         self.sg.get_source_pose_port(source or self.source).FixValue(context, vector)
 
+    def posed_frame(self, x: float) -> tuple[Any, Any]:
+        """Frame f1 with sphere g1, and a context whose port poses f1 at (x, 0, 0)."""
+        f1 = self.frame("f1")
+        self.sphere(f1, "g1")
+        context = self.sg.CreateDefaultContext()
+        self.fix(context, {f1: x})
+        return f1, context
+
     def query(self, context: Any) -> Any:
         return self.sg.get_query_output_port().Eval(context)
 
@@ -727,10 +735,7 @@ class TestPoseUpdate:
 
     def test_the_same_value_fixed_again_makes_the_update_out_of_date(self, api: Api) -> None:
         scene = _PoseScene(api)
-        f1 = scene.frame("f1")
-        scene.sphere(f1, "g1")
-        context = scene.sg.CreateDefaultContext()
-        scene.fix(context, {f1: 10.0})
+        f1, context = scene.posed_frame(10.0)
         assert scene.x_world(context, frame_id=f1) == [10.0, 0.0, 0.0]
         scene.sg.SetDefaultContext(context=context)
         assert scene.x_world(context, frame_id=f1) == [0.0, 0.0, 0.0]
@@ -768,10 +773,7 @@ class TestPoseUpdate:
 
     def test_geometry_registered_in_a_posed_context_is_posed_on_its_frame(self, api: Api) -> None:
         scene = _PoseScene(api)
-        f1 = scene.frame("f1")
-        scene.sphere(f1, "g1")
-        context = scene.sg.CreateDefaultContext()
-        scene.fix(context, {f1: 10.0})
+        f1, context = scene.posed_frame(10.0)
         assert not scene.query(context).HasCollisions()
         added = scene.sg.RegisterGeometry(
             context=context,
