@@ -29,6 +29,7 @@ erase removes the key and leaves the others in place. A copy keeps the order.
 from __future__ import annotations
 
 import bisect
+import functools
 from collections.abc import Iterable, Iterator, MutableMapping
 from typing import Generic, Protocol, Self, TypeVar
 
@@ -58,6 +59,7 @@ def _shift_mix(v: int) -> int:
     return v ^ (v >> 47)
 
 
+@functools.lru_cache(maxsize=1 << 14)
 def std_string_hash(key: str) -> int:
     """``std::hash<std::string>`` of the UTF-8 bytes of ``key``."""
     data = key.encode()
@@ -79,6 +81,7 @@ _FNV_OFFSET = 0xCBF29CE484222325
 _FNV_PRIME = 0x100000001B3
 
 
+@functools.lru_cache(maxsize=1 << 14)
 def fnv1a_int64_hash(value: int) -> int:
     """FNV-1a (64-bit) of ``value`` as 8 little-endian bytes: how Drake hashes an Identifier."""
     h = _FNV_OFFSET
@@ -111,7 +114,6 @@ class _UnorderedMap(MutableMapping[K, V], Generic[K, V]):
 
     def __init__(self) -> None:
         self._values: dict[K, V] = {}
-        self._hashes: dict[K, int] = {}  # N.B. libstdc++ may not cache them; the order is the same
         self._order: list[K] = []
         self._buckets = 1
         self._next_resize = 0
@@ -121,18 +123,18 @@ class _UnorderedMap(MutableMapping[K, V], Generic[K, V]):
         raise NotImplementedError
 
     def copy(self) -> Self:
-        other = type(self)()
+        other = object.__new__(type(self))
         other._values = dict(self._values)
-        other._hashes = dict(self._hashes)
         other._order = list(self._order)
         other._buckets = self._buckets
         other._next_resize = self._next_resize
         return other
 
     def _link(self, order: list[K], key: K, buckets: int) -> None:
-        bucket = self._hashes[key] % buckets
+        hash_of = self._hash  # memoised: each key's hash is computed once
+        bucket = hash_of(key) % buckets
         for i, other in enumerate(order):
-            if self._hashes[other] % buckets == bucket:
+            if hash_of(other) % buckets == bucket:
                 order.insert(i, key)
                 return
         order.insert(0, key)
@@ -157,7 +159,6 @@ class _UnorderedMap(MutableMapping[K, V], Generic[K, V]):
     def __setitem__(self, key: K, value: V) -> None:
         if key not in self._values:
             self._grow_for(len(self._values) + 1)
-            self._hashes[key] = self._hash(key)
             self._link(self._order, key, self._buckets)
         self._values[key] = value
 
@@ -169,7 +170,6 @@ class _UnorderedMap(MutableMapping[K, V], Generic[K, V]):
 
     def __delitem__(self, key: K) -> None:
         del self._values[key]
-        del self._hashes[key]
         self._order.remove(key)
 
     def __iter__(self) -> Iterator[K]:
