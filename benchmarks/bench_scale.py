@@ -327,21 +327,23 @@ def plot(runs: list[Run], labels: list[str], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt  # noqa: PLC0415
 
+    # (title, value, whether a failed run's value means something: a peak at the cap does)
     panels = (
-        ("whole case (s)", total_s),
-        ("one transient cycle (ms)", lambda r: r.cycle_ms),
-        ("peak RSS (MB)", lambda r: r.peak_rss_mb),
+        ("whole case (s)", total_s, False),
+        ("one transient cycle (ms)", lambda r: r.cycle_ms, False),
+        ("peak RSS (MB)", lambda r: r.peak_rss_mb, True),
     )
     figure, axes = plt.subplots(1, 3, figsize=(15, 4.6))
-    for axis, (title, value) in zip(axes, panels, strict=True):
+    for axis, (title, value, failed_value) in zip(axes, panels, strict=True):
         for label, marker in zip(labels, "os^", strict=False):
             ok = sorted((r.n, value(r)) for r in runs if r.label == label and r.ok)
-            failed = sorted(r.n for r in runs if r.label == label and not r.ok)
-            name = label + (f" (fails at n = {failed[0]:,})" if failed else "")
+            failed = sorted((r.n, value(r)) for r in runs if r.label == label and not r.ok)
+            name = label + (f" (fails at n = {failed[0][0]:,})" if failed else "")
             if ok:
                 (line,) = axis.plot(*zip(*ok, strict=True), marker=marker, label=name)
-                for n in failed:  # an x at the top of the panel, in the line's colour
-                    axis.plot([n], [ok[-1][1]], marker="x", markersize=10, color=line.get_color())
+                for n, recorded in failed:  # an x at its recorded value, else at the line's last
+                    y = recorded if failed_value and recorded > 0 else ok[-1][1]
+                    axis.plot([n], [y], marker="x", markersize=10, color=line.get_color())
         axis.set_xscale("log")
         axis.set_yscale("log")
         axis.set_xlabel("n (proximity geometries)")
