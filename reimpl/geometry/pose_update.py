@@ -29,8 +29,9 @@ copies the update as it is (Drake copies cache values), after the original
 ran it.
 
 N.B. reimpl cannot see when the value of a *connected* pose port changes
-upstream, so while any pose port is connected the update is out of date at
-every query (Drake: until the upstream value changes).
+upstream, so a context with a connected pose port (fixed when the diagram is
+built) records no update and is out of date at every query (Drake: until the
+upstream value changes).
 """
 
 from __future__ import annotations
@@ -71,22 +72,22 @@ _ON_SET_DEFAULT_CONTEXT = {
 }
 
 
-def pose_mode(context: Context, *, tracked: bool) -> PoseMode:
-    """The context's mode; out of date after any FixValue, or if untracked (a connected port)."""
+def pose_mode(context: Context) -> PoseMode:
+    """The context's mode: out of date if no update was recorded, or after any FixValue."""
     update: PoseUpdate | None = context._cache.get(_KEY)
-    if update is None or not tracked or update.input_revision != context._input_revision:
+    if update is None or update.input_revision != context._input_revision:
         return PoseMode.OUT_OF_DATE
     return update.mode
 
 
 def posed_from_ports(context: Context) -> None:
-    """Records a successful pose update from the ports."""
+    """Records a successful pose update from the ports (only where no pose port is connected)."""
     context._cache[_KEY] = PoseUpdate(PoseMode.FROM_PORTS, context._input_revision)
 
 
-def on_set_default_context(context: Context, *, tracked: bool) -> None:
+def on_set_default_context(context: Context) -> None:
     """Applies the SetDefaultContext row of the table."""
-    mode = _ON_SET_DEFAULT_CONTEXT[pose_mode(context, tracked=tracked)]
+    mode = _ON_SET_DEFAULT_CONTEXT[pose_mode(context)]
     if mode is PoseMode.OUT_OF_DATE:
         context._cache.pop(_KEY, None)
     else:

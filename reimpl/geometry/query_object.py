@@ -274,15 +274,11 @@ class PosedState:
         ]
         # N.B. In the order Drake walks its sources, which names the first source
         # without poses (GeometryState.source_ids).
+        frames_of = {s: tuple(state.frames_of_source(s)) for s in state.source_ids()}
         sources = [
-            PoseInput(
-                s,
-                state.source_name(s),
-                tuple(state.frames_of_source(s)),
-                tuple(f.get_value() for f in state.frames_of_source(s)),
-            )
-            for s in state.source_ids()
-            if state.frames_of_source(s)
+            PoseInput(s, state.source_name(s), own, tuple(f.get_value() for f in own))
+            for s, own in frames_of.items()
+            if own
         ]
         geometries = [
             (

@@ -220,7 +220,7 @@ class SceneGraph(LeafSystem):
         N.B. With the model's poses: see reimpl.geometry.pose_update.
         """
         self._state_of(context)
-        on_set_default_context(context, tracked=self._pose_tracked(context))
+        on_set_default_context(context)
         context._geometry_state = self._default_state()
 
     def get_query_output_port(self) -> OutputPort:
@@ -261,12 +261,11 @@ class SceneGraph(LeafSystem):
         if posed is None or posed.state is not state or posed.revision != state.revision:
             posed = PosedState(state)
             self._posed_states[context] = posed
-        tracked = self._pose_tracked(context)
-        if pose_mode(context, tracked=tracked) is PoseMode.MODEL_DEFAULTS:
+        if pose_mode(context) is PoseMode.MODEL_DEFAULTS:
             posed.pose_model_defaults()
             return posed
         posed.pose([self._pose_ports[s.source_id]._eval(context) for s in posed.sources])
-        if tracked:
+        if self._pose_tracked(context):
             posed_from_ports(context)
         return posed
 
@@ -277,7 +276,7 @@ class SceneGraph(LeafSystem):
         cloning the context runs the pose update if it is out of date, with
         the checks and messages of a query's.
         """
-        if pose_mode(context, tracked=self._pose_tracked(context)) is PoseMode.OUT_OF_DATE:
+        if pose_mode(context) is PoseMode.OUT_OF_DATE:
             self._posed(context)
 
 
