@@ -20,10 +20,12 @@ import sys
 import time
 from pathlib import Path
 
+from conformance.backends.loader import load_backend
 from conformance.cli.main import EXIT_FAILURE, EXIT_OK, main
 from conformance.corpus.loader import load_file
+from conformance.fuzz.campaign import Campaign
 from conformance.fuzz.findings import FindingFile
-from conformance.fuzz.lockstep import Divergence, TraceStep
+from conformance.fuzz.lockstep import Divergence, TraceStep, interrupt_requested
 from conformance.protocol import Command, Observation, Result
 
 SLOW = "conformance.testing.mutants:allow_between_clears_within"
@@ -54,6 +56,15 @@ def start(out_dir: Path, backend: str) -> subprocess.Popen[str]:
         text=True,
         env={**os.environ, "PYTHONUNBUFFERED": "1"},
     )
+
+
+def stop(process: subprocess.Popen[str]) -> None:
+    """Kills the process if it still runs and closes its pipes (no leak into later tests)."""
+    process.kill()
+    for stream in (process.stdout, process.stderr):
+        if stream is not None:
+            stream.close()
+    process.wait(timeout=30)
 
 
 def first_sighting(process: subprocess.Popen[str]) -> re.Match[str]:
@@ -117,7 +128,7 @@ def test_sigterm_mid_shrink_exits_1_with_the_finding_named_on_disk(tmp_path: Pat
         process.send_signal(signal.SIGTERM)
         out, err = process.communicate(timeout=60)
     finally:
-        process.kill()
+        stop(process)
     assert process.returncode == EXIT_FAILURE, out + err
     (path,) = tmp_path.glob("*.json")
     assert f"interrupted: the smallest divergence so far is written: {path}" in err
@@ -203,3 +214,21 @@ def test_a_failed_write_keeps_the_previous_file(tmp_path: Path) -> None:
     assert finding.settle(divergence(5)) is None
     assert folder.files() == ["20.txt"]
     assert finding.path == tmp_path / "20.txt"
+
+
+def test_a_pending_interrupt_ends_the_run_when_the_next_example_begins() -> None:
+    """A signal's KeyboardInterrupt that Python swallowed (inside a gc callback, which the
+    SIGTERM test once hit) is raised again by the next example: the run ends, interrupted."""
+    interrupt_requested.set()
+    try:
+        result = Campaign(
+            backend=lambda: load_backend("reimpl"),
+            reference=lambda: load_backend("pydrake"),
+            seed=1,
+            max_examples=300,
+        ).run()
+    finally:
+        interrupt_requested.clear()
+    assert result.interrupted
+    assert result.stats.examples == 0
+    assert result.stats.steps == 0

@@ -55,6 +55,7 @@ from conformance.fuzz.lockstep import (
     HarnessError,
     LockstepMachine,
     PosedLockstepMachine,
+    interrupt_requested,
 )
 from conformance.fuzz.model_campaign import ModelCampaign
 from conformance.fuzz.operations import issued_ops
@@ -389,25 +390,31 @@ def _shrink_time(args: argparse.Namespace) -> float | None:
 
 
 @contextmanager
-def _sigterm_interrupts() -> Iterator[None]:
+def _interrupts() -> Iterator[None]:
     """In the block, SIGTERM raises KeyboardInterrupt, as Ctrl-C does; restored after.
 
     So ``kill PID`` (a CI job's timeout, a container stop) writes the best
-    finding so far, as Ctrl-C does. Only the main thread can handle signals:
-    elsewhere the block runs with SIGTERM as it was.
+    finding so far, as Ctrl-C does. Both also set ``interrupt_requested``, so a
+    KeyboardInterrupt that Python swallowed (raised inside a gc callback) is
+    raised again when the next example begins. Only the main thread can handle
+    signals: elsewhere the block runs with the handlers as they were.
     """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
 
     def interrupt(signum: int, frame: FrameType | None) -> None:
+        interrupt_requested.set()
         raise KeyboardInterrupt
 
-    previous = signal.signal(signal.SIGTERM, interrupt)
+    interrupt_requested.clear()
+    previous = {sig: signal.signal(sig, interrupt) for sig in (signal.SIGTERM, signal.SIGINT)}
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+        interrupt_requested.clear()
 
 
 def _posed(args: argparse.Namespace) -> bool:
@@ -475,7 +482,7 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     prepare_writing()
     watching = progress.watch()
     try:
-        with _sigterm_interrupts():
+        with _interrupts():
             result = campaign.run()
     except HarnessError as exc:
         findings.kept(err)

@@ -62,6 +62,7 @@ reproduce earlier findings.
 from __future__ import annotations
 
 import json
+import threading
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -102,8 +103,10 @@ __all__ = [
     "PosedLockstepMachine",
     "ShrinkTimeUp",
     "TraceStep",
+    "interrupt_requested",
     "lockstep_machine",
     "planned_operation",
+    "stop_point",
 ]
 
 T = TypeVar("T")
@@ -183,6 +186,21 @@ class ShrinkTimeUp(KeyboardInterrupt):
     Hypothesis has no public bound on shrinking time. ``Campaign`` catches it
     before a real interrupt.
     """
+
+
+#: Set by the signal handler that raises KeyboardInterrupt (``cli.fuzz``). Python only
+#: prints an exception raised inside a gc callback or a ``__del__``, and a signal can land
+#: there; the next example then raises it again (``stop_point``), so the run still ends.
+interrupt_requested = threading.Event()
+
+
+def stop_point(stats: FuzzStats) -> None:
+    """Where each example begins: a pending interrupt ends the run, and shrinking time
+    that is up ends the batch (``ShrinkTimeUp``)."""
+    if interrupt_requested.is_set():
+        raise KeyboardInterrupt
+    if stats.shrink_time_up():
+        raise ShrinkTimeUp
 
 
 class HarnessAbort(BaseException):
@@ -318,8 +336,7 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
     contexts = Bundle("contexts")
 
     def __init__(self) -> None:
-        if type(self).stats.shrink_time_up():
-            raise ShrinkTimeUp
+        stop_point(type(self).stats)
         super().__init__()
         self.backend, self.reference = self._backends()
         self.trace: list[TraceStep] = []

@@ -65,6 +65,7 @@ from conformance.fuzz.lockstep import (
     HarnessError,
     ShrinkTimeUp,
     TraceStep,
+    stop_point,
 )
 from conformance.fuzz.models import (
     FORMATS,
@@ -348,8 +349,7 @@ class ModelCampaign(Campaign):
         @fuzz_settings(max_examples=size or 100, database=self.database)
         @given(strategy)
         def example(commands: list[Command]) -> None:
-            if stats.shrink_time_up():
-                raise ShrinkTimeUp
+            stop_point(stats)
             start = time.perf_counter()
             try:
                 divergence = run_model_case(
