@@ -163,6 +163,9 @@ def test_a_mutant_ignoring_filters_in_penetration_is_found_and_written_as_a_case
         "1",
         "--max-examples",
         "300",
+        # Bounded, as the mutant tests are: unbounded, this one shrinks for 200 s.
+        "--shrink-time",
+        "20",
         "--out",
         str(tmp_path),
         "--quiet",
