@@ -14,7 +14,11 @@ median run's:
 - how many geometries an example has registered by its end, on average
   (operations add geometry to the initial scene);
 - each backend's own time per step (its ``execute``, ``observe`` and
-  ``reset``), and their ratio reimpl / pydrake, taken in the same run.
+  ``reset``), and their ratio reimpl / pydrake, taken in the same run;
+- the bound: the steps/s the same run would reach if the backend under test
+  took no time at all, ``steps / (wall − its own seconds)``. No work on that
+  backend can take the campaign past it; pydrake's calls and Hypothesis's
+  engine set it.
 
 ``--reimpl-from REV`` also runs the same campaigns with the reimpl of git
 revision REV (in a worktree of HEAD whose ``reimpl/`` is REV's, in a
@@ -139,6 +143,8 @@ class Row:
     divergences: int
     backend_us_per_step: float
     reference_us_per_step: float
+    #: Steps/s with the backend under test taking no time: steps / (wall - its seconds).
+    bound_steps_per_s: float
 
 
 def measure(
@@ -173,6 +179,7 @@ def measure(
         divergences=len(result.divergences),
         backend_us_per_step=1e6 * timed_backend.seconds / stats.steps,
         reference_us_per_step=1e6 * timed_reference.seconds / stats.steps,
+        bound_steps_per_s=stats.steps / (wall - timed_backend.seconds),
     )
 
 
@@ -244,6 +251,7 @@ def main(argv: list[str] | None = None) -> int:
         f"{'geometries':>10}  {'examples/s':>10}  {'steps/s':>8}  {'in backends':>11}  "
         f"{'us/step ' + reimpl.name:>16}  {'us/step pydrake':>15}  {'ratio':>5}  "
         f"{'overhead us/step':>16}  {'overhead ratio':>14}  {'at end':>6}  {'divergences':>11}"
+        f"  {'bound':>7}"
     )
     print(header)
     print("-" * len(header))
@@ -259,6 +267,7 @@ def main(argv: list[str] | None = None) -> int:
             f"{row.backend_us_per_step / row.reference_us_per_step:>5.2f}  "
             f"{row.overhead_us_per_step:>16.0f}  "
             f"{row.overhead_ratio:>14.2f}  {row.final_geometries:>6.1f}  {row.divergences:>11}"
+            f"  {row.bound_steps_per_s:>7.0f}"
         )
         sys.stdout.flush()
     floor = hypothesis_floor(args.examples, args.steps)
@@ -266,6 +275,7 @@ def main(argv: list[str] | None = None) -> int:
         f"Hypothesis alone (a no-op machine): {floor:.0f} steps/s, "
         f"{1000 / floor:.2f} ms per step before any backend call"
     )
+    print(f"bound: steps/s if {reimpl.name} took no time at all (pydrake and Hypothesis only)")
     if args.json is not None:
         args.json.write_text(
             json.dumps({"hypothesis_steps_per_s": floor, "rows": [asdict(r) for r in rows]}) + "\n"
