@@ -81,9 +81,11 @@ def test_table_1_passes_on_the_worker_against_reimpl(worker: WorkerBackend) -> N
 def test_a_killed_worker_is_a_crash_naming_the_signal_and_a_new_worker_takes_over(
     worker: WorkerBackend,
 ) -> None:
-    worker.reset()
+    worker.reset()  # travels with the next request: a worker that died before it is replaced
+    register_g = Command("register_frame", {"name": "g"})
+    assert call(worker, "execute", register_g, where="step 0", returns=object).error is None
     assert worker._process is not None
-    os.kill(worker._process.pid, signal.SIGKILL)
+    os.kill(worker._process.pid, signal.SIGKILL)  # mid-case
     with pytest.raises(
         BackendCrashError, match=r"at step 1 \(register_frame\): the worker killed by SIGKILL"
     ):
@@ -105,6 +107,23 @@ def test_a_killed_worker_is_a_crash_naming_the_signal_and_a_new_worker_takes_ove
         ).error
         is None
     )  # type: ignore[attr-defined]
+
+
+@needs_312
+def test_a_worker_killed_between_cases_is_replaced_at_the_next_reset_without_a_crash(
+    worker: WorkerBackend,
+) -> None:
+    worker.reset()
+    register = Command("register_frame", {"name": "f"})
+    assert call(worker, "execute", register, where="step 1", returns=object).error is None
+    killed = worker.pid
+    assert killed is not None
+    os.kill(killed, signal.SIGKILL)
+    assert worker._process is not None
+    assert worker._process.wait(timeout=30) == -signal.SIGKILL  # dead before the next case
+    worker.reset()  # the next case
+    assert call(worker, "execute", register, where="step 1", returns=object).error is None
+    assert worker.pid not in {None, killed}
 
 
 @needs_312

@@ -181,6 +181,7 @@ class WorkerBackend:
             request, fresh, self._reset_pending = {**request, "reset": True}, True, False
         process = self._process
         if process is None or (fresh and process.poll() is not None):
+            self._stop()  # a worker that died between cases: reap it and close its pipes
             process = self._start()
             if self._armed is not None and request["call"] != "arm_guards":
                 self._request({"call": "arm_guards", "ids": self._armed})
