@@ -23,9 +23,14 @@ from conformance.corpus.loader import load_file
 from conformance.fuzz import strategies as cs
 from conformance.fuzz.campaign import Campaign
 from conformance.fuzz.lockstep import Divergence, FuzzStats, PosedLockstepMachine
-from conformance.fuzz.operations import QUERY_OPS, near_touch, register_posed_scene
+from conformance.fuzz.operations import (
+    QUERY_OPS,
+    filter_in_clone,
+    near_touch,
+    register_posed_scene,
+)
 from conformance.fuzz.sequences import Recorder
-from conformance.protocol import Result
+from conformance.protocol import MODEL, Result
 
 PYDRAKE = load_backend("pydrake")
 REIMPL = load_backend("reimpl")
@@ -74,6 +79,30 @@ def test_near_touch_puts_the_pair_at_the_drawn_gap_through_nested_posed_frames(
     assert query.args.get("context") == ("c" if in_context else None)
     distance = PYDRAKE.execute(query).value["distance"]  # type: ignore[index]
     assert abs(distance - touch.gap) < 1e-12 if touch.gap >= 0 else touch.gap - 1e-12 <= distance
+
+
+def test_filter_in_clone_filters_the_clone_and_neither_its_origin_nor_the_model() -> None:
+    """ExcludeWithin(all three) applied in a clone of c: pydrake's clone has no candidates."""
+    recorder = Recorder(backend=PYDRAKE, queries=True)
+    register_posed_scene(recorder, _SCENE)
+    recorder.step("create_context", name="c")
+    recorder.keep("contexts", "c")
+    before = len(recorder.commands)
+    everything = cs.DeclarationTemplate(
+        geometries=(0, 1, 2), frames=(), statements=(("exclude_within", (0b111,)),)
+    )
+    filter_in_clone(recorder, bytes([0, 2, 0]), everything)  # origin c; has_collisions
+    issued = [(c.op, c.args.get("context")) for c in recorder.commands[before:]]
+    clone = recorder.commands[before].args["name"]
+    assert recorder.commands[before].args["from"] == "c"
+    assert issued == [("clone_context", None), ("apply", clone), ("has_collisions", clone)]
+    assert recorder.commands[before + 1].args["declaration"] == {
+        "statements": [{"op": "exclude_within", "set": {"geometries": ["g3", "g4", "g5"]}}]
+    }
+    locations = PYDRAKE.observe().locations
+    assert locations[clone].candidates == frozenset()
+    expected = frozenset({("g3", "g4"), ("g3", "g5"), ("g4", "g5")})
+    assert locations["c"].candidates == locations[MODEL].candidates == expected
 
 
 class PenetrationIgnoresFilters(SceneGraphBackend):

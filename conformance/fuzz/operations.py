@@ -26,7 +26,9 @@ the grammar's ``queries`` domain (set_poses and the QueryObject queries, in
 the model or a context), plus ``near_touch``: it moves one geometry's frame
 so that the geometry sits at a drawn gap of 1e-9 to 1e-3 m from another
 (``strategies.Touch``, ``strategies.touching_position``), then queries
-there, so the decision between colliding and not is made at the boundary.
+there, so the decision between colliding and not is made at the boundary;
+and ``filter_in_clone``: a clone of a context, a persistent declaration
+applied in it, and a query there (picks alone rarely reach a clone).
 ``PoseBook`` follows the commands to know where everything is: every
 frame's parent, every geometry's frame, shape and ``X_FG``, and the poses
 ``set_poses`` stored at each location. The query ops run only when both
@@ -624,6 +626,34 @@ def query_through_filter(m: Machine, picks: bytes, template: cs.DeclarationTempl
         m.step("remove_declaration", label=label, context=where)
 
 
+def filter_in_clone(m: Machine, picks: bytes, template: cs.DeclarationTemplate) -> None:
+    """A clone of a context, a persistent declaration applied in it, then a query there.
+
+    The clone carries its origin's poses and filters; what is applied in it
+    must shape its own queries and candidates, and neither its origin's nor
+    the model's (the invariant compares every location). The query is
+    ``x_wg`` of a picked geometry (a clone keeps its origin's poses) or one
+    of the touching queries over all pairs. Picks alone rarely land there:
+    contexts are few, clones fewer, and most steps of a posed example are
+    queries.
+    """
+    clone = m.fresh("c")
+    m.contexts_made += 1
+    cloned = m.step("clone_context", name=clone, **{"from": m.name("origin", picks[0])})
+    m.keep_if_made("contexts", clone, cloned)
+    if cloned.error is not None:
+        return
+    m.step("apply", declaration=m.declaration(template), context=clone)
+    query = _CLONE_QUERIES[picks[1] % len(_CLONE_QUERIES)]
+    if query == "x_wg":
+        m.step(query, geometry=m.name("geometry", picks[2]), context=clone)
+    else:
+        m.step(query, context=clone)
+
+
+_CLONE_QUERIES = ("x_wg", *(q for q in _TOUCH_QUERIES if "pair_closest" not in q))
+
+
 def signed_distance_pair(m: Machine, picks: bytes) -> None:
     """compute_signed_distance_pair_closest_points of two different geometries, in either order.
 
@@ -918,5 +948,13 @@ POSED_OPERATIONS: dict[str, Operation] = {
         (_DECLARATION,),
         enabled=_pairs_queryable,
         issues=frozenset({"apply_transient", "remove_declaration", *_TOUCH_QUERIES}),
+    ),
+    "filter_in_clone": Operation(
+        filter_in_clone,
+        (_DECLARATION,),
+        enabled=lambda m: (
+            _pairs_queryable(m) and m.contexts_made < MAX_CONTEXTS and bool(m.names["contexts"])
+        ),
+        issues=frozenset({"clone_context", "apply", *_CLONE_QUERIES}),
     ),
 }
