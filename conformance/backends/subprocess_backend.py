@@ -102,6 +102,8 @@ class WorkerBackend:
         return None if self._process is None else self._process.pid
 
     def _start(self) -> subprocess.Popen[bytes]:
+        """A new worker, in place of the last one (reaped, its pipes closed, if it died)."""
+        self._stop()
         # Kept open for the worker's life (read when it dies), closed by the next _start.
         if self._stderr is not None:
             self._stderr.close()
@@ -181,7 +183,6 @@ class WorkerBackend:
             request, fresh, self._reset_pending = {**request, "reset": True}, True, False
         process = self._process
         if process is None or (fresh and process.poll() is not None):
-            self._stop()  # a worker that died between cases: reap it and close its pipes
             process = self._start()
             if self._armed is not None and request["call"] != "arm_guards":
                 self._request({"call": "arm_guards", "ids": self._armed})

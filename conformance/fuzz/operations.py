@@ -370,11 +370,22 @@ def create_context(m: Machine, picks: bytes) -> None:
     m.keep_if_made("contexts", name, m.step("create_context", name=name))
 
 
-def clone_context(m: Machine, picks: bytes) -> None:
+def _can_clone(m: Machine) -> bool:
+    """A context exists to clone, and the example may make one more."""
+    return m.contexts_made < MAX_CONTEXTS and bool(m.names["contexts"])
+
+
+def _clone(m: Machine, origin: str | None) -> str | None:
+    """clone_context of ``origin`` under a fresh name: the name, kept, if it was made."""
     name = m.fresh("c")
     m.contexts_made += 1
-    result = m.step("clone_context", name=name, **{"from": m.name("origin", picks[0])})
+    result = m.step("clone_context", name=name, **{"from": origin})
     m.keep_if_made("contexts", name, result)
+    return name if result.error is None else None
+
+
+def clone_context(m: Machine, picks: bytes) -> None:
+    _clone(m, m.name("origin", picks[0]))
 
 
 def clone_with_history(
@@ -626,6 +637,13 @@ def query_through_filter(m: Machine, picks: bytes, template: cs.DeclarationTempl
         m.step("remove_declaration", label=label, context=where)
 
 
+#: The queries ``filter_in_clone`` asks in the clone (none needs a pair of its own).
+_CLONE_QUERIES = (
+    "x_wg",
+    *(q for q in _TOUCH_QUERIES if q != "compute_signed_distance_pair_closest_points"),
+)
+
+
 def filter_in_clone(m: Machine, picks: bytes, template: cs.DeclarationTemplate) -> None:
     """A clone of a context, a persistent declaration applied in it, then a query there.
 
@@ -637,21 +655,13 @@ def filter_in_clone(m: Machine, picks: bytes, template: cs.DeclarationTemplate) 
     contexts are few, clones fewer, and most steps of a posed example are
     queries.
     """
-    clone = m.fresh("c")
-    m.contexts_made += 1
-    cloned = m.step("clone_context", name=clone, **{"from": m.name("origin", picks[0])})
-    m.keep_if_made("contexts", clone, cloned)
-    if cloned.error is not None:
+    clone = _clone(m, m.name("origin", picks[0]))
+    if clone is None:
         return
     m.step("apply", declaration=m.declaration(template), context=clone)
     query = _CLONE_QUERIES[picks[1] % len(_CLONE_QUERIES)]
-    if query == "x_wg":
-        m.step(query, geometry=m.name("geometry", picks[2]), context=clone)
-    else:
-        m.step(query, context=clone)
-
-
-_CLONE_QUERIES = ("x_wg", *(q for q in _TOUCH_QUERIES if "pair_closest" not in q))
+    geometry = {"geometry": m.name("geometry", picks[2])} if query == "x_wg" else {}
+    m.step(query, context=clone, **geometry)
 
 
 def signed_distance_pair(m: Machine, picks: bytes) -> None:
@@ -728,12 +738,12 @@ HAND_WRITTEN: dict[str, Operation] = {
     "create_context": Operation(create_context, enabled=lambda m: m.contexts_made < MAX_CONTEXTS),
     "clone_context": Operation(
         clone_context,
-        enabled=lambda m: m.contexts_made < MAX_CONTEXTS and bool(m.names["contexts"]),
+        enabled=_can_clone,
     ),
     "clone_with_history": Operation(
         clone_with_history,
         (_DECLARATION, _DECLARATION),
-        enabled=lambda m: m.contexts_made < MAX_CONTEXTS and bool(m.names["contexts"]),
+        enabled=_can_clone,
         issues=frozenset({"apply_transient", "clone_context", "remove_declaration"}),
     ),
     "set_default_context": Operation(set_default_context, enabled=_has("contexts")),
@@ -952,9 +962,7 @@ POSED_OPERATIONS: dict[str, Operation] = {
     "filter_in_clone": Operation(
         filter_in_clone,
         (_DECLARATION,),
-        enabled=lambda m: (
-            _pairs_queryable(m) and m.contexts_made < MAX_CONTEXTS and bool(m.names["contexts"])
-        ),
+        enabled=lambda m: _pairs_queryable(m) and _can_clone(m),
         issues=frozenset({"clone_context", "apply", *_CLONE_QUERIES}),
     ),
 }
