@@ -20,6 +20,7 @@ import enum
 from typing import Any, NamedTuple, Self
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.common._pybind_enum import PybindEnum
 from reimpl.geometry.geometry_set import GeometrySet
 
 __all__ = [
@@ -31,17 +32,11 @@ __all__ = [
 ]
 
 
-class CollisionFilterScope(enum.IntEnum):
+class CollisionFilterScope(PybindEnum):
     """Which geometries a declaration's sets resolve to (pydrake ≥ 1.45 binds it)."""
 
     kAll = 0
     kOmitDeformable = 1
-
-    def __repr__(self) -> str:
-        return f"<CollisionFilterScope.{self.name}: {self.value}>"
-
-    def __str__(self) -> str:
-        return f"CollisionFilterScope.{self.name}"
 
 
 class Pairing(enum.Enum):

@@ -6,9 +6,9 @@ and so can be in C, exactly while it has ProximityProperties assigned.
 
 from __future__ import annotations
 
-import enum
 from typing import Any
 
+from reimpl.common._pybind_enum import PybindEnum
 from reimpl.common._std_unordered_map import StdUnorderedMap
 from reimpl.common.value import AbstractValue, cpp_type_name
 
@@ -22,22 +22,14 @@ __all__ = [
 ]
 
 
-class _PybindEnum(enum.IntEnum):
-    def __repr__(self) -> str:
-        return f"<{type(self).__name__}.{self.name}: {self.value}>"
-
-    def __str__(self) -> str:
-        return f"{type(self).__name__}.{self.name}"
-
-
-class Role(_PybindEnum):
+class Role(PybindEnum):
     kUnassigned = 0
     kProximity = 1
     kIllustration = 2
     kPerception = 4
 
 
-class RoleAssign(_PybindEnum):
+class RoleAssign(PybindEnum):
     kNew = 0
     kReplace = 1
 
