@@ -708,6 +708,37 @@ def test_a_body_without_a_model_instance_needs_only_the_default_ones(mb: Modules
     assert int(explicit.index()) == 2
 
 
+def test_after_finalize_the_instance_count_is_checked_before_finalize_is(mb: Modules) -> None:
+    plant = mb.plant.MultibodyPlant(time_step=0.0)
+    plant.AddModelInstance(name="m")
+    plant.Finalize()
+    with pytest.raises(RuntimeError) as raised:
+        plant.AddRigidBody(name="B")
+    assert str(raised.value).startswith("This model has more model instances than the default.")
+
+
+def test_num_collision_geometries_counts_the_collision_geometries_of_all_bodies(
+    mb: Modules,
+) -> None:
+    model = Model(mb)
+    model.body("A", geometries=())
+    model.body("B", geometries=())
+    assert model.plant.num_collision_geometries() == 0
+    model.geometry("A", "a1")
+    model.geometry("A", "a2")
+    model.geometry("B", "b1")
+    model.plant.RegisterVisualGeometry(
+        body=model.bodies["B"],
+        X_BG=mb.math.RigidTransform(),
+        shape=mb.geometry.Sphere(radius=0.1),
+        name="v",
+        diffuse_color=[1.0, 1.0, 1.0, 1.0],
+    )
+    assert model.plant.num_collision_geometries() == 3
+    model.finalize()
+    assert model.plant.num_collision_geometries() == 3
+
+
 @pytest.mark.parametrize(
     ("call", "message"),
     [

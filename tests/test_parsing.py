@@ -1209,6 +1209,25 @@ def test_collision_filter_groups_value_api(mb: Modules) -> None:
     assert groups.exclusion_pairs() == {("g", "h")}
 
 
+def test_collision_filter_groups_print_groups_members_and_pairs_sorted(mb: Modules) -> None:
+    groups = mb.parsing.CollisionFilterGroups()
+    assert str(groups) == "\nCollision filter groups:\nCollision filter exclusion pairs:\n"
+    groups.AddGroup(name="m::b", members={"m::z", "m::a"})
+    groups.AddGroup(name="m::a", members=set())
+    groups.AddExclusionPair(pair=("m::b", "m::a"))
+    groups.AddExclusionPair(pair=("m::a", "m::a"))
+    assert str(groups) == (
+        "\nCollision filter groups:\n"
+        "    m::a\n"
+        "    m::b\n"
+        "        m::a\n"
+        "        m::z\n"
+        "Collision filter exclusion pairs:\n"
+        "    m::a, m::a\n"
+        "    m::a, m::b\n"
+    )
+
+
 def test_add_models_by_url_resolves_package_and_file_urls(mb: Modules) -> None:
     parsed = Parsed(mb)
     by_package = parsed.parser.AddModels(url="package://test_models/simple_box.sdf")

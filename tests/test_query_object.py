@@ -492,6 +492,27 @@ def test_every_query_needs_the_pose_port_first(api: Api, call: Any) -> None:
     assert str(error.value) == NOT_CONNECTED.format(built.source.get_value())
 
 
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda q, g: q.ComputePointPairPenetration(),
+        lambda q, g: q.HasCollisions(),
+        lambda q, g: q.FindCollisionCandidates(),
+        lambda q, g: q.ComputeSignedDistancePairwiseClosestPoints(),
+        lambda q, g: q.ComputeSignedDistancePairClosestPoints(
+            geometry_id_A=g.GeometryId.get_new_id(), geometry_id_B=g.GeometryId.get_new_id()
+        ),
+        lambda q, g: q.GetPoseInWorld(frame_id=g.FrameId.get_new_id()),
+        lambda q, g: q.GetPoseInParent(frame_id=g.FrameId.get_new_id()),
+    ],
+    ids=["penetration", "has", "candidates", "pairwise", "pair", "world", "parent"],
+)
+def test_a_default_query_object_is_invalid_for_every_query(api: Api, call: Any) -> None:
+    with pytest.raises(RuntimeError) as error:
+        call(api.geometry.QueryObject(), api.geometry)
+    assert str(error.value) == "Attempting to perform query on invalid QueryObject."
+
+
 def test_the_inspector_needs_no_poses(api: Api) -> None:
     built = two_spheres(api, pose=False)
     assert built.query.inspector().num_geometries() == 2

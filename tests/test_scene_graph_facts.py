@@ -794,6 +794,156 @@ class TestInspector:
             assert v(first) < v(second)
 
 
+class TestEnums:
+    """Role, RoleAssign and CollisionFilterScope are pybind11 enums, not ints."""
+
+    @pytest.mark.parametrize(
+        ("enum", "member", "value"),
+        [
+            ("Role", "kUnassigned", 0),
+            ("Role", "kProximity", 1),
+            ("Role", "kPerception", 4),
+            ("RoleAssign", "kNew", 0),
+            ("CollisionFilterScope", "kOmitDeformable", 1),
+        ],
+    )
+    def test_a_member_converts_to_its_value_but_is_no_int(
+        self, api: Api, enum: str, member: str, value: int
+    ) -> None:
+        item = getattr(getattr(api.geometry, enum), member)
+        assert int(item) == value
+        assert [10, 11, 12, 13, 14][item] == 10 + value
+        assert hash(item) == hash(value)
+        assert item.value == value
+        assert item.name == member
+        assert not isinstance(item, int)
+        assert item != value
+        assert {value: "x"}.get(item) is None
+        assert bool(item) is True
+        assert repr(item) == f"<{enum}.{member}: {value}>"
+        assert str(item) == f"{enum}.{member}"
+        with pytest.raises(TypeError):
+            item + 1
+
+    def test_members_order_by_value_only_against_their_own_enum(self, api: Api) -> None:
+        role = api.geometry.Role
+        assert role.kUnassigned < role.kProximity < role.kIllustration < role.kPerception
+        assert sorted([role.kPerception, role.kProximity]) == [role.kProximity, role.kPerception]
+        with pytest.raises(TypeError, match="Expected an enumeration of matching type!"):
+            role.kProximity < 2  # noqa: B015
+        assert api.geometry.RoleAssign.kNew != role.kUnassigned
+
+
+class TestNames:
+    """Names: canonical geometry names, GetGeometryIdByName, unnamed sources, the world frame."""
+
+    @pytest.mark.parametrize("raw", [" a", "a\t", " \t a \t "])
+    def test_a_geometry_name_is_kept_without_its_outer_spaces_and_tabs(
+        self, api: Api, raw: str
+    ) -> None:
+        instance = api.geometry.GeometryInstance(
+            X_PG=api.math.RigidTransform(), shape=api.geometry.Sphere(radius=1.0), name=raw
+        )
+        assert instance.name() == "a"
+        instance.set_name(" b ")  # pydrake names the parameter arg0
+        assert instance.name() == "b"
+
+    @pytest.mark.parametrize("raw", ["\na", "a\r", "a\v"])
+    def test_other_whitespace_stays_in_a_geometry_name(self, api: Api, raw: str) -> None:
+        instance = api.geometry.GeometryInstance(
+            X_PG=api.math.RigidTransform(), shape=api.geometry.Sphere(radius=1.0), name=raw
+        )
+        assert instance.name() == raw
+
+    @pytest.mark.parametrize("raw", ["", " \t "])
+    def test_an_empty_canonical_geometry_name_raises(self, api: Api, raw: str) -> None:
+        with pytest.raises(RuntimeError) as raised:
+            api.geometry.GeometryInstance(
+                X_PG=api.math.RigidTransform(), shape=api.geometry.Sphere(radius=1.0), name=raw
+            )
+        assert str(raised.value) == (
+            f"GeometryInstance given the name '{raw}' which is an empty canonical string"
+        )
+
+    def test_get_geometry_id_by_name_finds_the_canonical_name_with_the_role(
+        self, scene: Scene
+    ) -> None:
+        scene.frame("F")
+        scene.geometry("a", "F")
+        scene.geometry("u", "F", proximity=False)
+        inspector = scene.inspector()
+        find = inspector.GetGeometryIdByName
+        proximity, unassigned = scene.g.Role.kProximity, scene.g.Role.kUnassigned
+        assert find(frame_id=scene.frames["F"], role=proximity, name=" a\t") == scene.ids["a"]
+        assert find(frame_id=scene.frames["F"], role=unassigned, name="u") == scene.ids["u"]
+
+    def test_get_geometry_id_by_name_lists_the_frames_names_with_the_role(
+        self, scene: Scene
+    ) -> None:
+        scene.frame("F")
+        for name in ("zeta", "alpha", "mid"):
+            scene.geometry(name, "F")
+        scene.geometry("u", "F", proximity=False)
+        frame = scene.frames["F"]
+        with pytest.raises(RuntimeError) as raised:
+            scene.inspector().GetGeometryIdByName(
+                frame_id=frame, role=scene.g.Role.kProximity, name=" nope "
+            )
+        message = str(raised.value)
+        head = (
+            f"The frame 'F' ({v(frame)}) has no geometry with the role 'proximity' and the "
+            "canonical name 'nope'. The names associated with this frame/role are {"
+        )
+        assert message.startswith(head)
+        assert message.endswith("}.")
+        assert set(message[len(head) : -2].split(", ")) == {"zeta", "alpha", "mid"}
+
+    @pytest.mark.parametrize(
+        ("role", "text"),
+        [("kIllustration", "illustration"), ("kPerception", "perception")],
+    )
+    def test_get_geometry_id_by_name_without_geometries_of_the_role_lists_none(
+        self, scene: Scene, role: str, text: str
+    ) -> None:
+        scene.geometry("a", "world")
+        world = scene.sg.world_frame_id()
+        with pytest.raises(RuntimeError) as raised:
+            scene.inspector().GetGeometryIdByName(
+                frame_id=world, role=getattr(scene.g.Role, role), name="a"
+            )
+        assert str(raised.value) == (
+            f"The frame 'world' ({v(world)}) has no geometry with the role '{text}' and the "
+            "canonical name 'a'. The names associated with this frame/role are {}."
+        )
+
+    def test_get_geometry_id_by_name_of_an_unknown_frame_raises(self, scene: Scene) -> None:
+        frame = scene.g.FrameId.get_new_id()
+        with pytest.raises(RuntimeError) as raised:
+            scene.inspector().GetGeometryIdByName(
+                frame_id=frame, role=scene.g.Role.kProximity, name="a"
+            )
+        assert str(raised.value) == f"Referenced frame {v(frame)} has not been registered."
+
+    @pytest.mark.parametrize("name", [None, ""])
+    def test_an_unnamed_source_is_named_after_its_own_id(self, api: Api, name: str | None) -> None:
+        sg = api.geometry.SceneGraph()
+        source = sg.RegisterSource() if name is None else sg.RegisterSource(name=name)
+        assert sg.model_inspector().GetName(source_id=source) == f"Source_{v(source)}"
+        assert sg.get_source_pose_port(source).get_name() == f"Source_{v(source)}_pose"
+
+    def test_a_duplicate_source_name_uses_up_an_id(self, api: Api) -> None:
+        sg = api.geometry.SceneGraph()
+        sg.RegisterSource(name="s")
+        before = api.geometry.SourceId.get_new_id()
+        with pytest.raises(RuntimeError, match="duplicate name: s"):
+            sg.RegisterSource(name="s")
+        assert v(api.geometry.SourceId.get_new_id()) == v(before) + 2
+
+    def test_the_world_frame_is_in_frame_group_minus_1234567(self, api: Api) -> None:
+        sg = api.geometry.SceneGraph()
+        assert sg.model_inspector().GetFrameGroup(frame_id=sg.world_frame_id()) == -1234567
+
+
 class TestCollisionFiltered:
     def _setup(self, scene: Scene) -> tuple[int, int, int, int]:
         scene.geometries("c")

@@ -15,7 +15,17 @@ from reimpl.geometry.identifier import FrameId, GeometryId
 from reimpl.geometry.shape import Shape
 from reimpl.math import RigidTransform
 
-__all__ = ["GeometryFrame", "GeometryInstance"]
+__all__ = ["GeometryFrame", "GeometryInstance", "canonicalize_string_name"]
+
+#: What Drake's CanonicalizeStringName trims from both ends of a geometry name:
+#: spaces and tabs only; a newline, vertical tab or form feed stays
+#: (drake/geometry/test/utilities_test.cc).
+_TRIMMED = " \t"
+
+
+def canonicalize_string_name(name: str) -> str:
+    """A geometry name in canonical form: without leading or trailing spaces and tabs."""
+    return name.strip(_TRIMMED)
 
 
 class GeometryFrame:
@@ -45,7 +55,7 @@ class GeometryInstance:
         self._id = GeometryId.get_new_id()
         self._pose = RigidTransform(X_PG)
         self._shape = shape
-        self._name = str(name)
+        self.set_name(name)
         self._proximity: ProximityProperties | None = None
         self._illustration: IllustrationProperties | None = None
         self._perception: PerceptionProperties | None = None
@@ -56,8 +66,16 @@ class GeometryInstance:
     def name(self) -> str:
         return self._name
 
-    def set_name(self, name: str) -> None:
-        self._name = str(name)
+    def set_name(self, name: str, /) -> None:
+        """Keeps the canonical name; one that is empty raises (Drake's message).
+
+        N.B. pydrake binds the parameter without a name (arg0): it is positional only.
+        """
+        self._name = canonicalize_string_name(str(name))
+        if not self._name:
+            raise RuntimeError(
+                f"GeometryInstance given the name '{name}' which is an empty canonical string"
+            )
 
     def pose(self) -> RigidTransform:
         return RigidTransform(self._pose)

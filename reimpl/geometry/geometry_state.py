@@ -44,6 +44,9 @@ __all__ = ["WORLD_FRAME_ID", "GeometryState"]
 WORLD_FRAME_ID = FrameId.get_new_id()
 _WORLD_FRAME_NAME = "world"
 _INTERNAL_SOURCE_NAME = "SceneGraphInternal"
+#: The world frame's frame group (Drake's InternalFrame::world_frame_group()),
+#: a value no registered frame can have, as they must be non-negative.
+_WORLD_FRAME_GROUP = -1234567
 
 _ROLE_NAMES = {
     Role.kProximity: "proximity",
@@ -100,7 +103,9 @@ class GeometryState:
         self._sources: IdentifierUnorderedMap[SourceId, _Source] = IdentifierUnorderedMap()
         self._sources[internal] = _Source(internal, _INTERNAL_SOURCE_NAME)
         self._frames: dict[FrameId, _Frame] = {
-            WORLD_FRAME_ID: _Frame(WORLD_FRAME_ID, _WORLD_FRAME_NAME, internal, WORLD_FRAME_ID, 0)
+            WORLD_FRAME_ID: _Frame(
+                WORLD_FRAME_ID, _WORLD_FRAME_NAME, internal, WORLD_FRAME_ID, _WORLD_FRAME_GROUP
+            )
         }
         self._geometries: dict[GeometryId, _Geometry] = {}
         self.collision_filter = CollisionFilter()
@@ -188,9 +193,15 @@ class GeometryState:
 
     # ----------------------------------------------------------- registration
     def register_source(self, name: str) -> SourceId:
+        """A new source, named ``name`` or, if that is empty, ``Source_<id>``.
+
+        As in Drake, the id is drawn before the name is checked, so a duplicate
+        name still uses up an id.
+        """
+        source_id = SourceId.get_new_id()
+        name = name or f"Source_{source_id.get_value()}"
         if any(s.name == name for s in self._sources.values()):
             raise GeometryStateError(f"Registering new source with duplicate name: {name}.")
-        source_id = SourceId.get_new_id()
         self._sources[source_id] = _Source(source_id, name)
         return source_id
 

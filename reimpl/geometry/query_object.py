@@ -71,12 +71,15 @@ class QueryObject:
     def __init__(self) -> None:
         """A default QueryObject is not connected to any state; its queries cannot answer."""
 
-        def unconnected() -> Any:
+        def invalid_query() -> Any:
+            raise RuntimeError("Attempting to perform query on invalid QueryObject.")
+
+        def unconnected_inspector() -> Any:
             # N.B. pydrake 1.51.1 aborts the process here; reimpl raises instead.
             raise RuntimeError("condition 'state_ != nullptr' failed.")
 
-        self._state_of = unconnected
-        self._posed_of = unconnected
+        self._state_of = unconnected_inspector
+        self._posed_of = invalid_query
 
     _state_of: Callable[[], GeometryState]
     _posed_of: Callable[[], _Posed]

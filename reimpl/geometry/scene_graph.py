@@ -93,9 +93,8 @@ class SceneGraph(LeafSystem):
     # -------------------------------------------------------- registration
     def RegisterSource(self, name: str = "") -> SourceId:
         model = self._edit_model()
-        if not name:
-            name = f"Source_{SourceId.get_new_id().get_value()}"
         source_id = model.register_source(name)
+        name = model.source_name(source_id)
         # Drake gives every source two input ports: poses, then configurations.
         index = self.num_input_ports()
         self._pose_ports[source_id] = InputPort(self, f"{name}_pose", index)

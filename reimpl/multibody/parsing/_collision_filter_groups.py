@@ -67,3 +67,17 @@ class CollisionFilterGroups:
 
     def exclusion_pairs(self) -> set[tuple[str, str]]:
         return set(self._pairs)
+
+    def __str__(self) -> str:
+        """Drake's listing: groups and their members, then the pairs, all sorted.
+
+        (Drake keeps them in a ``std::map`` of ``std::set``s and a ``std::set``
+        of sorted pairs, so each level is in byte order.)
+        """
+        lines = ["", "Collision filter groups:"]
+        for name in sorted(self._groups):
+            lines.append(f"    {name}")
+            lines.extend(f"        {member}" for member in sorted(self._groups[name]))
+        lines.append("Collision filter exclusion pairs:")
+        lines.extend(f"    {a}, {b}" for a, b in sorted(self._pairs))
+        return "\n".join(lines) + "\n"
