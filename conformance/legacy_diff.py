@@ -35,12 +35,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from conformance.backends.calls import call
 from conformance.protocol import (
     MODEL,
     Backend,
     BackendId,
     Command,
+    Observation,
     Pair,
+    Result,
     UnknownNameError,
     backend_id,
 )
@@ -290,17 +293,24 @@ def _absolute_mesh_paths(text: str, folder: Path) -> tuple[str, int]:
     return _MESH_FILENAME.sub(absolute, text), changed
 
 
+def _execute(backend: Backend, path: Path, command: Command) -> Result:
+    """``backend.execute(command)``; a backend that breaks is a BackendError naming the file."""
+    return call(backend, "execute", command, where=f"{path} ({command.op})", returns=Result)
+
+
 def _modern(backend: Backend, path: Path, text: str) -> tuple[list[str], frozenset[Pair]]:
     """The model names ``add_models`` returns and the candidates after ``finalize``."""
-    backend.reset()
-    result = backend.execute(Command("add_models", {"files": {path.name: text}, "path": path.name}))
+    call(backend, "reset", where=f"{path} (reset)", returns=object)
+    files = {"files": {path.name: text}, "path": path.name}
+    result = _execute(backend, path, Command("add_models", files))
     if result.error is not None:
         raise LegacyDiffError(f"{path}: {backend.name} refused the model: {result.error.message}")
     models = list(result.value)
-    result = backend.execute(Command("finalize", {}))
+    result = _execute(backend, path, Command("finalize", {}))
     if result.error is not None:
         raise LegacyDiffError(f"{path}: {backend.name} could not finalize: {result.error.message}")
-    return models, backend.observe().locations[MODEL].candidates
+    observed = call(backend, "observe", where=f"{path} (observe)", returns=Observation)
+    return models, observed.locations[MODEL].candidates
 
 
 def _check_names(
@@ -321,7 +331,7 @@ def _check_names(
         if other is None:
             return
         try:
-            backend.execute(Command("collision_filtered", {"pair": [name, other]}))
+            _execute(backend, path, Command("collision_filtered", {"pair": [name, other]}))
         except UnknownNameError:
             raise LegacyDiffError(
                 f"{path}: the legacy element '{name}' is no geometry of the modern plant "

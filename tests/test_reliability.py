@@ -415,3 +415,151 @@ def test_the_example_backend_skeleton_passes_against_pydrake(attribute: str) -> 
     )  # fmt: skip
     assert_clean_exit(process, EXIT_OK)
     assert "mine (1.51.1)" in process.stdout
+
+
+# --------------------------------------------------------------- bad input among good
+def test_a_bad_file_among_good_ones_is_reported_and_the_good_ones_still_run(
+    tmp_path: Path,
+) -> None:
+    good = json.loads(TABLE1.read_text())
+    bad_name = json.loads(json.dumps(good))
+    bad_name["cases"][0]["steps"][0]["expect"]["candidates"][0] = ["g0", "zz"]
+    bad_schema = json.loads(json.dumps(good))
+    bad_schema["cases"][0]["steps"][0]["op"] = "no_such_op"
+    corpus = tmp_path / "corpus"
+    corpus.mkdir()
+    (corpus / "good.json").write_text(json.dumps(good))
+    (corpus / "bad_name.json").write_text(json.dumps(bad_name))
+    (corpus / "bad_schema.json").write_text(json.dumps(bad_schema))
+    report = tmp_path / "report.json"
+    process = cli(tmp_path, "run", "-q", "--backend", "reimpl", "corpus", "--json", str(report))
+    assert_clean_exit(process, EXIT_USAGE)
+    assert "error: corpus/bad_name.json: case " in process.stderr
+    assert "unknown geometry name 'zz'" in process.stderr
+    assert "error: corpus/bad_schema.json: case " in process.stderr
+    # bad_name.json keeps its other case; bad_schema.json fails its schema as a whole.
+    written = json.loads(report.read_text())
+    assert len(written["input_errors"]) == 2
+    assert [c["qualified_name"].split(" > ")[0] for c in written["cases"]] == [
+        "corpus/bad_name",
+        "corpus/good",
+        "corpus/good",
+    ]
+    assert {s for c in written["cases"] for s in c["status"].values()} == {"pass"}
+
+
+def test_a_directory_without_scenarios_is_named_as_such(tmp_path: Path) -> None:
+    (tmp_path / "empty").mkdir()
+    process = cli(tmp_path, "run", "empty")
+    assert_clean_exit(process, EXIT_USAGE)
+    assert process.stderr == (
+        "error: empty: no scenario files (*.json, *.yaml, *.yml) in this directory\n"
+    )
+
+
+@pytest.mark.parametrize("token", ["NaN", "Infinity", "-Infinity", "1e400"])
+def test_a_non_finite_number_is_an_input_error_not_a_backend_failure(
+    tmp_path: Path, token: str
+) -> None:
+    scenario = json.loads(TABLE1.read_text())
+    scenario["cases"] = scenario["cases"][:1]
+    path = tmp_path / "nonfinite.json"
+    text = json.dumps(scenario).replace('"scene": {', f'"radius": {token}, "scene": {{', 1)
+    path.write_text(text)
+    process = cli(tmp_path, "run", "nonfinite.json")
+    assert_clean_exit(process, EXIT_USAGE)
+    assert process.stderr == (
+        f"error: nonfinite.json: the number {token} is not finite; "
+        "scenario numbers must be finite\n"
+    )
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (("run", "--backend", "drake==banana"), "'banana' is not a Drake release (X.Y.Z"),
+        (("run", "--backend", "drake==1.58"), "'1.58' is not a Drake release (X.Y.Z"),
+        (
+            ("bisect", "*", "--good", "1.51.0", "--bad", "1.51.0.0.0"),
+            "--bad '1.51.0.0.0' is not a Drake release (X.Y.Z",
+        ),
+    ],
+    ids=["not a version", "two parts", "four parts"],
+)
+def test_a_release_that_is_not_x_y_z_is_refused_before_anything_is_built(
+    tmp_path: Path, argv: tuple[str, ...], message: str
+) -> None:
+    process = cli(tmp_path, *argv[:1], str(TABLE1), *argv[1:])
+    assert_clean_exit(process, EXIT_USAGE)
+    assert message in process.stderr
+
+
+def test_an_infinite_step_timeout_means_none(tmp_path: Path) -> None:
+    argv = ("run", "-q", str(TABLE1), "--backend", "reimpl", "--step-timeout", "inf")
+    process = cli(tmp_path, *argv)
+    assert_clean_exit(process, EXIT_OK)
+
+
+def test_a_step_timeout_beyond_a_year_is_a_usage_error(tmp_path: Path) -> None:
+    process = cli(tmp_path, "run", str(TABLE1), "--step-timeout", "1e10")
+    assert_clean_exit(process, EXIT_USAGE)
+    assert "argument --step-timeout: at most 3.1536e+07 seconds (0 or inf: none)" in process.stderr
+
+
+def test_fuzz_json_naming_a_folder_is_refused_before_the_run(tmp_path: Path) -> None:
+    process = cli(tmp_path, "fuzz", "--json", str(tmp_path), "--max-examples", "1")
+    assert_clean_exit(process, EXIT_USAGE)
+    assert process.stderr == f"error: --json {tmp_path}: {tmp_path} is a folder\n"
+
+
+#: The faulty backends, faulting from their first execute() call.
+EAGER = textwrap.dedent(
+    """
+    import faulty
+
+    def raises():
+        return faulty.Raises("raises", after=1)
+
+    def returns_none():
+        return faulty.ReturnsNone("returns-none", after=1)
+
+    def observes_wrong_type():
+        return faulty.ObservesWrongType("observes-wrong-type", after=1)
+
+    def exits_zero():
+        return faulty.ExitsZero("exits-zero", after=1)
+    """
+)
+
+
+@pytest.mark.parametrize(
+    ("spec", "message"),
+    [
+        ("eager:raises", "execute() raised RuntimeError('boom')"),
+        ("eager:returns_none", "execute() returned NoneType, not Result"),
+        ("eager:observes_wrong_type", "observe() returned dict, not Observation"),
+        ("eager:exits_zero", "execute() raised SystemExit('0')"),
+    ],
+    ids=["raises", "returns None", "observes a dict", "exits 0"],
+)
+def test_a_backend_that_breaks_in_legacy_diff_is_one_error_line_and_exit_two(
+    tmp_path: Path, spec: str, message: str
+) -> None:
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        '<robot name="r"><link name="a"><collision><geometry><sphere radius="0.1"/>'
+        "</geometry></collision></link></robot>"
+    )
+    (tmp_path / "eager.py").write_text(EAGER)
+    process = cli(tmp_path, "legacy-diff", "r.urdf", "--backend", spec)
+    assert_clean_exit(process, EXIT_USAGE)
+    assert process.stderr.startswith("error: backend '")
+    assert message in process.stderr
+    assert process.stderr.count("\n") == 1
+
+
+def test_a_named_pipe_is_refused_rather_than_read(tmp_path: Path) -> None:
+    os.mkfifo(tmp_path / "pipe.json")
+    process = cli(tmp_path, "run", "pipe.json")
+    assert_clean_exit(process, EXIT_USAGE)
+    assert process.stderr == "error: pipe.json: not a regular file or a directory\n"

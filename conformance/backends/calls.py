@@ -194,7 +194,10 @@ def _text(where: Where) -> str:
 
 
 def _describe(exc: BaseException) -> str:
-    text = str(exc)
+    try:
+        text = str(exc)
+    except Exception:  # a plugin's exception may fail to print
+        return f"{type(exc).__name__} (whose str() raised)"
     if len(text) > 300:
         text = text[:300] + "…"
     return f"{type(exc).__name__}({text!r})" if text else type(exc).__name__

@@ -10,6 +10,7 @@ from typing import Any, cast
 
 from conformance.backends.calls import BackendError
 from conformance.backends.environments import DrakeEnvironmentError
+from conformance.backends.releases import ReleaseSpecError, check_release
 from conformance.backends.subprocess_backend import worker_spec_version
 from conformance.protocol import Backend
 
@@ -136,6 +137,10 @@ def load_backend(
             raise BackendLoadError(f"backend {spec!r} is unavailable: {exc}") from None
     release = worker_spec_version(spec)
     if release is not None:
+        try:
+            check_release(release)
+        except ReleaseSpecError as exc:
+            raise BackendLoadError(f"backend {spec!r}: {exc}") from None
         return _worker(spec, release, python, step_timeout)
     if ":" not in spec:
         known = ", ".join(sorted(BUILTIN_BACKENDS))

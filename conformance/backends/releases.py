@@ -28,6 +28,7 @@ from conformance.policy.versions import parse_version, version_in_range
 __all__ = [
     "INDEX_VARIABLE",
     "ReleaseSpecError",
+    "check_release",
     "drake_releases",
     "expand",
     "releases_between",
@@ -43,6 +44,13 @@ _PREFIX = re.compile(r"^\d+\.\d+(\.\d+)?$")
 
 class ReleaseSpecError(ValueError):
     """A spec that is not a release or a range, or names no release on the index."""
+
+
+def check_release(text: str) -> str:
+    """``text`` if it names one release as X.Y.Z, else ReleaseSpecError."""
+    if not _RELEASE.match(text):
+        raise ReleaseSpecError(f"{text!r} is not a Drake release (X.Y.Z, for example 1.30.0)")
+    return text
 
 
 def _fetch(url: str) -> list[str]:

@@ -19,7 +19,12 @@ from typing import TextIO
 
 from conformance.backends.calls import BackendError
 from conformance.backends.environments import DrakeEnvironmentError
-from conformance.backends.releases import ReleaseSpecError, drake_releases, releases_between
+from conformance.backends.releases import (
+    ReleaseSpecError,
+    check_release,
+    drake_releases,
+    releases_between,
+)
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_python, add_step_timeout
 from conformance.cli.run import NoCaseError, corpus_cases
@@ -54,6 +59,11 @@ def _describe(probe: Probe) -> str:
 
 
 def _releases(good: str, bad: str) -> list[str]:
+    for option, release in (("--good", good), ("--bad", bad)):
+        try:
+            check_release(release)
+        except ReleaseSpecError as exc:
+            raise ReleaseSpecError(f"{option} {exc}") from None
     if parse_version(good) >= parse_version(bad):
         raise ReleaseSpecError(f"--good {good} must be older than --bad {bad}")
     listed = releases_between(good, bad, drake_releases())

@@ -66,7 +66,7 @@ from conformance.fuzz.regression import (
     write_reproducer,
 )
 from conformance.protocol import Backend, backend_id
-from conformance.run.outputs import unwritable_dir
+from conformance.run.outputs import unwritable, unwritable_dir, write_or_fall_back
 from conformance.run.runner import run_case
 
 __all__ = [
@@ -429,16 +429,7 @@ def _mode(args: argparse.Namespace) -> str:
 def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Runs ``fuzz``; returns the exit code (see ``conformance.cli.exit_codes``)."""
     json_path: Path | None = getattr(args, "json", None)
-    folders = (
-        ("--out", args.out),
-        ("--database", args.database),
-        ("--json", json_path.parent if json_path is not None else None),
-    )
-    problems = [
-        f"{option} {path}: {problem}"
-        for option, path in folders
-        if path is not None and (problem := unwritable_dir(path)) is not None
-    ]
+    problems = _output_problems(args, json_path)
     if args.models and _posed(args):
         problems.append("--models and --poses are two different campaigns: choose one")
     if refuse(problems, err):
@@ -502,9 +493,34 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     if getattr(args, "coverage", False):
         _coverage(result, expected, out)
     if json_path is not None:
-        json_path.write_text(json.dumps(_stats_json(result, expected, args), indent=1) + "\n")
-        err.write(f"fuzz: statistics written to {json_path}\n")
+        text = json.dumps(_stats_json(result, expected, args), indent=1) + "\n"
+        _write_statistics(json_path, text, err)
     return _exit_code(result, findings.written, err)
+
+
+def _output_problems(args: argparse.Namespace, json_path: Path | None) -> list[str]:
+    """Why --out, --database or --json cannot be written, checked before the run."""
+    folders = (("--out", args.out), ("--database", args.database))
+    problems = [
+        f"{option} {path}: {problem}"
+        for option, path in folders
+        if path is not None and (problem := unwritable_dir(path)) is not None
+    ]
+    if json_path is not None and (problem := unwritable(json_path)) is not None:
+        problems.append(f"--json {json_path}: {problem}")
+    return problems
+
+
+def _write_statistics(json_path: Path, text: str, err: TextIO) -> None:
+    """``--json``: the file, or the fallback file with a warning if it cannot be written."""
+
+    def write(path: Path) -> None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+
+    written_to = write_or_fall_back(json_path, write, err)
+    if written_to is not None:
+        err.write(f"fuzz: statistics written to {written_to}\n")
 
 
 def _exit_code(result: CampaignResult, written: list[Path], err: TextIO) -> int:

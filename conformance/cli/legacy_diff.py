@@ -12,6 +12,7 @@ import json
 from pathlib import Path
 from typing import TextIO
 
+from conformance.backends.calls import BackendError
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 from conformance.legacy_diff import LegacyDiffError, legacy_diff
@@ -44,7 +45,7 @@ def legacy_diff_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> i
     try:
         backend = load_backend(args.backend)
         diff = legacy_diff(args.model, backend)
-    except (BackendLoadError, LegacyDiffError) as exc:
+    except (BackendLoadError, BackendError, LegacyDiffError) as exc:
         err.write(f"error: {exc}\n")
         return EXIT_USAGE
     if args.json:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from collections.abc import Sequence
 from typing import TextIO
 
@@ -22,9 +23,20 @@ def seconds(text: str, *, zero: str = "none") -> float:
     return value
 
 
+#: The longest step timeout the interval timer takes (a year); ``inf`` means none.
+_LONGEST_STEP_TIMEOUT = 365 * 24 * 3600.0
+
+
 def _seconds(text: str) -> float:
-    """A non-negative number of seconds (0: no limit)."""
-    return seconds(text)
+    """A non-negative number of seconds (0 or ``inf``: no limit)."""
+    value = seconds(text)
+    if value == math.inf:
+        return 0.0
+    if value > _LONGEST_STEP_TIMEOUT:
+        raise argparse.ArgumentTypeError(
+            f"at most {_LONGEST_STEP_TIMEOUT:g} seconds (0 or inf: none), got {text}"
+        )
+    return value
 
 
 def add_step_timeout(parser: argparse.ArgumentParser, *, what: str) -> None:

@@ -87,12 +87,20 @@ class NoCaseError(ValueError):
     """``--case`` (or bisect's CASE) matches no case of the corpus."""
 
 
-def corpus_cases(paths: Sequence[Path], pattern: str | None) -> list[Case]:
+def corpus_cases(
+    paths: Sequence[Path], pattern: str | None, *, errors: list[ScenarioError] | None = None
+) -> list[Case]:
     """The cases of the corpus at ``paths`` (default: the embedded one) that ``pattern``
-    selects; ScenarioError for a bad file, NoCaseError if none is selected."""
-    cases = select_cases([c for f in load_corpus(paths) for c in f.cases], pattern)
-    if not cases:
+    selects; NoCaseError if none is selected.
+
+    A bad file or case raises ScenarioError, or, with an ``errors`` list, is
+    recorded there while the good ones are kept (``load_corpus``).
+    """
+    cases = select_cases([c for f in load_corpus(paths, errors=errors) for c in f.cases], pattern)
+    if not cases and pattern is not None:
         raise NoCaseError(f"no case is described or named {pattern!r}")
+    if not cases and not errors:
+        raise NoCaseError("the corpus holds no case")
     return cases
 
 
@@ -143,20 +151,31 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Runs ``run``; returns the exit code (see ``conformance.cli.exit_codes``)."""
     if refuse(_output_problems(args), err):
         return EXIT_USAGE
+    input_errors: list[ScenarioError] = []
     try:
         backends = load_backends(
             args.backends, python=args.python, step_timeout=args.step_timeout or None
         )
         reference = choose_reference(backends, args.reference).name
-        cases = corpus_cases(args.paths, args.case)
+        cases = corpus_cases(args.paths, args.case, errors=input_errors)
     except (BackendLoadError, ScenarioError, ValueError) as exc:
+        err.writelines(f"error: {e}\n" for e in input_errors)
         err.write(f"error: {exc}\n")
         return EXIT_USAGE
+    err.writelines(f"error: {e}\n" for e in input_errors)
+    if not cases:
+        return EXIT_USAGE
+    if input_errors:
+        err.write(
+            f"{len(input_errors)} bad scenario file(s) or case(s) left out; "
+            f"running the other {len(cases)} case(s)\n"
+        )
     report = RunReport(
         backends,
         specs=list(args.backends or ("reimpl", "pydrake")),
         reference=reference,
         rerun_options=["--strict-divergences"] if args.strict_divergences else [],
+        input_errors=[str(exc) for exc in input_errors],
     )
     code = _run_cases(args, cases, report, err)
     report.print_failures(out, prog=PROG)
@@ -168,6 +187,9 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         write_or_fall_back(args.junit, lambda path: write_junit(report, path), err)
     if args.json:
         write_or_fall_back(args.json, lambda path: write_json(report, path), err)
+    if input_errors:
+        err.write(f"error: {len(input_errors)} bad scenario file(s) or case(s); see above\n")
+        return EXIT_USAGE
     if code == EXIT_OK and report.failed:
         code = EXIT_FAILURE
     ran = sum(1 for c in report.cases for s in c.status.values() if s is not Status.SKIP)

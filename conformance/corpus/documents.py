@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import codecs
 import json
+import math
 from collections import Counter
 from collections.abc import Callable, Hashable
 from pathlib import Path
@@ -76,9 +77,33 @@ def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
     return obj
 
 
+def _non_finite(token: str, where: str = "") -> DocumentError:
+    return DocumentError(
+        f"the number {clip(token)}{where} is not finite; scenario numbers must be finite"
+    )
+
+
+def _reject_constant(token: str) -> Any:
+    """``parse_constant``: Python's json reads NaN and ±Infinity, which JSON does not have."""
+    raise _non_finite(token)
+
+
+def _finite_float(token: str) -> float:
+    """``parse_float``: a float, unless it overflows (``1e400`` is inf to Python)."""
+    value = float(token)
+    if not math.isfinite(value):
+        raise _non_finite(token)
+    return value
+
+
 def _parse_json(text: str) -> Any:
     try:
-        return json.loads(text, object_pairs_hook=_unique_keys)
+        return json.loads(
+            text,
+            object_pairs_hook=_unique_keys,
+            parse_constant=_reject_constant,
+            parse_float=_finite_float,
+        )
     except DocumentError:
         raise
     except json.JSONDecodeError as exc:
@@ -116,6 +141,15 @@ class _JsonLikeLoader(yaml.SafeLoader):
                 raise DocumentError(f"duplicate key {clip(repr(key))}{where}")
             seen.add(key)
         return super().construct_mapping(node, deep)
+
+    def construct_yaml_float(self, node: yaml.ScalarNode) -> float:
+        value = super().construct_yaml_float(node)
+        if not math.isfinite(value):
+            raise _non_finite(str(node.value), _at(node.start_mark))
+        return value
+
+
+_JsonLikeLoader.add_constructor("tag:yaml.org,2002:float", _JsonLikeLoader.construct_yaml_float)
 
 
 def _yaml_error(exc: yaml.YAMLError) -> DocumentError:

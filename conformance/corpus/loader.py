@@ -214,11 +214,15 @@ def _validate(shown: str, data: Any) -> None:
         raise ScenarioError(shown, f"schema violation at {message}", case=case)
 
 
-def load_file(path: Path, *, root: Path | None = None) -> ScenarioFile:
+def load_file(
+    path: Path, *, root: Path | None = None, errors: list[ScenarioError] | None = None
+) -> ScenarioFile:
     """Loads, validates and name-checks one scenario file (``.json``, ``.yaml`` or ``.yml``).
 
     Its ``name`` is the path below ``root`` if given and the file is under it,
-    else the stable name of the module docstring.
+    else the stable name of the module docstring. With an ``errors`` list, a
+    case that names something undeclared is recorded there and left out, and
+    the file's other cases are kept; a file that fails its schema still raises.
     """
     shown = str(path)
     try:
@@ -248,8 +252,14 @@ def load_file(path: Path, *, root: Path | None = None) -> ScenarioFile:
             comment=raw.get("comment"),
             drake_refs=tuple(raw.get("drake_refs", ())),
         )
-        _check_names(shown, case)
-        _check_pairs(shown, case)
+        try:
+            _check_names(shown, case)
+            _check_pairs(shown, case)
+        except ScenarioError as exc:
+            if errors is None:
+                raise
+            errors.append(exc)
+            continue
         cases.append(case)
     object.__setattr__(file, "cases", tuple(cases))
     return file
@@ -406,15 +416,33 @@ def _is_scenario(path: Path) -> bool:
     )
 
 
-def _walk(targets: Iterable[Path]) -> Iterator[Path]:
-    """The scenario files of ``targets``: files as given, directories walked in sorted order."""
+def _walk(targets: Iterable[Path], errors: list[ScenarioError] | None = None) -> Iterator[Path]:
+    """The scenario files of ``targets``: files as given, directories walked in sorted order.
+
+    A missing target, or a directory without scenario files, raises; with an
+    ``errors`` list it is recorded there and the walk goes on.
+    """
     for target in targets:
-        if target.is_dir():
-            yield from sorted(p for p in target.rglob("*") if _is_scenario(p))
-        elif target.exists():
-            yield target
-        else:
-            raise ScenarioError(str(target), "no such file or directory")
+        try:
+            if target.is_dir():
+                found = sorted(p for p in target.rglob("*") if _is_scenario(p))
+                if not found:
+                    raise ScenarioError(
+                        str(target),
+                        f"no scenario files ({', '.join(f'*{s}' for s in DOCUMENT_SUFFIXES)}) "
+                        "in this directory",
+                    )
+                yield from found
+            elif target.is_file():
+                yield target
+            elif target.exists():  # a pipe or a device: reading it could block forever
+                raise ScenarioError(str(target), "not a regular file or a directory")
+            else:
+                raise ScenarioError(str(target), "no such file or directory")
+        except ScenarioError as exc:
+            if errors is None:
+                raise
+            errors.append(exc)
 
 
 def _once(paths: Iterable[Path]) -> Iterator[Path]:
@@ -427,23 +455,46 @@ def _once(paths: Iterable[Path]) -> Iterator[Path]:
             yield path
 
 
-def _check_unique_names(files: Iterable[ScenarioFile]) -> None:
-    """Two files may not share a name (say ``x.json`` and ``x.yaml``): their cases would clash."""
+def _check_unique_names(
+    files: Iterable[ScenarioFile], errors: list[ScenarioError] | None = None
+) -> list[ScenarioFile]:
+    """Two files may not share a name (say ``x.json`` and ``x.yaml``): their cases would clash.
+
+    Returns the files; with an ``errors`` list, a file whose name is taken is
+    recorded there and left out.
+    """
     first: dict[str, Path] = {}
+    kept = []
     for file in files:
         other = first.setdefault(file.name, file.path)
         if other != file.path:
-            raise ScenarioError(
+            exc = ScenarioError(
                 str(file.path), f"has the same name {file.name!r} as {other}; rename one"
             )
+            if errors is None:
+                raise exc
+            errors.append(exc)
+            continue
+        kept.append(file)
+    return kept
 
 
-def load_corpus(paths: Sequence[Path] = ()) -> list[ScenarioFile]:
+def load_corpus(
+    paths: Sequence[Path] = (), *, errors: list[ScenarioError] | None = None
+) -> list[ScenarioFile]:
     """Loads files and directories, each file once.
 
     Directories are walked recursively for ``*.json``, ``*.yaml`` and ``*.yml``
     files, skipping schemas (``*.schema.json``). No paths: the embedded corpus.
+    The first bad file raises ScenarioError; with an ``errors`` list, every bad
+    file and case is recorded there instead and the good ones are loaded.
     """
-    files = [load_file(path) for path in _once(_walk(paths or [default_corpus_root()]))]
-    _check_unique_names(files)
-    return files
+    files = []
+    for path in _once(_walk(paths or [default_corpus_root()], errors)):
+        try:
+            files.append(load_file(path, errors=errors))
+        except ScenarioError as exc:
+            if errors is None:
+                raise
+            errors.append(exc)
+    return _check_unique_names(files, errors)

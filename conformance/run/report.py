@@ -36,6 +36,8 @@ class RunReport:
     reference: str | None = None
     #: Extra options that a rerun must repeat (e.g. ``--strict-divergences``).
     rerun_options: Sequence[str] = ()
+    #: Scenario files and cases left out as malformed, one message each.
+    input_errors: Sequence[str] = ()
 
     def count(self, backend: str, status: Status) -> int:
         return sum(1 for c in self.cases if c.status.get(backend) is status)
@@ -116,6 +118,7 @@ class RunReport:
                 b.name: {s.value: self.count(b.name, s) for s in Status} for b in self.backends
             },
             "aborted": self.aborted,
+            "input_errors": list(self.input_errors),
             "cases": [
                 {
                     "qualified_name": c.case.qualified_name,
@@ -198,6 +201,12 @@ def write_junit(report: RunReport, path: Path) -> None:
                     f"actual {_show(f.actual)}"
                     for f in failures
                 )
+    for message in report.input_errors:
+        counts["tests"] += 1
+        counts["errors"] += 1
+        element = ET.SubElement(suite, "testcase", classname="corpus", name=message[:200])
+        error = ET.SubElement(element, "error", type="input", message="bad scenario input")
+        error.text = message
     for key, value in counts.items():
         suite.set(key, str(value))
     ET.indent(suite)
