@@ -17,7 +17,7 @@ when the declaration is applied.
 from __future__ import annotations
 
 import enum
-from typing import Any, NamedTuple, Self
+from typing import Any, ClassVar, NamedTuple, Self
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl.common._pybind_enum import PybindEnum
@@ -35,8 +35,12 @@ __all__ = [
 class CollisionFilterScope(PybindEnum):
     """Which geometries a declaration's sets resolve to (pydrake ≥ 1.45 binds it)."""
 
-    kAll = 0
-    kOmitDeformable = 1
+    __slots__ = ()
+    kAll: ClassVar[CollisionFilterScope]
+    kOmitDeformable: ClassVar[CollisionFilterScope]
+
+
+CollisionFilterScope.define(kAll=0, kOmitDeformable=1)
 
 
 class Pairing(enum.Enum):

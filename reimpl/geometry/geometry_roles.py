@@ -6,7 +6,7 @@ and so can be in C, exactly while it has ProximityProperties assigned.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, ClassVar
 
 from reimpl.common._pybind_enum import PybindEnum
 from reimpl.common._std_unordered_map import StdUnorderedMap
@@ -23,15 +23,23 @@ __all__ = [
 
 
 class Role(PybindEnum):
-    kUnassigned = 0
-    kProximity = 1
-    kIllustration = 2
-    kPerception = 4
+    __slots__ = ()
+    kUnassigned: ClassVar[Role]
+    kProximity: ClassVar[Role]
+    kIllustration: ClassVar[Role]
+    kPerception: ClassVar[Role]
+
+
+Role.define(kUnassigned=0, kProximity=1, kIllustration=2, kPerception=4)
 
 
 class RoleAssign(PybindEnum):
-    kNew = 0
-    kReplace = 1
+    __slots__ = ()
+    kNew: ClassVar[RoleAssign]
+    kReplace: ClassVar[RoleAssign]
+
+
+RoleAssign.define(kNew=0, kReplace=1)
 
 
 _DEFAULT_GROUP = "__default__"
