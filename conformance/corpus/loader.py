@@ -256,9 +256,7 @@ def load_file(
             _check_names(shown, case)
             _check_pairs(shown, case)
         except ScenarioError as exc:
-            if errors is None:
-                raise
-            errors.append(exc)
+            _record(exc, errors)
             continue
         cases.append(case)
     object.__setattr__(file, "cases", tuple(cases))
@@ -406,6 +404,13 @@ def _require(
             )
 
 
+def _record(error: ScenarioError, errors: list[ScenarioError] | None) -> None:
+    """Raises ``error``, or, given an ``errors`` list, appends it there so loading goes on."""
+    if errors is None:
+        raise error
+    errors.append(error)
+
+
 def _is_scenario(path: Path) -> bool:
     """A file the walker loads: a known suffix, and not a schema (``*.schema.json``)."""
     suffix = path.suffix.lower()
@@ -440,9 +445,7 @@ def _walk(targets: Iterable[Path], errors: list[ScenarioError] | None = None) ->
             else:
                 raise ScenarioError(str(target), "no such file or directory")
         except ScenarioError as exc:
-            if errors is None:
-                raise
-            errors.append(exc)
+            _record(exc, errors)
 
 
 def _once(paths: Iterable[Path]) -> Iterator[Path]:
@@ -468,12 +471,12 @@ def _check_unique_names(
     for file in files:
         other = first.setdefault(file.name, file.path)
         if other != file.path:
-            exc = ScenarioError(
-                str(file.path), f"has the same name {file.name!r} as {other}; rename one"
+            _record(
+                ScenarioError(
+                    str(file.path), f"has the same name {file.name!r} as {other}; rename one"
+                ),
+                errors,
             )
-            if errors is None:
-                raise exc
-            errors.append(exc)
             continue
         kept.append(file)
     return kept
@@ -494,7 +497,5 @@ def load_corpus(
         try:
             files.append(load_file(path, errors=errors))
         except ScenarioError as exc:
-            if errors is None:
-                raise
-            errors.append(exc)
+            _record(exc, errors)
     return _check_unique_names(files, errors)

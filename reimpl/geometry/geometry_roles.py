@@ -13,12 +13,14 @@ from reimpl.common._std_unordered_map import StdUnorderedMap
 from reimpl.common.value import AbstractValue, cpp_type_name
 
 __all__ = [
+    "ASSIGNED_ROLES",
     "GeometryProperties",
     "IllustrationProperties",
     "PerceptionProperties",
     "ProximityProperties",
     "Role",
     "RoleAssign",
+    "role_name",
 ]
 
 
@@ -40,6 +42,21 @@ class RoleAssign(PybindEnum):
 
 
 RoleAssign.define(kNew=0, kReplace=1)
+
+#: The roles a geometry can be assigned (kUnassigned is having none of them).
+ASSIGNED_ROLES = (Role.kProximity, Role.kIllustration, Role.kPerception)
+
+_ROLE_NAMES = {
+    Role.kUnassigned: "unassigned",
+    Role.kProximity: "proximity",
+    Role.kIllustration: "illustration",
+    Role.kPerception: "perception",
+}
+
+
+def role_name(role: Role) -> str:
+    """How Drake prints a role in messages (``operator<<`` of geometry_roles.h)."""
+    return _ROLE_NAMES[role]
 
 
 _DEFAULT_GROUP = "__default__"

@@ -32,7 +32,13 @@ from reimpl.geometry.errors import (
     UnqueryableGeometryError,
 )
 from reimpl.geometry.geometry_instance import GeometryFrame, GeometryInstance
-from reimpl.geometry.geometry_roles import GeometryProperties, Role, RoleAssign
+from reimpl.geometry.geometry_roles import (
+    ASSIGNED_ROLES,
+    GeometryProperties,
+    Role,
+    RoleAssign,
+    role_name,
+)
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
 from reimpl.geometry.shape import Shape
@@ -47,12 +53,6 @@ _INTERNAL_SOURCE_NAME = "SceneGraphInternal"
 #: The world frame's frame group (Drake's InternalFrame::world_frame_group()),
 #: a value no registered frame can have, as they must be non-negative.
 _WORLD_FRAME_GROUP = -1234567
-
-_ROLE_NAMES = {
-    Role.kProximity: "proximity",
-    Role.kIllustration: "illustration",
-    Role.kPerception: "perception",
-}
 
 
 @dataclass
@@ -293,20 +293,20 @@ class GeometryState:
             f"source id {source_id.get_value()}",
         )
         role = properties.role
-        role_name = _ROLE_NAMES[role]
+        name = role_name(role)
         has_role = role in geometry.properties
         if assign is RoleAssign.kReplace:
             if not has_role:
                 raise GeometryStateError(
                     f"Trying to replace the properties on geometry id "
-                    f"{geometry_id.get_value()} for the '{role_name}' role; it has not had the "
+                    f"{geometry_id.get_value()} for the '{name}' role; it has not had the "
                     "role initially assigned"
                 )
             geometry.properties[role] = type(properties)(properties)
             return
         if has_role:
             raise DuplicateRoleError(
-                f"Trying to assign the '{role_name}' role to geometry id "
+                f"Trying to assign the '{name}' role to geometry id "
                 f"{geometry_id.get_value()} for the first time; it already has the role "
                 "assigned"
             )
@@ -317,7 +317,7 @@ class GeometryState:
         ):
             raise GeometryStateError(
                 f"The name '{geometry.name}' has already been used by a geometry with the "
-                f"'{role_name}' role."
+                f"'{name}' role."
             )
         geometry.properties[role] = type(properties)(properties)
         if role is Role.kProximity:
@@ -343,7 +343,7 @@ class GeometryState:
         geometry = self._owned_geometry(
             source_id,
             geometry_id,
-            f"Trying to remove the role {_ROLE_NAMES.get(role, 'unassigned')} from the "
+            f"Trying to remove the role {role_name(role)} from the "
             f"geometry {geometry_id.get_value()} from source {source_id.get_value()}, but "
             "the geometry doesn't belong to that source.",
         )
@@ -402,7 +402,7 @@ class GeometryState:
                 f"Cannot rename geometry with invalid geometry id: {geometry_id.get_value()}"
             )
         geometry = self._geometries[geometry_id]
-        for role, role_name in _ROLE_NAMES.items():
+        for role in ASSIGNED_ROLES:
             if role in geometry.properties and any(
                 other != geometry_id
                 and self._geometries[other].name == name
@@ -411,7 +411,7 @@ class GeometryState:
             ):
                 raise GeometryStateError(
                     f"The name '{name}' has already been used by a geometry with the "
-                    f"'{role_name}' role."
+                    f"'{role_name(role)}' role."
                 )
         geometry.name = name
 

@@ -14,11 +14,13 @@ from reimpl._template import scalar_template
 from reimpl.common._std_unordered_map import identifier_set_order
 from reimpl.geometry.geometry_instance import GeometryInstance, canonicalize_string_name
 from reimpl.geometry.geometry_roles import (
+    ASSIGNED_ROLES,
     GeometryProperties,
     IllustrationProperties,
     PerceptionProperties,
     ProximityProperties,
     Role,
+    role_name,
 )
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.geometry_state import WORLD_FRAME_ID
@@ -32,14 +34,6 @@ if TYPE_CHECKING:
 __all__ = ["SceneGraphInspector", "SceneGraphInspector_"]
 
 _OWNER = "reimpl.geometry.SceneGraphInspector"
-
-#: How Drake prints a Role in messages (operator<< of geometry_roles.h).
-_ROLE_TEXT = {
-    Role.kUnassigned: "unassigned",
-    Role.kProximity: "proximity",
-    Role.kIllustration: "illustration",
-    Role.kPerception: "perception",
-}
 
 
 class SceneGraphInspector:
@@ -140,7 +134,7 @@ class SceneGraphInspector:
 
     def _has(self, geometry_id: GeometryId, role: Role) -> bool:
         if role is Role.kUnassigned:
-            return not any(self._state.has_role(geometry_id, r) for r in _ROLES)
+            return not any(self._state.has_role(geometry_id, r) for r in ASSIGNED_ROLES)
         return self._state.has_role(geometry_id, role)
 
     def GetGeometryIdByName(self, frame_id: FrameId, role: Role, name: str) -> GeometryId:
@@ -162,12 +156,12 @@ class SceneGraphInspector:
         if not found:
             names = ", ".join(self._state.geometry_name(g) for g in with_role)
             raise RuntimeError(
-                f"{where} has no geometry with the role '{_ROLE_TEXT[role]}' and the canonical "
+                f"{where} has no geometry with the role '{role_name(role)}' and the canonical "
                 f"name '{canonical}'. The names associated with this frame/role are {{{names}}}."
             )
         # Only unassigned geometries may share a name on one frame.
         raise RuntimeError(
-            f"{where} has multiple geometries with the role '{_ROLE_TEXT[role]}' and the "
+            f"{where} has multiple geometries with the role '{role_name(role)}' and the "
             f"canonical name '{canonical}'"
         )
 
@@ -257,9 +251,6 @@ class SceneGraphInspector:
 
     def GetPerceptionProperties(self, geometry_id: GeometryId) -> PerceptionProperties | None:
         return self._state.properties(geometry_id, Role.kPerception)  # type: ignore[return-value]
-
-
-_ROLES = (Role.kProximity, Role.kIllustration, Role.kPerception)
 
 
 SceneGraphInspector_ = scalar_template(
