@@ -1,27 +1,27 @@
 """SDFormat: each ``<model>`` (nested ones too) becomes a model instance (Drake 1.51.1, measured).
 
-A model ``top`` holding ``<model name="inner">`` gives instances ``top`` and
-``top::inner``; an ``<include>`` (a URI through the package map, ``<name>``
-overriding the included model's) is a nested model too, SDFormat or URDF. A
-``<world>`` holds top-level models. Per model, in Drake's order: nested models
-and includes, links (geometry only with a SceneGraph), the ``__model__`` frame
-on the canonical link, joints, ``<frame>``s, the welds of a ``<static>``
-model (``sdformat_model_static_world_welds_to_<link>``), then groups.
+A parse has three stages, as in Drake, whose errors come in this order:
+
+1. libsdformat reads the text and expands ``<include>``s (_sdf_document,
+   _sdf_include);
+2. libsdformat loads its objects (_sdf_dom; an ``<include>`` of a URDF file
+   is parsed into the plant here, _sdf_interface) and builds the frame
+   graphs (_sdf_graph), then checks each joint's parent and child;
+3. Drake adds the models (this module), per model in this order: the
+   ``<drake:visual>``s become visuals, its instance, its nested models, its
+   links (geometry only with a SceneGraph), ``__model__`` on the canonical
+   link (on the world for a model without one), joints, ``<frame>``s,
+   ``<drake:joint>``s, the welds of a ``<static>`` model
+   (``sdformat_model_static_world_welds_to_<link>``), then filter groups.
 
 Joint types → Drake kinds: fixed → weld, revolute and continuous → revolute,
-prismatic, ball → ball_rpy, universal, screw. A joint's frame on the child is
-a FixedOffsetFrame ``<joint>_child``; on the parent, the parent body's frame,
-unless a ``<pose>`` may move it (then ``<joint>_parent``). Parent and child may
-name links or frames, scoped into nested models (``inner::x``).
-
-Poses (see _sdf_poses): a link's default pose is X_WL (SetDefaultFreeBodyPose,
-for every link, as Drake does); a joint J's frames are ``<joint>_parent`` at
-X_PJ and ``<joint>_child`` at X_CJ, its axis expressed in J (``expressed_in``
-another frame E: R_JE·xyz); a universal joint's frames are turned by
-R = [a₁ a₂ a₁×a₂] so that its axes are their x and y; a ``<frame>`` is a
-FixedOffsetFrame on the frame it is attached to; a geometry is at X_LG; a
-static model's weld has X_FM = X_WL; ``__model__`` sits at X_LM on the
-canonical link (pydrake 1.51.1 within 1e-12).
+prismatic, ball → ball_rpy, universal, screw; ``<drake:joint type="planar">``
+→ planar. A joint J between bodies P and C gets the frames ``<J>_parent`` at
+X_PJ (none when X_PJ is exactly the identity: then P's body frame) and
+``<J>_child`` at X_CJ, both in C's model instance; its axis is expressed in J
+(``expressed_in`` E: R_JE·xyz). A universal joint's frames are turned by
+R = [a₁ a₂ a₁×a₂]. A ``<frame>`` is a FixedOffsetFrame on what it is attached
+to (in that frame's model instance). Links get X_WL as their default pose.
 
 Collision filter groups (only with a SceneGraph) hold text children::
 
@@ -31,67 +31,67 @@ Collision filter groups (only with a SceneGraph) hold text children::
     </drake:collision_filter_group>
 
 ``ignore`` is an SDFormat bool (``true``/``1``, any case). Names are relative
-to the model; the resolver's errors carry the ``<model>`` line. The old
-unprefixed ``<collision_filter_group>`` is an SDFormat error (see _sdf_document).
+to the model; the resolver's errors carry the ``<model>`` line.
+
+Deformable links (``<drake:deformable_properties>``): on a continuous plant,
+Drake's own error; on a discrete plant, reimpl raises ModelParseError
+``reimpl does not support deformable bodies (...)`` (they are outside the
+collision-filtering subset).
 """
 
 from __future__ import annotations
 
 import logging
-import os
-from collections.abc import Callable
 from typing import Any
 
-import numpy as np
-
-from reimpl.multibody import kinematics
-from reimpl.multibody.kinematics import Pose
+from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
-from reimpl.multibody.parsing._model_builder import (
-    JOINT_TYPES,
-    GeometryNamer,
-    JointSpec,
-    register_geometry,
-)
 from reimpl.multibody.parsing._package_map import UriError, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
-from reimpl.multibody.parsing._sdf_document import check_document, scoped_name_error, xml_path
-from reimpl.multibody.parsing._sdf_geometry import read_shape_spec, text_of, values_of
-from reimpl.multibody.parsing._sdf_poses import WORLD, PoseGraph, read_pose, transform
+from reimpl.multibody.parsing._sdf_document import check_document, scoped_name_error
+from reimpl.multibody.parsing._sdf_dom import Frame, Link, Model, World
+from reimpl.multibody.parsing._sdf_geometry import (
+    GEOMETRY_ELEMENTS,
+    drake_visual_to_visual,
+    first,
+    geometry_shape,
+    proximity_checks,
+    visual_instance,
+)
+from reimpl.multibody.parsing._sdf_graph import join
+from reimpl.multibody.parsing._sdf_include import Loaded, load_include_hook
+from reimpl.multibody.parsing._sdf_joints import JointAdder
+from reimpl.multibody.parsing._sdf_load import Document, attached_body, load_document
+from reimpl.multibody.parsing._sdf_poses import GzPose, read_pose
+from reimpl.multibody.parsing._sdf_scope import Scope
 from reimpl.multibody.parsing._xml import XmlElement, XmlSyntaxError, children, parse_xml
-from reimpl.multibody.tree import FixedOffsetFrame, WeldJoint
+from reimpl.multibody.tree import FixedOffsetFrame, JointIndex, WeldJoint
 
 __all__ = ["read_sdf"]
 
 _LOG = logging.getLogger("drake")
-_JOINT_KINDS = {
-    "fixed": "weld",
-    "revolute": "revolute",
-    "continuous": "revolute",
-    "prismatic": "prismatic",
-    "ball": "ball_rpy",
-    "universal": "universal",
-    "screw": "screw",
-}
-_UNSUPPORTED_JOINTS = {"gearbox", "revolute2"}
-_NEEDS_AXIS = {"revolute", "continuous", "prismatic", "screw"}
 _GROUP = "drake:collision_filter_group"
-#: element -> the drake: children Drake reads there
-_DRAKE_ELEMENTS = {
-    "model": {_GROUP, "drake:joint", "drake:linear_bushing_rpy", "drake:ball_constraint"},
-    "link": set(),
-    "world": set(),
-    "sdf": set(),
-}
+_ROOT = "__root__"
+_WORLD = "world"
 _BOOLS = {"true": True, "1": True, "false": False, "0": False}
+
+#: element -> the children Drake reads there (others: a warning, or an error if drake:)
+_MODEL_ELEMENTS = frozenset({
+    "drake:joint", "drake:linear_bushing_rpy", "drake:linear_spring_damper",
+    "drake:ball_constraint", "drake:tendon_constraint", _GROUP, "frame", "include", "joint",
+    "link", "model", "pose", "static",
+})  # fmt: skip
+_LINK_ELEMENTS = frozenset(
+    {"drake:visual", "collision", "gravity", "inertial", "kinematic", "pose", "visual"}
+)
+_WORLD_ELEMENTS = frozenset({"frame", "include", "joint", "model"})
 
 
 def read_sdf(
     context: ParseContext, source: ModelSource, model_name: str | None, parent_scope: str
 ) -> list[Any]:
     """Adds the model (or the world's models) in ``source``; returns their instances."""
-    diagnostics = source.diagnostics(context.strict)
     try:
         root = parse_xml(source.text)
     except XmlSyntaxError as exc:
@@ -101,378 +101,317 @@ def read_sdf(
         ) from None
     if root.tag != "sdf" or root.get("version") is None:
         raise Diagnostics(None).error(f"Unable to read SDF string: {source.text}")
-    check_document(root, source.label or source.path or "<data-string>")
+    loaded = Loaded()
+    label = source.label or source.path or "<data-string>"
+    check_document(root, label, load_include_hook(context.package_map, loaded))
     if model_name is not None and "::" in model_name:
         for model in children(root, "model"):
             model.set("name", model_name)
             raise scoped_name_error(model)
-    return _Document(context, source, diagnostics, root).add(root, model_name, parent_scope)
+    document = load_document(context, loaded, root)
+    builder = _Builder(context, source, loaded, document)
+    return builder.add(root, model_name, parent_scope)
 
 
-class _Document:
+class _Builder:
+    """Drake's AddModelsFromSpecification, over the loaded document."""
+
     def __init__(
-        self,
-        context: ParseContext,
-        source: ModelSource,
-        diagnostics: Diagnostics,
-        root: XmlElement,
+        self, context: ParseContext, source: ModelSource, loaded: Loaded, document: Document
     ) -> None:
-        self.context, self.source, self.diagnostics = context, source, diagnostics
+        self.context, self.source, self.loaded = context, source, loaded
+        self.document, self.graphs = document, document.graphs
         self.plant = context.plant
         self.instances: list[Any] = []
-        self.poses = PoseGraph()
-        #: scoped <frame> (or __model__) name -> the scoped name it is attached to
-        self.attached_to: dict[str, str] = {}
-        self.parents: dict[XmlElement, XmlElement] = {
-            child: parent  # type: ignore[misc]
-            for parent in root.iter()
-            for child in parent
-        }
+        self.diagnostics = source.diagnostics(context.strict)
+        self.joints = JointAdder(self.plant, self.graphs, self)
 
-    def _parent_path(self, element: XmlElement) -> str:
-        """libsdformat's XML path of ``element``'s parent."""
-        chain: list[XmlElement] = []
-        while element in self.parents:
-            element = self.parents[element]
-            chain.insert(0, element)
-        return xml_path(chain[-1], chain[:-1])
+    # ---------------------------------------------------------- diagnostics
+    def _diagnostics(self, element: XmlElement | None) -> Diagnostics:
+        label = self.loaded.origins.get(element) if element is not None else None
+        if label is None or ":" in (element.tag if element is not None else ""):
+            return self.source.diagnostics(self.context.strict)
+        return Diagnostics(label, self.context.strict)
 
-    def _check_drake_elements(self, element: XmlElement) -> None:
+    def _line(self, element: XmlElement) -> int | None:
+        """Drake's line for an element: none for an element libsdformat does not define."""
+        return None if ":" in element.tag else element.line
+
+    def error(self, element: XmlElement, message: str) -> ModelParseError:
+        return self._diagnostics(element).error(message, self._line(element))
+
+    def warn(self, element: XmlElement, message: str) -> None:
+        self._diagnostics(element).warning(message, self._line(element))
+
+    def check_supported(self, element: XmlElement, supported: frozenset[str]) -> None:
+        """CheckSupportedElements: unsupported ``drake:`` children are errors, others warnings."""
         for child in element:
-            tag = child.tag
-            if ":" not in tag or tag in _DRAKE_ELEMENTS.get(element.tag, {tag}):
+            assert isinstance(child, XmlElement)
+            if child.tag in supported:
                 continue
-            message = f"SDFormat element in {element.tag}: {tag}"
-            if tag.startswith("drake:"):
-                raise self.diagnostics.error(f"Unsupported {message}")
-            self.diagnostics.warning(f"Ignoring unsupported {message}")
+            message = f"SDFormat element in {element.tag}: {child.tag}"
+            if child.tag.startswith("drake:"):
+                raise self.error(child, f"Unsupported {message}")
+            self.warn(child, f"Ignoring unsupported {message}")
 
-    def add(self, root: XmlElement, model_name: str | None, scope: str) -> list[Any]:
-        self._check_drake_elements(root)
-        models, worlds = children(root, "model"), children(root, "world")
-        if len(models) + len(worlds) != 1:
-            if len(models) > 1:
-                raise Diagnostics(None).error(
-                    "Root object can only contain one model. Using the first one found"
-                )
-            raise self.diagnostics.error(
-                "File must have exactly one <model> or exactly one <world>, but instead has "
-                f"{len(models)} models and {len(worlds)} worlds",
-                root.line,
-            )
-        if worlds:
-            self._check_drake_elements(worlds[0])
-            for element in worlds[0]:
-                if element.tag == "model" and isinstance(element, XmlElement):
-                    self._add_model(element, None, scope, WORLD)
-                elif element.tag == "include" and isinstance(element, XmlElement):
-                    self._include(element, scope)
-        else:
-            self._add_model(models[0], model_name, scope, WORLD)
-        return self.instances
+    def check_value(self, element: XmlElement, tag: str, expected: str) -> None:
+        """CheckSupportedElementValue: a bool element set to other than ``expected``."""
+        for child in children(element, tag)[:1]:
+            value = _BOOLS.get((child.text or "").strip().lower())
+            text = ("true" if value else "false") if value is not None else (child.text or "")
+            if text != expected:
+                self.warn(child, f"Unsupported value for SDFormat element {tag}: {text}")
 
-    # --------------------------------------------------------------- models
-    def _include(self, include: XmlElement, scope: str) -> None:
-        uri = text_of(include, "uri", "")
-        try:
-            if os.path.isabs(uri) and os.path.isfile(uri):  # libsdformat takes plain paths
-                path = uri
-            else:
-                path = resolve_uri(self.context.package_map, uri, self.source.root_dir)
-        except UriError:
-            label = self.source.label or self.source.path or "<data-string>"
-            parent = self.parents[include]
-            index = children(parent, "include").index(include)
-            raise ModelParseError(
-                f"{label}:{include.line}: error: At XML path {self._parent_path(include)}"
-                f"/include[{index}]/uri: Unable to find uri[{uri}]"
-            ) from None
-        name = text_of(include, "name", "") or None
-        self.instances += self.context.read_file(self.context, path, name, scope)
-
-    def _add_model(
-        self, model: XmlElement, model_name: str | None, scope: str, parent_frame: str
-    ) -> None:
-        """Adds ``model``, whose pose is by default in ``parent_frame`` (the world, or the
-        enclosing model's frame)."""
-        self._check_drake_elements(model)
-        name = scoped.join(scope, model_name or model.get("name") or "")
-        instance = self.context.add_model_instance(name)
-        instance_name = self.plant.GetModelInstanceName(instance)
-        self.instances.append(instance)
-        targets = self._add_poses(model, instance_name, parent_frame, scope)
-        for element in model:
-            if element.tag == "model" and isinstance(element, XmlElement):
-                self._add_model(element, None, instance_name, f"{instance_name}::__model__")
-            elif element.tag == "include" and isinstance(element, XmlElement):
-                self._include(element, instance_name)
-        for target, kind, element_name in targets:
-            self._check_pose_target(target, kind, element_name, model)
-        links = children(model, "link")
-        if not links and not children(model, "model") and not children(model, "include"):
-            raise Diagnostics(None).error("A model must have at least one link.")
-        bodies = {
-            link.get("name", ""): self._add_link(link, instance, instance_name) for link in links
-        }
-        self._add_model_frame(model, instance, bodies)
-        for frame in children(model, "frame"):
-            target = frame.get("attached_to") or "__model__"
-            self.attached_to[scoped.join(instance_name, frame.get("name", ""))] = scoped.join(
-                instance_name, target
-            )
-        for joint in children(model, "joint"):
-            self._add_joint(joint, model, instance_name)
-        for frame in children(model, "frame"):
-            self._add_frame(frame, instance, instance_name)
-        if _bool(text_of(model, "static", "false")):
-            world = self.plant.world_frame()
-            for link_name, body in bodies.items():
-                X_WL = self.poses.X_W(scoped.join(instance_name, link_name))
-                self.plant.AddJoint(
-                    WeldJoint(
-                        f"sdformat_model_static_world_welds_to_{link_name}",
-                        world,
-                        body.body_frame(),
-                        transform(X_WL),
-                    )
-                )
-        if self.context.has_scene_graph():
-            for group in children(model, _GROUP):
-                self._add_group(group, model, instance_name)
-
-    def _add_poses(
-        self, model: XmlElement, instance_name: str, parent_frame: str, scope: str
-    ) -> list[tuple[str, str, str]]:
-        """Registers the poses of the model frame and of its links, joints and frames.
-
-        Returns each explicit ``relative_to`` (frame, element kind, element name), to be
-        checked once the nested models are read.
-        """
-        targets: list[tuple[str, str, str]] = []
-        model_frame = f"{instance_name}::__model__"
-        relative_to, X = read_pose(model)
-        R = parent_frame if relative_to is None else self._pose_frame(scope, relative_to)
-        self.poses.add(model_frame, R, X)
-        self.poses.add(instance_name, model_frame, kinematics.identity())
-        defaults: dict[str, Callable[[XmlElement], str]] = {
-            "link": lambda e: "__model__",
-            "joint": lambda e: text_of(e, "child", ""),
-            "frame": lambda e: e.get("attached_to") or "__model__",
-        }
-        for kind, default in defaults.items():
-            for element in children(model, kind):
-                relative_to, X = read_pose(element)
-                target = relative_to if relative_to is not None else default(element)
-                full = self._pose_frame(instance_name, target)
-                if relative_to is not None:
-                    targets.append((full, kind, element.get("name", "")))
-                self.poses.add(scoped.join(instance_name, element.get("name", "")), full, X)
-        return targets
-
-    def _pose_frame(self, scope: str, name: str) -> str:
-        return WORLD if name == WORLD else scoped.join(scope, name)
-
-    def _check_pose_target(self, target: str, kind: str, name: str, model: XmlElement) -> None:
-        if not self.poses.has(target):
-            raise Diagnostics(None).error(
-                f"relative_to name[{scoped.split(target)[1]}] specified by {kind} with "
-                f"name[{name}] does not match a nested model, link, joint, or frame name in "
-                f"model with name[{model.get('name')}]."
-            )
-
-    def _X(self, frame: str, element: str) -> Pose:
-        """X_FE between two registered frames (exact when E is posed in F)."""
-        return self.poses.X_AB(frame, element)
-
-    def _add_model_frame(self, model: XmlElement, instance: Any, bodies: dict[str, Any]) -> None:
-        canonical = model.get("canonical_link")
-        if canonical is not None and canonical in bodies:
-            body = bodies[canonical]
-        elif bodies:
-            body = next(iter(bodies.values()))
-        else:
-            indices = self.plant.GetBodyIndices(instance) or self._nested_bodies(instance)
-            if not indices:
-                return
-            body = self.plant.get_body(indices[0])
-        instance_name = self.plant.GetModelInstanceName(instance)
-        body_instance = self.plant.GetModelInstanceName(body.model_instance())
-        X_LM = self._X(scoped.join(body_instance, body.name()), f"{instance_name}::__model__")
-        frame = FixedOffsetFrame("__model__", body.body_frame(), transform(X_LM), instance)
-        self.plant.AddFrame(frame)
-        self.attached_to[scoped.join(instance_name, "__model__")] = scoped.join(
-            body_instance, body.name()
-        )
-
-    def _nested_bodies(self, instance: Any) -> list[Any]:
-        prefix = self.plant.GetModelInstanceName(instance) + "::"
-        for other in self.instances:
-            if self.plant.GetModelInstanceName(other).startswith(prefix):
-                indices = self.plant.GetBodyIndices(other)
-                if indices:
-                    return list(indices)
-        return []
-
-    # ---------------------------------------------------------------- links
-    def _add_link(self, link: XmlElement, instance: Any, instance_name: str) -> Any:
-        self._check_drake_elements(link)
-        body = self.plant.AddRigidBody(name=link.get("name", ""), model_instance=instance)
-        link_frame = scoped.join(instance_name, link.get("name", ""))
-        self.plant.SetDefaultFreeBodyPose(body, transform(self.poses.X_W(link_frame)))
-        if not self.context.has_scene_graph():
-            return body
-        for role in ("visual", "collision"):
-            namer = GeometryNamer()
-            for element in children(link, role):
-                relative_to, X = read_pose(element)
-                if relative_to is not None:
-                    X = kinematics.compose(
-                        self._X(link_frame, self._pose_frame(instance_name, relative_to)), X
-                    )
-                spec = read_shape_spec(element, self._resolve, transform(X))
-                if spec is not None:
-                    register_geometry(self.plant, body, spec, namer.name(spec, self.diagnostics))
-        return body
-
-    def _resolve(self, uri: str) -> str:
+    def resolve_file(self, element: XmlElement, uri: str) -> str:
         try:
             return resolve_uri(self.context.package_map, uri, self.source.root_dir)
         except UriError as exc:
-            raise self.diagnostics.error(str(exc)) from None
+            raise self.error(element, str(exc)) from None
 
-    # --------------------------------------------------------------- frames
-    def _frame(self, name: str, scope: str, joint: str, end: str, model: XmlElement) -> Any:
-        """The frame a joint end names: a link's body frame, or a <frame>, maybe nested."""
-        if name == "world":
-            if end == "child":
-                raise Diagnostics(None).error(
-                    f"Joint with name[{joint}] specified invalid child link [world]."
-                )
-            return self.plant.world_frame()
-        full_name = scoped.join(scope, name)
-        while full_name in self.attached_to:  # a <frame>: the link it is attached to
-            full_name = self.attached_to[full_name]
-        namespace, element = scoped.split(full_name)
-        plant = self.plant
-        if plant.HasModelInstanceNamed(namespace):
-            instance = plant.GetModelInstanceByName(namespace)
-            if plant.HasBodyNamed(element, instance):
-                return plant.GetBodyByName(element, instance).body_frame()
-        word = "parent" if end == "parent" else "Child"
-        raise Diagnostics(None).error(
-            f"{word} frame with name[{name}] specified by joint with name[{joint}] not found in "
-            f"model with name[{model.get('name')}]."
-        )
-
-    def _add_frame(self, frame: XmlElement, instance: Any, scope: str) -> None:
-        attached_to = frame.get("attached_to") or "__model__"
-        namespace, element = scoped.split(scoped.join(scope, attached_to))
-        target_instance = self.plant.GetModelInstanceByName(namespace)
-        if self.plant.HasBodyNamed(element, target_instance):
-            parent = self.plant.GetBodyByName(element, target_instance).body_frame()
+    # ----------------------------------------------------------- document
+    def add(self, root: XmlElement, model_name: str | None, parent_scope: str) -> list[Any]:
+        document = self.document
+        if model_name is not None:
+            model = document.model
+            if model is None and len(document.worlds) == 1 and len(document.worlds[0].models) == 1:
+                model = document.worlds[0].models[0]
+            if model is None:
+                raise self.error(root, "File must have a single <model> element.")
+            name = self._model_name(model_name or model.name, parent_scope)
+            self._add_model(model, name, RigidTransform(), model.name, _ROOT)
+            return self.instances[:1]
+        models = 1 if document.model is not None else 0
+        if models + len(document.worlds) != 1:
+            raise self.error(
+                root,
+                "File must have exactly one <model> or exactly one <world>, but instead has "
+                f"{models} models and {len(document.worlds)} worlds",
+            )
+        if document.model is not None:
+            name = self._model_name(document.model.name, parent_scope)
+            self._add_model(document.model, name, RigidTransform(), document.model.name, _ROOT)
         else:
-            parent = self.plant.GetFrameByName(element, target_instance)
-        X_PF = self._X(scoped.join(namespace, element), scoped.join(scope, frame.get("name", "")))
-        self.plant.AddFrame(
-            FixedOffsetFrame(frame.get("name", ""), parent, transform(X_PF), instance)
+            self._add_world(document.worlds[0], parent_scope)
+        return self.instances
+
+    def _model_name(self, name: str, parent_scope: str) -> str:
+        """MakeModelName: the parent's scope, then the first free ``_1``, ``_2``... if renaming."""
+        full = scoped.join(parent_scope, name)
+        if self.context.auto_renaming and self.plant.HasModelInstanceNamed(full):
+            suffix = 1
+            while self.plant.HasModelInstanceNamed(f"{full}_{suffix}"):
+                suffix += 1
+            full = f"{full}_{suffix}"
+        return full
+
+    def _instance(self, name: str) -> Any:
+        """AddModelInstanceIfReusable: the Interface API may have made it already."""
+        if self.plant.HasModelInstanceNamed(name):
+            instance = self.plant.GetModelInstanceByName(name)
+            if int(instance) in self.document.interface_instances:
+                return instance
+        return self.plant.AddModelInstance(name)
+
+    def _add_world(self, world: World, parent_scope: str) -> None:
+        self.check_supported(world.element, _WORLD_ELEMENTS)
+        for model in world.models:
+            name = self._model_name(model.name, parent_scope)
+            self._add_model(model, name, RigidTransform(), model.name, _WORLD)
+        world_instance = self.plant.world_body().model_instance()
+        scope = Scope(self.plant, world_instance, "", "", RigidTransform(), world=True)
+        for frame in world.frames:
+            self._add_frame(frame, scope, self.plant.world_frame())
+        kinds = {self.joints.add(joint, scope) for joint in world.joints}
+        if kinds - {"fixed"}:
+            raise self.error(world.element, "Only fixed joints are permitted in world joints.")
+
+    # -------------------------------------------------------------- model
+    def _add_model(
+        self, model: Model, name: str, X_WP: RigidTransform, vertex: str, parent_frame: str
+    ) -> None:
+        drake_visuals = {
+            id(link): [
+                drake_visual_to_visual(v, self.error)
+                for v in children(link.element, "drake:visual")
+            ]
+            for link in model.links
+        }
+        instance = self._instance(name)
+        self.instances.append(instance)
+        self.check_supported(model.element, _MODEL_ELEMENTS)
+        X_PM = self.graphs.resolve(parent_frame, vertex, parent_frame).transform()
+        scope = Scope(self.plant, instance, name, vertex, X_WP.multiply(X_PM))
+        for nested in model.models:
+            self._add_model(
+                nested, scoped.join(name, nested.name), scope.X_WM, join(vertex, nested.name),
+                scope.frame_scope,
+            )  # fmt: skip
+        bodies = []
+        for link in model.links:
+            if children(link.element, "drake:deformable_properties"):
+                self._refuse_deformable(link)
+                continue
+            bodies.append(self._add_link(link, scope, drake_visuals[id(link)]))
+        model_frame = self._add_model_frame(model, scope, parent_frame)
+        kinds = {self.joints.add(joint, scope) for joint in model.joints}
+        for frame in model.frames:
+            self._add_frame(frame, scope, model_frame)
+        for drake_joint in children(model.element, "drake:joint"):
+            self.joints.add_drake_joint(drake_joint, scope)
+        if model.static:
+            if kinds - {"fixed"}:
+                raise self.error(model.element, "Only fixed joints are permitted in static models.")
+            self._weld_static(bodies)
+        if self.context.has_scene_graph():
+            saved = self.diagnostics
+            self.diagnostics = self._diagnostics(model.element)
+            try:
+                for group in children(model.element, _GROUP):
+                    self._add_group(group, model.element, name)
+            finally:
+                self.diagnostics = saved
+
+    def _refuse_deformable(self, link: Link) -> None:
+        """Deformable links: Drake's error on a continuous plant, reimpl's on a discrete one."""
+        if not self.context.has_scene_graph():
+            self.warn(
+                link.element,
+                "Cannot add a deformable link to a plant without a registered geometry source. "
+                "The deformable link is ignored.",
+            )
+            return
+        if self.plant.time_step() == 0.0:
+            raise RuntimeError(
+                "Calls to RegisterDeformableBody() with a DeformableModel belonging to a "
+                "continuous MultibodyPlant are not allowed."
+            )
+        raise ModelParseError(
+            f"reimpl does not support deformable bodies (<link name='{link.name}'> with "
+            "<drake:deformable_properties>)"
         )
 
-    # --------------------------------------------------------------- joints
-    def _add_joint(self, joint: XmlElement, model: XmlElement, scope: str) -> None:
-        name, joint_type = joint.get("name", ""), joint.get("type", "")
-        parent_name = text_of(joint, "parent", "")
-        child_name = text_of(joint, "child", "")
-        if joint_type not in _JOINT_KINDS and joint_type not in _UNSUPPORTED_JOINTS:
-            raise Diagnostics(None).error(
-                f"Joint type of {joint_type} is invalid. Refer to the SDF documentation for a "
-                "list of valid joint types"
+    def _weld_static(self, bodies: list[tuple[Any, RigidTransform]]) -> None:
+        welded = self._welded_to_world()
+        world = self.plant.world_frame()
+        for body, X_WL in bodies:
+            if int(body.index()) in welded:
+                continue
+            self.plant.AddJoint(
+                WeldJoint(
+                    f"sdformat_model_static_{world.name()}_welds_to_{body.name()}",
+                    world,
+                    body.body_frame(),
+                    X_WL,
+                )
             )
-        frame_on_parent = self._frame(parent_name, scope, name, "parent", model)
-        frame_on_child = self._frame(child_name, scope, name, "child", model)
-        if joint_type in _UNSUPPORTED_JOINTS:
-            raise self.diagnostics.error(
-                f"Joint type ({joint_type}) not supported for joint '{name}'.", joint.line
+
+    def _welded_to_world(self) -> set[int]:
+        """The bodies welded (through weld joints) to the world body."""
+        links: dict[int, set[int]] = {}
+        for index in range(self.plant.num_joints()):
+            joint = self.plant.get_joint(JointIndex(index))
+            if joint.type_name() == "weld":
+                a, b = int(joint.parent_body().index()), int(joint.child_body().index())
+                links.setdefault(a, set()).add(b)
+                links.setdefault(b, set()).add(a)
+        seen, stack = {0}, [0]
+        while stack:
+            for other in links.get(stack.pop(), set()) - seen:
+                seen.add(other)
+                stack.append(other)
+        return seen
+
+    # --------------------------------------------------------------- links
+    def _add_link(
+        self, link: Link, scope: Scope, drake_visuals: list[XmlElement]
+    ) -> tuple[Any, RigidTransform]:
+        element = link.element
+        self.check_supported(element, _LINK_ELEMENTS)
+        self.check_value(element, "kinematic", "false")
+        self.check_value(element, "gravity", "true")
+        body = self.plant.AddRigidBody(name=link.name, model_instance=scope.instance)
+        link_vertex = join(scope.vertex, link.name)
+        X_ML = self.graphs.resolve(scope.frame_scope, link_vertex, scope.frame_scope).transform()
+        X_WL = scope.X_WM.multiply(X_ML)
+        self.plant.SetDefaultFloatingBaseBodyPose(body, X_WL)
+        if not self.context.has_scene_graph():
+            return body, X_WL
+        resolve = lambda uri: self.resolve_file(element, uri)  # noqa: E731
+        for visual in [*children(element, "visual"), *drake_visuals]:
+            geometry = first(visual, "geometry")
+            if geometry is not None:
+                self.check_supported(geometry, GEOMETRY_ELEMENTS)
+            instance = visual_instance(
+                visual,
+                self._X_LG(visual, scope, link_vertex).transform(),
+                drake_visual=visual not in children(element, "visual"),
+                check=self.check_supported,
+                error=self.error,
+                warn=self.warn,
+                resolve=resolve,
             )
-        axes = children(joint, "axis")
-        if joint_type in _NEEDS_AXIS and not axes:
-            raise self.diagnostics.error(
-                f"An axis must be specified for joint '{name}'", joint.line
+            if instance is not None:
+                self.plant.RegisterVisualGeometry(body=body, geometry_instance=instance)
+        for collision in children(element, "collision"):
+            geometry = first(collision, "geometry")
+            if geometry is None:
+                continue
+            self.check_supported(geometry, GEOMETRY_ELEMENTS)
+            shape, X_GC = geometry_shape(geometry, self.check_supported, self.error, resolve)
+            if shape is None:
+                continue
+            X_LC = self._X_LG(collision, scope, link_vertex).transform().multiply(X_GC)
+            properties = proximity_checks(collision, self.check_supported, self.error)
+            self.plant.RegisterCollisionGeometry(
+                body=body,
+                X_BG=X_LC,
+                shape=shape,
+                name=collision.get("name", ""),
+                properties=properties,
             )
-        if joint_type == "universal" and (not axes or not children(joint, "axis2")):
-            raise self.diagnostics.error(
-                f"Both axis and axis2 must be specified for joint '{name}'", joint.line
+        return body, X_WL
+
+    def _X_LG(self, element: XmlElement, scope: Scope, link_vertex: str) -> GzPose:
+        """A visual's or collision's pose in its link (its SemanticPose, as libsdformat has it)."""
+        relative_to, X = read_pose(element)
+        source = join(scope.vertex, relative_to) if relative_to else link_vertex
+        return self.graphs.resolve(scope.frame_scope, source, link_vertex) * X
+
+    # -------------------------------------------------------------- frames
+    def _add_model_frame(self, model: Model, scope: Scope, parent_frame: str) -> Any:
+        link, canonical = model.canonical()
+        if link is not None and not children(link.element, "drake:deformable_properties"):
+            instance, local = scope.instance_and_local(canonical)
+            frame = self.plant.GetFrameByName(local, instance)
+            X_LcM = self.graphs.resolve(parent_frame, scope.vertex, join(scope.vertex, canonical))
+            return self.plant.AddFrame(
+                FixedOffsetFrame("__model__", frame, X_LcM.transform(), scope.instance)
             )
-        joint_frame = scoped.join(scope, name)
-        xyz = self._axis(axes[0], joint_frame, name, model) if axes else [0.0, 0.0, 1.0]
-        pitch = float(text_of(joint, "screw_thread_pitch", "1"))
-        spec = JointSpec(
-            name, _JOINT_KINDS[joint_type], parent_name, child_name, joint.line,
-            (xyz[0], xyz[1], xyz[2]), pitch,
-        )  # fmt: skip
-        if joint_type == "universal":
-            self.diagnostics.warning(
-                "Actuation (via non-zero effort limits) for universal joint "
-                f"'{name}' is not implemented yet and will be ignored.",
-                joint.line,
-            )
-        child_instance = frame_on_child.model_instance()
-        X_PJ = self._X(self._body_pose_frame(frame_on_parent), joint_frame)
-        X_CJ = self._X(self._body_pose_frame(frame_on_child), joint_frame)
-        if joint_type == "universal":
-            R = self._universal_rotation(joint, joint_frame, model, np.array(xyz))
-            X_PJ, X_CJ = kinematics.compose(X_PJ, R), kinematics.compose(X_CJ, R)
-        identity = kinematics.identity()
-        moved = not (np.array_equal(X_PJ[0], identity[0]) and not X_PJ[1].any())
-        # N.B. Measured: a universal joint always gets a parent frame too.
-        if (
-            joint_type == "universal"
-            or moved
-            or _moves_parent_frame(joint, model, parent_name, child_name)
-        ):
-            frame_on_parent = self.plant.AddFrame(
-                FixedOffsetFrame(f"{name}_parent", frame_on_parent, transform(X_PJ), child_instance)
-            )
-        frame_on_child = self.plant.AddFrame(
-            FixedOffsetFrame(f"{name}_child", frame_on_child, transform(X_CJ), child_instance)
+        return self.plant.AddFrame(
+            FixedOffsetFrame("__model__", self.plant.world_frame(), scope.X_WM, scope.instance)
         )
-        self.plant.AddJoint(JOINT_TYPES[spec.kind](spec, frame_on_parent, frame_on_child))
 
-    def _body_pose_frame(self, frame: Any) -> str:
-        """The pose graph's name for a body frame of the plant (the world's is the world)."""
-        if frame.body().index() == 0:
-            return WORLD
-        body = frame.body()
-        return scoped.join(self.plant.GetModelInstanceName(body.model_instance()), body.name())
-
-    def _axis(
-        self, axis: XmlElement, joint_frame: str, joint: str, model: XmlElement
-    ) -> list[float]:
-        """``<xyz>`` in the joint frame J: R_JE·xyz for ``expressed_in`` E (J by default)."""
-        xyz = values_of(axis, "xyz", "0 0 1")
-        expressed_in = next((x.get("expressed_in") for x in children(axis, "xyz")), None)
-        if not expressed_in:
-            return xyz
-        frame = self._pose_frame(scoped.split(joint_frame)[0], expressed_in)
-        if not self.poses.has(frame):
-            raise Diagnostics(None).error(
-                f"axis xyz expressed-in frame with name[{expressed_in}] specified by joint with "
-                f"name[{joint}] not found in model with name[{model.get('name')}]."
-            )
-        R_JE = self._X(joint_frame, frame)[0]
-        return [float(v) for v in R_JE @ np.array(xyz)]
-
-    def _universal_rotation(
-        self, joint: XmlElement, joint_frame: str, model: XmlElement, a1: Any
-    ) -> Pose:
-        """R = [a₁ a₂ a₁×a₂] (unit axes in J), so that the joint's x and y are its axes."""
-        a2 = np.array(self._axis(children(joint, "axis2")[0], joint_frame, "", model))
-        a1, a2 = a1 / np.linalg.norm(a1), a2 / np.linalg.norm(a2)
-        if abs(float(a1 @ a2)) > 1e-10:
-            raise self.diagnostics.error(
-                f"axis and axis2 must be orthogonal for joint '{joint.get('name', '')}'",
-                joint.line,
-            )
-        return np.column_stack([a1, a2, np.cross(a1, a2)]), np.zeros(3)
+    def _add_frame(self, frame: Frame, scope: Scope, default: Any) -> None:
+        """AddFrameFromSpecification: on what ``attached_to`` names (a model: its __model__)."""
+        vertex = join(scope.vertex, frame.name)
+        attached_to = frame.attached_to
+        target = join(scope.vertex, attached_to) if attached_to else scope.frame_scope
+        X_PF = self.graphs.resolve(scope.frame_scope, vertex, target).transform()
+        if not attached_to:
+            parent = default
+        elif self.plant.HasModelInstanceNamed(scoped.join(scope.name, attached_to)):
+            instance = self.plant.GetModelInstanceByName(scoped.join(scope.name, attached_to))
+            parent = self.plant.GetFrameByName("__model__", instance)
+        else:
+            instance, local = scope.instance_and_local(attached_to)
+            if self.plant.HasFrameNamed(local, instance):
+                parent = self.plant.GetFrameByName(local, instance)
+            else:
+                body = attached_body(self.graphs, scope.vertex, frame.name)
+                namespace, local = scoped.split(scoped.join(scope.name, body))
+                instance = self.plant.GetModelInstanceByName(namespace)
+                parent = self.plant.GetFrameByName(local, instance)
+        self.plant.AddFrame(FixedOffsetFrame(frame.name, parent, X_PF))
 
     # --------------------------------------------------------------- groups
     def _texts(self, group: XmlElement, tag: str) -> set[str]:
@@ -515,22 +454,3 @@ def _bool(text: str) -> bool:
         _LOG.error("SDFormat Error [Element.hh:1054] Invalid boolean value")
         return False
     return value
-
-
-def _spec(name: str, kind: str) -> JointSpec:
-    return JointSpec(name, kind, "", "", 0)
-
-
-def _pose_text(element: XmlElement | None) -> str:
-    return " ".join(text_of(element, "pose", "").split()) if element is not None else ""
-
-
-def _moves_parent_frame(joint: XmlElement, model: XmlElement, parent: str, child: str) -> bool:
-    """Whether ``<pose>``s may put the joint frame off the parent link's frame."""
-    links = {link.get("name"): link for link in children(model, "link")}
-    zero = {"", "0 0 0 0 0 0"}
-    joint_pose = _pose_text(joint)
-    parent_pose, child_pose = _pose_text(links.get(parent)), _pose_text(links.get(child))
-    return joint_pose not in zero or (
-        parent_pose != child_pose and {parent_pose, child_pose} != zero
-    )

@@ -1,53 +1,86 @@
-"""SDFormat checks made before Drake sees a model (libsdformat's, as Drake 1.51.1 reports them).
+"""libsdformat's reading of a document, before any DOM object is made (Drake 1.51.1).
 
-libsdformat reads the whole document first; its errors name the text
-``<data-string>`` (a file by its path) and an XML path, e.g.::
+libsdformat reads the XML element by element (``readXml``), expanding each
+``<include>`` where it stands, and reports what it cannot read with the text's
+name (``<data-string>`` for a string, ``/`` + the path for a file) and an XML
+path, e.g. (one line)::
 
     <data-string>:4: error: At XML path /sdf/model[@name="m"]/link: Required
     attribute[name] in element[link] is not specified in SDF.
 
-(one line). Checked here, per element, in document order:
+Per element, in this order (the elements and attributes of _sdf_schema):
 
-* the root is ``<sdf version=...>``, holding exactly one ``<model>`` or ``<world>``;
-* ``name`` on model, link, joint, collision, visual, frame; ``type`` on joint;
-  ``<parent>`` and ``<child>`` in a joint; ``<uri>`` in an include;
-* an unprefixed child that SDFormat does not define (under sdf, world, model,
-  link) is an error, ending in a newline (Drake turns the warning into one);
-* the names of a model's children (links, joints, frames, models, groups) are
-  unique, and so are a link's collision names and its visual names;
-* no model, link, joint or frame name holds ``::``; the message then shows the
-  element as libsdformat prints it (``element_text``).
+1. its attributes in document order: a name with ``:`` is kept as is; an
+   undefined one is an error (at ``path[@attr="value"]``); a bad boolean
+   (``degrees``, ``merge``) is ``Unable to read attribute[...]``; then a
+   missing required attribute;
+2. its value: a ``<pose>`` text, or a boolean (``<static>``) that does not
+   read is ``Error reading element <pose>`` (libsdformat also logs why);
+3. its children in document order: an ``<include>`` is expanded through the
+   caller's hook (_sdf_include); an unprefixed child that SDFormat does not
+   define is an error (its message ends with a newline);
+4. a joint (other than ``ball``) without ``<parent>`` or ``<child>``.
+
+After the whole document (version 1.8 and later): no name holds ``::``.
+Versions before 1.7 are converted first: ``<pose frame=...>`` becomes
+``relative_to``, and ``<use_parent_model_frame>`` (true by default before
+1.5) becomes ``<xyz expressed_in="__model__">``.
 """
 
 from __future__ import annotations
 
-from collections import Counter
+import logging
+from collections.abc import Callable
 
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
+from reimpl.multibody.parsing._sdf_poses import PoseTextError, parse_pose
+from reimpl.multibody.parsing._sdf_schema import description
 from reimpl.multibody.parsing._xml import XmlElement, children
 
-__all__ = ["check_document", "element_text", "scoped_name_error", "xml_path"]
+__all__ = [
+    "IncludeHook",
+    "check_document",
+    "element_text",
+    "log_sdformat_error",
+    "scoped_name_error",
+    "sdformat_bool",
+    "version_tuple",
+    "xml_path",
+]
 
-#: element -> the unprefixed children SDFormat 1.9+ defines
-_DEFINED: dict[str, frozenset[str]] = {
-    "sdf": frozenset(("model", "world", "light", "actor")),
-    "world": frozenset((
-        "audio", "wind", "include", "gravity", "magnetic_field", "atmosphere", "gui", "physics",
-        "scene", "light", "frame", "model", "actor", "plugin", "road", "spherical_coordinates",
-        "state", "population", "joint",
-    )),
-    "model": frozenset((
-        "static", "self_collide", "allow_auto_disable", "include", "model", "enable_wind",
-        "frame", "pose", "link", "joint", "plugin", "gripper",
-    )),
-    "link": frozenset((
-        "gravity", "enable_wind", "self_collide", "kinematic", "must_be_base_link",
-        "velocity_decay", "pose", "inertial", "collision", "visual", "sensor", "projector",
-        "audio_sink", "audio_source", "battery", "light", "particle_emitter",
-    )),
+#: Expands one ``<include>``: (include, its parent, its XML path, the including text's name)
+#: -> the elements that stand in its place.
+IncludeHook = Callable[[XmlElement, XmlElement, str, str], list[XmlElement]]
+
+_BOOLS = {"true": True, "1": True, "false": False, "0": False}
+#: (element, parent) -> the element's value is an SDFormat bool
+_BOOL_VALUES = {
+    ("static", "model"), ("self_collide", "model"), ("allow_auto_disable", "model"),
+    ("enable_wind", "model"), ("static", "include"), ("self_collide", "link"),
+    ("kinematic", "link"), ("gravity", "link"), ("must_be_base_link", "link"),
+    ("enable_wind", "link"),
 }  # fmt: skip
-_NAMED = frozenset({"model", "link", "joint", "collision", "visual", "frame"})
-_UNSCOPED = frozenset({"model", "link", "joint", "frame"})
+_BOOL_ATTRIBUTES = {("pose", "degrees"), ("include", "merge"), ("inertial", "auto")}
+_UNSCOPED_SINCE = (1, 8)
+
+
+def sdformat_bool(text: str) -> bool | None:
+    """SDFormat's bool: ``true``/``1`` or ``false``/``0``, trimmed, any case; else None."""
+    return _BOOLS.get(text.strip().lower())
+
+
+def log_sdformat_error(message: str) -> None:
+    """libsdformat's console line for a value it cannot read (pydrake logs it, measured)."""
+    logging.getLogger("drake").error(
+        "SDFormat Error [Param.cc:1289] Error Code 34: Msg: %s", message
+    )
+
+
+def version_tuple(version: str) -> tuple[int, ...]:
+    try:
+        return tuple(int(part) for part in version.split("."))
+    except ValueError:
+        return (0,)
 
 
 def element_text(element: XmlElement, indent: str = "") -> str:
@@ -76,91 +109,147 @@ def xml_path(element: XmlElement, parents: list[XmlElement]) -> str:
     return "/" + "/".join(parts)
 
 
+def _step(element: XmlElement) -> str:
+    name = element.get("name")
+    return f"/{element.tag}" if name is None else f'/{element.tag}[@name="{name}"]'
+
+
 class _Checker:
-    def __init__(self, label: str) -> None:
+    def __init__(self, label: str, include: IncludeHook | None) -> None:
         self.label = label
+        self.include = include
 
-    def error(
-        self, element: XmlElement, parents: list[XmlElement], message: str
-    ) -> ModelParseError:
-        path = xml_path(element, parents)
-        return ModelParseError(f"{self.label}:{element.line}: error: At XML path {path}: {message}")
+    def error(self, line: int, path: str, message: str) -> ModelParseError:
+        return ModelParseError(f"{self.label}:{line}: error: At XML path {path}: {message}")
 
-    def check(self, element: XmlElement, parents: list[XmlElement]) -> None:
-        tag = element.tag
-        if tag in _NAMED and element.get("name") is None:
-            raise self.error(
-                element,
-                parents,
-                f"Required attribute[name] in element[{tag}] is not specified in SDF.",
-            )
-        if tag in _UNSCOPED and "::" in element.get("name", ""):
-            raise scoped_name_error(element)
-        if tag == "joint":
-            self._check_joint(element, parents)
-        if tag == "include":
-            self._check_include(element, parents)
-        for child in element:
+    def check(self, element: XmlElement, parent_tag: str | None, path: str) -> None:
+        """readXml: ``element``, whose XML path is ``path``, and what it holds."""
+        defined = description(element.tag, parent_tag)
+        if defined is None:
+            return
+        self._check_attributes(element, path, defined[0])
+        self._check_value(element, parent_tag, path)
+        include_index = -1
+        for child in list(element):
             assert isinstance(child, XmlElement)
-            defined = _DEFINED.get(tag)
-            if defined is not None and ":" not in child.tag and child.tag not in defined:
+            if child.tag == "include" and element.tag in ("model", "world"):
+                include_index += 1
+                self._include(element, child, f"{path}/include[{include_index}]")
+                continue
+            child_path = path + _step(child)
+            if child.tag in defined[1]:
+                self.check(child, element.tag, child_path)
+            elif ":" not in child.tag:
                 raise self.error(
-                    child,
-                    [*parents, element],
-                    f"XML Element[{child.tag}], child of element[{tag}], not defined in SDF. "
-                    f"Copying[{child.tag}] as children of [{tag}].\n",
+                    child.line,
+                    child_path,
+                    f"XML Element[{child.tag}], child of element[{element.tag}], not defined "
+                    f"in SDF. Copying[{child.tag}] as children of [{element.tag}].\n",
                 )
-            self.check(child, [*parents, element])
-        if tag in ("model", "world"):
-            self._check_unique_names(element)
-        if tag == "link":
-            self._check_unique_geometry(element)
+        if element.tag == "joint" and element.get("type") != "ball":
+            for end in ("parent", "child"):
+                if not children(element, end):
+                    raise self.error(
+                        element.line,
+                        f"{path}/{end}",
+                        f"XML Missing required element[{end}], child of element[joint]",
+                    )
 
-    def _check_joint(self, joint: XmlElement, parents: list[XmlElement]) -> None:
-        if joint.get("type") is None:
-            raise self.error(
-                joint,
-                parents,
-                "Required attribute[type] in element[joint] is not specified in SDF.",
-            )
-        for end in ("parent", "child"):
-            if not children(joint, end):
+    def _check_attributes(
+        self, element: XmlElement, path: str, attributes: dict[str, bool]
+    ) -> None:
+        for key, value in element.attrib.items():
+            if ":" in key:
+                continue
+            attribute_path = f'{path}[@{key}="{value}"]'
+            if key not in attributes:
+                raise self.error(
+                    element.line,
+                    attribute_path,
+                    f"XML Attribute[{key}] in element[{element.tag}] not defined in SDF.\n",
+                )
+            if (element.tag, key) in _BOOL_ATTRIBUTES and sdformat_bool(value) is None:
+                log_sdformat_error("Invalid boolean value")
+                raise self.error(element.line, attribute_path, f"Unable to read attribute[{key}]")
+        for key, required in attributes.items():
+            if required and key not in element.attrib:
+                raise self.error(
+                    element.line,
+                    path,
+                    f"Required attribute[{key}] in element[{element.tag}] is not specified in SDF.",
+                )
+
+    def _check_value(self, element: XmlElement, parent_tag: str | None, path: str) -> None:
+        if element.tag == "pose":
+            try:
+                parse_pose(
+                    element.text or "", element.get("rotation_format"), element.get("degrees")
+                )
+            except PoseTextError as exc:
+                if exc.attribute is None:
+                    log_sdformat_error(str(exc))
+                    raise self.error(element.line, path, "Error reading element <pose>") from None
+        elif (element.tag, parent_tag) in _BOOL_VALUES and sdformat_bool(
+            element.text or ""
+        ) is None:
+            log_sdformat_error("Invalid boolean value")
+            raise self.error(element.line, path, f"Error reading element <{element.tag}>")
+
+    def _include(self, parent: XmlElement, include: XmlElement, path: str) -> None:
+        """Checks the ``<include>`` itself (paths from the include), then expands it in place."""
+        _Checker(self.label, None).check(include, parent.tag, "")
+        replacements = self.include(include, parent, path, self.label) if self.include else []
+        position = list(parent).index(include)
+        parent.remove(include)
+        for offset, element in enumerate(replacements):
+            parent.insert(position + offset, element)
+
+
+def _convert(root: XmlElement, version: tuple[int, ...]) -> None:
+    """libsdformat's conversions of versions before 1.7 that Drake's reading depends on."""
+    if version >= (1, 7):
+        return
+    for pose in root.iter("pose"):
+        if "frame" in pose.attrib and "relative_to" not in pose.attrib:
+            pose.set("relative_to", pose.attrib.pop("frame"))
+    for joint in root.iter("joint"):
+        for axis in [*children(joint, "axis"), *children(joint, "axis2")]:
+            flags = children(axis, "use_parent_model_frame")
+            parent_frame = sdformat_bool(flags[0].text or "") if flags else version < (1, 5)
+            for flag in flags:
+                axis.remove(flag)
+            if parent_frame:
+                for xyz in children(axis, "xyz"):
+                    xyz.set("expressed_in", "__model__")
+
+
+def _scoped_names(element: XmlElement) -> None:
+    """recursiveSiblingNoDoubleColonInNames: no ``name`` (outside plugins and drake:) has ``::``."""
+    if element.tag == "plugin" or ":" in element.tag:
+        return
+    if "::" in element.get("name", ""):
+        raise scoped_name_error(element)
+    for child in element:
+        assert isinstance(child, XmlElement)
+        _scoped_names(child)
+
+
+def check_document(root: XmlElement, label: str, include: IncludeHook | None) -> None:
+    """Reads ``root`` (an ``<sdf>``) as libsdformat does; raises its first error.
+
+    Each ``<include>`` of a model or world is replaced by what ``include`` returns.
+    """
+    version = version_tuple(root.get("version", ""))
+    _convert(root, version)
+    models = children(root, "model")
+    if models:
+        for pose in children(models[0], "pose"):
+            relative_to = pose.get("relative_to")
+            if relative_to:
                 raise ModelParseError(
-                    f"{self.label}:{joint.line}: error: At XML path "
-                    f"{xml_path(joint, parents)}/{end}: XML Missing required element[{end}], "
-                    "child of element[joint]"
+                    f"{label}:{pose.line}: error: Attribute //pose[@relative_to] of top level "
+                    f"model must be left empty, found //pose[@relative_to='{relative_to}'].\n"
                 )
-
-    def _check_include(self, include: XmlElement, parents: list[XmlElement]) -> None:
-        if not children(include, "uri"):
-            index = [e for e in parents[-1] if e.tag == "include"].index(include)
-            path = xml_path(parents[-1], parents[:-1])
-            raise ModelParseError(
-                f"{self.label}:{include.line}: error: At XML path {path}/include[{index}]: "
-                "<include> element missing 'uri' attribute"
-            )
-
-    def _check_unique_names(self, element: XmlElement) -> None:
-        names = Counter(
-            c.get("name") for c in element if c.get("name") is not None and c.tag != "include"
-        )
-        for name, count in names.items():
-            if count > 1:
-                raise Diagnostics(None).error(
-                    f"Non-unique name[{name}] detected {count} times in XML children of "
-                    f"{element.tag} with name[{element.get('name')}]."
-                )
-
-    def _check_unique_geometry(self, link: XmlElement) -> None:
-        for role in ("collision", "visual"):
-            seen: set[str] = set()
-            for geometry in children(link, role):
-                name = geometry.get("name", "")
-                if name in seen:
-                    raise Diagnostics(None).error(f"{role} with name[{name}] already exists.")
-                seen.add(name)
-
-
-def check_document(root: XmlElement, label: str) -> None:
-    """Raises libsdformat's first error about the document under ``root`` (an ``<sdf>``)."""
-    _Checker(label).check(root, [])
+    _Checker(label, include).check(root, None, "/sdf")
+    if version >= _UNSCOPED_SINCE:
+        _scoped_names(root)
