@@ -56,7 +56,6 @@ from reimpl.multibody.parsing._sdf_geometry import (
     drake_visual_to_visual,
     first,
     geometry_shape,
-    proximity_checks,
     visual_instance,
 )
 from reimpl.multibody.parsing._sdf_graph import join
@@ -64,6 +63,7 @@ from reimpl.multibody.parsing._sdf_include import Loaded, load_include_hook
 from reimpl.multibody.parsing._sdf_joints import JointAdder
 from reimpl.multibody.parsing._sdf_load import Document, attached_body, load_document
 from reimpl.multibody.parsing._sdf_poses import GzPose, read_pose
+from reimpl.multibody.parsing._sdf_proximity import collision_properties
 from reimpl.multibody.parsing._sdf_scope import Scope
 from reimpl.multibody.parsing._xml import XmlElement, XmlSyntaxError, children, parse_xml
 from reimpl.multibody.tree import FixedOffsetFrame, JointIndex, WeldJoint
@@ -361,7 +361,9 @@ class _Builder:
             if shape is None:
                 continue
             X_LC = self._X_LG(collision, scope, link_vertex).transform().multiply(X_GC)
-            properties = proximity_checks(collision, self.check_supported, self.error)
+            properties = collision_properties(
+                collision, self.check_supported, self.error, self.warn
+            )
             self.plant.RegisterCollisionGeometry(
                 body=body,
                 X_BG=X_LC,

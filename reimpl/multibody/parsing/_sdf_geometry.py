@@ -45,7 +45,6 @@ from reimpl.geometry import (
     IllustrationProperties,
     Mesh,
     PerceptionProperties,
-    ProximityProperties,
     Shape,
     Sphere,
 )
@@ -59,7 +58,6 @@ __all__ = [
     "drake_visual_to_visual",
     "first",
     "geometry_shape",
-    "proximity_checks",
     "visual_instance",
 ]
 
@@ -81,15 +79,6 @@ _VISUAL_ELEMENTS = frozenset({
     "pose", "drake:accepting_renderer",
 })  # fmt: skip
 _MATERIAL_ELEMENTS = frozenset({"ambient", "diffuse", "drake:diffuse_map", "emissive", "specular"})
-_COLLISION_ELEMENTS = frozenset(
-    {"drake:proximity_properties", "geometry", "laser_retro", "pose", "surface"}
-)
-_PROXIMITY_ELEMENTS = frozenset({
-    "drake:rigid_hydroelastic", "drake:compliant_hydroelastic", "drake:soft_hydroelastic",
-    "drake:mesh_resolution_hint", "drake:hydroelastic_modulus", "drake:hydroelastic_margin",
-    "drake:hunt_crossley_dissipation", "drake:relaxation_time", "drake:point_contact_stiffness",
-    "drake:mu_dynamic", "drake:mu_static",
-})  # fmt: skip
 
 
 def first(element: XmlElement, tag: str) -> XmlElement | None:
@@ -251,29 +240,6 @@ def visual_instance(
         if not (accepting.text or "").strip():
             raise error(accepting, "<drake:accepting_renderer> tag given without any name")
     return instance
-
-
-def proximity_checks(collision: XmlElement, check: Checker, error: Raiser) -> ProximityProperties:
-    """MakeProximityPropertiesForCollision's checks; the role's properties (values not read)."""
-    check(collision, _COLLISION_ELEMENTS)
-    for drake in children(collision, "drake:proximity_properties")[:1]:
-        check(drake, _PROXIMITY_ELEMENTS)
-        if children(drake, "drake:soft_hydroelastic"):
-            raise error(
-                collision,
-                "A <collision> geometry has defined the unsupported tag <drake:soft_hydroelastic>. "
-                "Please change it to <drake:compliant_hydroelastic>.",
-            )
-        if children(drake, "drake:rigid_hydroelastic") and children(
-            drake, "drake:compliant_hydroelastic"
-        ):
-            raise error(
-                collision,
-                "A <collision> geometry has defined mutually-exclusive tags "
-                "<drake:rigid_hydroelastic> and <drake:compliant_hydroelastic>. Only one can be "
-                "provided.",
-            )
-    return ProximityProperties()
 
 
 def drake_visual_to_visual(element: XmlElement, error: Raiser) -> XmlElement:
