@@ -103,7 +103,8 @@ def read_sdf(
         raise Diagnostics(None).error(f"Unable to read SDF string: {source.text}")
     loaded = Loaded()
     label = source.label or source.path or "<data-string>"
-    check_document(root, label, load_include_hook(context.package_map, loaded))
+    includes = load_include_hook(context.package_map, loaded, context.strict)
+    check_document(root, label, includes, context.strict)
     if model_name is not None and "::" in model_name:
         for model in children(root, "model"):
             model.set("name", model_name)
@@ -134,8 +135,8 @@ class _Builder:
         return Diagnostics(label, self.context.strict)
 
     def _line(self, element: XmlElement) -> int | None:
-        """Drake's line for an element: none for an element libsdformat does not define."""
-        return None if ":" in element.tag else element.line
+        """Drake's line for an element: none for one libsdformat does not define (or copied)."""
+        return None if ":" in element.tag or not element.line else element.line
 
     def error(self, element: XmlElement, message: str) -> ModelParseError:
         return self._diagnostics(element).error(message, self._line(element))
@@ -337,7 +338,7 @@ class _Builder:
         if not self.context.has_scene_graph():
             return body, X_WL
         resolve = lambda uri: self.resolve_file(element, uri)  # noqa: E731
-        for visual in [*children(element, "visual"), *drake_visuals]:
+        for visual in _visuals(element, drake_visuals):
             geometry = first(visual, "geometry")
             if geometry is not None:
                 self.check_supported(geometry, GEOMETRY_ELEMENTS)
@@ -426,16 +427,20 @@ class _Builder:
         return values
 
     def _add_group(self, group: XmlElement, model: XmlElement, scope: str) -> None:
+        # N.B. Drake's order (CollectCollisionFilterGroup): ignore, name, members, member
+        # groups, the group, then its ignored groups (measured: an empty ignored group is
+        # reported after "has no members").
+        if _bool(group.get("ignore", "false")):
+            return
         name = group.get("name")
         if name is None:
             raise self.diagnostics.error(
                 f'The tag <{_GROUP}> is missing the required attribute "name"'
             )
-        if not name or _bool(group.get("ignore", "false")):
+        if not name:
             return
         members = self._texts(group, "drake:member")
         member_groups = self._texts(group, "drake:member_group")
-        ignored = self._texts(group, "drake:ignored_collision_filter_group")
         resolver = self.context.resolver
         resolver.add_group(
             self.diagnostics,
@@ -445,6 +450,7 @@ class _Builder:
             member_group_names=member_groups,
             scope=scope,
         )
+        ignored = self._texts(group, "drake:ignored_collision_filter_group")
         for other in sorted(ignored):
             resolver.add_pair(name, other, scope)
 
@@ -456,3 +462,14 @@ def _bool(text: str) -> bool:
         _LOG.error("SDFormat Error [Element.hh:1054] Invalid boolean value")
         return False
     return value
+
+
+def _visuals(link: XmlElement, drake_visuals: list[XmlElement]) -> list[XmlElement]:
+    """The visuals, then the ``<drake:visual>``s whose name is not taken (Link::AddVisual)."""
+    visuals = children(link, "visual")
+    names = {visual.get("name") for visual in visuals}
+    for visual in drake_visuals:
+        if visual.get("name") not in names:
+            names.add(visual.get("name"))
+            visuals.append(visual)
+    return visuals

@@ -115,9 +115,10 @@ def _step(element: XmlElement) -> str:
 
 
 class _Checker:
-    def __init__(self, label: str, include: IncludeHook | None) -> None:
+    def __init__(self, label: str, include: IncludeHook | None, strict: bool) -> None:
         self.label = label
         self.include = include
+        self.strict = strict
 
     def error(self, line: int, path: str, message: str) -> ModelParseError:
         return ModelParseError(f"{self.label}:{line}: error: At XML path {path}: {message}")
@@ -138,6 +139,10 @@ class _Checker:
                 continue
             child_path = path + _step(child)
             if child.tag in defined[1]:
+                if defined[1][child.tag] == "-1":
+                    Diagnostics(None, self.strict).warning(
+                        f"At XML path {child_path}: SDF Element[{child.tag}] is deprecated\n"
+                    )
                 self.check(child, element.tag, child_path)
             elif ":" not in child.tag:
                 raise self.error(
@@ -197,7 +202,7 @@ class _Checker:
 
     def _include(self, parent: XmlElement, include: XmlElement, path: str) -> None:
         """Checks the ``<include>`` itself (paths from the include), then expands it in place."""
-        _Checker(self.label, None).check(include, parent.tag, "")
+        _Checker(self.label, None, self.strict).check(include, parent.tag, "")
         replacements = self.include(include, parent, path, self.label) if self.include else []
         position = list(parent).index(include)
         parent.remove(include)
@@ -234,22 +239,27 @@ def _scoped_names(element: XmlElement) -> None:
         _scoped_names(child)
 
 
-def check_document(root: XmlElement, label: str, include: IncludeHook | None) -> None:
+def check_document(
+    root: XmlElement, label: str, include: IncludeHook | None, strict: bool = False
+) -> None:
     """Reads ``root`` (an ``<sdf>``) as libsdformat does; raises its first error.
 
-    Each ``<include>`` of a model or world is replaced by what ``include`` returns.
+    Each ``<include>`` of a model or world is replaced by what ``include`` returns. A
+    deprecated element is warned about (an error with ``strict``).
     """
     version = version_tuple(root.get("version", ""))
     _convert(root, version)
     models = children(root, "model")
+    # N.B. checkXmlFromRoot names a string "<<data-string>>" (it wraps its name again).
+    source = f"<{label}>" if label == "<data-string>" else label
     if models:
         for pose in children(models[0], "pose"):
             relative_to = pose.get("relative_to")
             if relative_to:
                 raise ModelParseError(
-                    f"{label}:{pose.line}: error: Attribute //pose[@relative_to] of top level "
+                    f"{source}:{pose.line}: error: Attribute //pose[@relative_to] of top level "
                     f"model must be left empty, found //pose[@relative_to='{relative_to}'].\n"
                 )
-    _Checker(label, include).check(root, None, "/sdf")
+    _Checker(label, include, strict).check(root, None, "/sdf")
     if version >= _UNSCOPED_SINCE:
         _scoped_names(root)

@@ -30,6 +30,7 @@ else the first interface model's.
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from dataclasses import dataclass, field
 from typing import Any
@@ -239,11 +240,13 @@ class _Loader:
                 f"Joint type of {joint_type} is invalid. Refer to the SDF documentation for a "
                 "list of valid joint types"
             )
-        expressed_in = [
-            xyz.get("expressed_in", "")
-            for axis in (*children(element, "axis"), *children(element, "axis2"))
-            for xyz in children(axis, "xyz")[:1]
-        ]
+        expressed_in = []
+        for axis in (*children(element, "axis"), *children(element, "axis2")):
+            xyz = children(axis, "xyz")[:1]
+            values = [float(v) for v in (xyz[0].text or "").split()] if xyz else [0.0, 0.0, 1.0]
+            if abs(math.sqrt(sum(v * v for v in values))) <= 1e-6:
+                raise _error("The norm of the xyz vector cannot be zero")
+            expressed_in.append(xyz[0].get("expressed_in", "") if xyz else "")
         return Joint(name, element, X, relative_to, parent, child, joint_type, expressed_in)
 
     def frame(self, element: XmlElement) -> Frame:

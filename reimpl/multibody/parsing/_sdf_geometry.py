@@ -243,16 +243,20 @@ def visual_instance(
 
 
 def drake_visual_to_visual(element: XmlElement, error: Raiser) -> XmlElement:
-    """DrakeVisualToSdfVisual: a ``<drake:visual>`` as a ``<visual>`` (tags unprefixed)."""
+    """DrakeVisualToSdfVisual: a ``<drake:visual>`` as a ``<visual>`` (tags unprefixed).
+
+    The copies have no line (0): libsdformat keeps none for elements it does not define.
+    """
 
     def convert(node: XmlElement) -> XmlElement:
         if not node.tag.startswith("drake:"):
+            # N.B. libsdformat keeps no line for what it copies from unknown elements.
             raise error(
-                node,
+                element,
                 "All tags under a drake-namespaced tag must likewise be drake-namespaced.",
             )
         copy = XmlElement(node.tag, dict(node.attrib))
-        copy.line, copy.text = node.line, node.text
+        copy.line, copy.text = 0, node.text
         if node.tag in ("drake:perception_properties", "drake:illustration_properties"):
             copy.extend(list(node))
             return copy

@@ -393,8 +393,15 @@ class Graphs:
                 )
         return self.X_scope(scope, resolve_to).inverse() * self.X_scope(scope, vertex)
 
-    def attached_body(self, vertex: str) -> str:
-        """The vertex at the end of ``vertex``'s attached-to chain (a link, or world)."""
+    def attached_body(self, vertex: str, name: str) -> str:
+        """The vertex at the end of ``vertex``'s attached-to chain (a link, or world).
+
+        ``name`` is how the caller named it (for libsdformat's message if it is unknown).
+        """
+        if vertex not in self.frame.types:
+            raise _error(
+                f"FrameAttachedToGraph unable to find unique frame with name [{name}] in graph."
+            )
         while self.frame.out.get(vertex):
             vertex = self.frame.out[vertex][0]
         return vertex

@@ -91,9 +91,10 @@ def find_file(uri: str, package_map: PackageMap) -> str | None:
 class _Includes:
     """The include hook of one parse (shared by every included document)."""
 
-    def __init__(self, package_map: PackageMap, loaded: Loaded) -> None:
+    def __init__(self, package_map: PackageMap, loaded: Loaded, strict: bool) -> None:
         self.package_map = package_map
         self.loaded = loaded
+        self.strict = strict
 
     def __call__(
         self, include: XmlElement, parent: XmlElement, path: str, label: str
@@ -174,7 +175,7 @@ class _Includes:
             )
         for element in root.iter():
             self.loaded.origins[element] = file_label  # type: ignore[index]
-        check_document(root, file_label, self)
+        check_document(root, file_label, self, self.strict)
         models = children(root, "model")
         kinds = [kind for kind in ("model", "actor", "light") if children(root, kind)]
         for other in kinds[1:]:
@@ -230,6 +231,6 @@ def _is_sdf_file(path: str) -> bool:
     return dot >= 0 and path[dot:] in _SDF_SUFFIXES
 
 
-def load_include_hook(package_map: PackageMap, loaded: Loaded) -> _Includes:
+def load_include_hook(package_map: PackageMap, loaded: Loaded, strict: bool) -> _Includes:
     """The hook that expands the includes of one parse (check_document's ``include``)."""
-    return _Includes(package_map, loaded)
+    return _Includes(package_map, loaded, strict)

@@ -209,7 +209,11 @@ class JointAdder:
             )
 
     def _screw(self, joint: Joint, scope: Scope, ends: _Ends, damping: float) -> None:
-        pitch = number(joint.element, "screw_thread_pitch", 1.0)
+        """The pitch is ``<screw_thread_pitch>``, else −2π/``<thread_pitch>``, else 1."""
+        pitch = number(joint.element, "screw_thread_pitch", np.nan)
+        if np.isnan(pitch):
+            thread_pitch = number(joint.element, "thread_pitch", np.nan)
+            pitch = 1.0 if np.isnan(thread_pitch) else -2 * np.pi / thread_pitch
         axis = self._axis(joint, scope, 0)
         self._make(ScrewJoint, joint, ends, axis, pitch, damping)
         self._one_axis_warnings(joint)

@@ -80,7 +80,7 @@ def load_document(context: ParseContext, loaded: Loaded, root: XmlElement) -> Do
 
 def attached_body(graphs: Graphs, vertex: str, name: str) -> str:
     """resolveFrameAttachedToBody: the link ``name`` (in scope ``vertex``) is attached to."""
-    body = graphs.attached_body(join(vertex, name))
+    body = graphs.attached_body(join(vertex, name), name)
     if body == _WORLD or not vertex:
         return body
     return body.removeprefix(f"{vertex}::")

@@ -19,7 +19,14 @@ _POSE: Description = ({"relative_to": False, "rotation_format": False, "degrees"
 _AXIS: Description = ({}, {"xyz": "1", "dynamics": "0", "limit": "1", "mimic": "0"})
 
 SCHEMA: dict[str, Description] = {
-    "sdf": ({"version": True}, {"world": "*", "model": "0", "actor": "0", "light": "0"}),
+    "sdf": (
+        {"version": True},
+        {
+            "world": "*", "model": "0", "actor": "0", "light": "0",
+            # Drake's own deprecated element, for its tests (deprecation_unit_testing.patch)
+            "_drake_deprecation_unit_test_element": "-1",
+        },
+    ),
     "world": (
         {"name": True},
         {
