@@ -41,6 +41,7 @@ collision-filtering subset).
 
 from __future__ import annotations
 
+import functools
 import logging
 from typing import Any
 
@@ -49,6 +50,7 @@ from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
 from reimpl.multibody.parsing._package_map import UriError, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
+from reimpl.multibody.parsing._sdf_deformable import refuse_deformable
 from reimpl.multibody.parsing._sdf_document import check_document, scoped_name_error
 from reimpl.multibody.parsing._sdf_dom import Frame, Link, Model, World
 from reimpl.multibody.parsing._sdf_geometry import (
@@ -250,7 +252,13 @@ class _Builder:
         bodies = []
         for link in model.links:
             if children(link.element, "drake:deformable_properties"):
-                self._refuse_deformable(link)
+                refuse_deformable(
+                    link.element,
+                    self,
+                    functools.partial(self.resolve_file, link.element),
+                    has_scene_graph=self.context.has_scene_graph(),
+                    plant=self.plant,
+                )
                 continue
             bodies.append(self._add_link(link, scope, drake_visuals[id(link)]))
         model_frame = self._add_model_frame(model, scope, parent_frame)
@@ -271,25 +279,6 @@ class _Builder:
                     self._add_group(group, model.element, name)
             finally:
                 self.diagnostics = saved
-
-    def _refuse_deformable(self, link: Link) -> None:
-        """Deformable links: Drake's error on a continuous plant, reimpl's on a discrete one."""
-        if not self.context.has_scene_graph():
-            self.warn(
-                link.element,
-                "Cannot add a deformable link to a plant without a registered geometry source. "
-                "The deformable link is ignored.",
-            )
-            return
-        if self.plant.time_step() == 0.0:
-            raise RuntimeError(
-                "Calls to RegisterDeformableBody() with a DeformableModel belonging to a "
-                "continuous MultibodyPlant are not allowed."
-            )
-        raise ModelParseError(
-            f"reimpl does not support deformable bodies (<link name='{link.name}'> with "
-            "<drake:deformable_properties>)"
-        )
 
     def _weld_static(self, bodies: list[tuple[Any, RigidTransform]]) -> None:
         welded = self._welded_to_world()
