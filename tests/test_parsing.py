@@ -996,6 +996,191 @@ def test_sdf_error_message(mb: Modules, case: str) -> None:
     assert str(info.value) == message
 
 
+# ------------------------------------------------- SDFormat includes and frames
+
+TWO_LINKS = sdf(
+    '<model name="two">\n'
+    + link("a")
+    + '<link name="b"><pose>0 0 1 0 0 0</pose><collision name="c"><geometry><sphere>'
+    "<radius>0.1</radius></sphere></geometry></collision></link>\n"
+    '<joint name="j" type="revolute"><parent>a</parent><child>b</child>'
+    "<axis><xyz>0 1 0</xyz></axis></joint>\n"
+    '<frame name="tip" attached_to="b"><pose>0 0 0.5 0 0 0</pose></frame>\n'
+    "</model>\n"
+)
+
+
+def included(mb: Modules, tmp_path: Path, **files: str) -> Parsed:
+    """A Parsed whose package ``inc`` is ``tmp_path``, holding ``files`` (name -> text)."""
+    for name, text in files.items():
+        (tmp_path / name).write_text(text)
+    parsed = Parsed(mb)
+    parsed.parser.package_map().Add(package_name="inc", package_path=str(tmp_path))
+    return parsed
+
+
+def default_position(parsed: Parsed, model: str, body: str) -> list[float]:
+    plant = parsed.plant
+    instance = plant.GetModelInstanceByName(model)
+    X_WB = plant.GetDefaultFloatingBaseBodyPose(plant.GetBodyByName(body, instance))
+    return [float(v) for v in X_WB.translation()]
+
+
+def test_sdf_a_model_made_only_of_includes_is_a_model(mb: Modules, tmp_path: Path) -> None:
+    """Its frame is on the first included model's canonical link (once a bare KeyError)."""
+    parsed = included(mb, tmp_path, **{"two.sdf": TWO_LINKS})
+    text = sdf(
+        '<model name="top">\n<include><uri>package://inc/two.sdf</uri></include>\n'
+        "<include><uri>package://inc/two.sdf</uri><name>second</name>"
+        "<pose>1 0 0 0 0 0</pose></include>\n</model>\n"
+    )
+    assert parsed.add(text, "sdf") == ["top", "top::two", "top::second"]
+    assert parsed.bodies() == {"top::two::a", "top::two::b", "top::second::a", "top::second::b"}
+    top = parsed.plant.GetModelInstanceByName("top")
+    assert parsed.plant.GetFrameByName("__model__", top).body().name() == "a"
+    assert default_position(parsed, "top::second", "b") == [1.0, 0.0, 1.0]
+    parsed.plant.Finalize()
+    two_a, two_b = "top::two::a/c", "top::two::b/c"
+    second_a, second_b = "top::second::a/c", "top::second::b/c"
+    assert parsed.candidates() == pairs(two_a, two_b, second_a, second_b) - {
+        pair(two_a, two_b),
+        pair(second_a, second_b),
+    }
+
+
+def test_sdf_a_nested_model_may_be_posed_relative_to_a_later_include(
+    mb: Modules, tmp_path: Path
+) -> None:
+    """x is at the included model's frame ``tip``: (0, 1, 0) + (0, 0, 1) + (0, 0, 0.5)."""
+    parsed = included(mb, tmp_path, **{"two.sdf": TWO_LINKS})
+    text = sdf(
+        '<model name="top">\n<link name="base"/>\n'
+        '<model name="n"><pose relative_to="later::tip"/><link name="x"/></model>\n'
+        "<include><uri>package://inc/two.sdf</uri><name>later</name>"
+        '<pose relative_to="base">0 1 0 0 0 0</pose></include>\n</model>\n'
+    )
+    assert parsed.add(text, "sdf") == ["top", "top::n", "top::later"]
+    assert default_position(parsed, "top::n", "x") == [0.0, 1.0, 1.5]
+
+
+def test_sdf_an_include_error_names_the_uri_line(mb: Modules, tmp_path: Path) -> None:
+    """libsdformat reports an unknown URI at the ``<uri>``, not the ``<include>`` (measured)."""
+    parsed = included(mb, tmp_path)
+    text = sdf(
+        '<model name="top">\n<link name="base"/>\n<include>\n<name>x</name>\n'
+        "<uri>package://inc/nope.sdf</uri>\n</include>\n</model>\n"
+    )
+    with pytest.raises(RuntimeError) as info:
+        parsed.add(text, "sdf")
+    assert str(info.value) == (
+        '<data-string>:7: error: At XML path /sdf/model[@name="top"]/include[0]/uri: Unable to '
+        "find uri[package://inc/nope.sdf]"
+    )
+
+
+def test_sdf_an_included_model_directory_names_its_file_in_model_config(
+    mb: Modules, tmp_path: Path
+) -> None:
+    """The highest ``<sdf version>`` wins; one newer than 1.12 is an error (libsdformat's
+    warning, measured); a directory without model.config is an error."""
+    for name, versions in (("robot", ("1.6", "1.9")), ("future", ("1.9", "1.99"))):
+        (tmp_path / name).mkdir()
+        entries = "".join(f'<sdf version="{v}">v{v}.sdf</sdf>' for v in versions)
+        (tmp_path / name / "model.config").write_text(
+            f'<?xml version="1.0"?>\n<model><name>{name}</name>{entries}</model>\n'
+        )
+        for version in versions:
+            model = f'<model name="v{version.replace(".", "_")}">\n' + link("a") + "</model>\n"
+            (tmp_path / name / f"v{version}.sdf").write_text(sdf(model))
+
+    def include(uri: str) -> str:
+        return sdf(
+            f'<model name="top">\n<include><uri>package://inc/{uri}</uri></include>\n</model>\n'
+        )
+
+    assert included(mb, tmp_path).add(include("robot/"), "sdf") == ["top", "top::v1_9"]
+    for uri, message in (
+        ("future/", "error: Ignoring version 1.99 for model future because is newer than this "
+         "sdf parser (version 1.12)"),
+        ("", f"error: Could not find model.config or manifest.xml in [{tmp_path}/]"),
+    ):  # fmt: skip
+        with pytest.raises(RuntimeError) as info:
+            included(mb, tmp_path).add(include(uri), "sdf")
+        assert str(info.value) == message
+
+
+def test_sdf_a_merge_include_dissolves_into_its_parent(mb: Modules, tmp_path: Path) -> None:
+    """The links, joints and frames become the parent's; ``_merged__two__model__`` stands for
+    the merged model's frame, on its canonical link. Its filter groups are dropped (measured)."""
+    grouped = TWO_LINKS.replace("</model>", sdf_group("g", ("a", "b"), ("g",)) + "</model>")
+    parsed = included(mb, tmp_path, **{"two.sdf": grouped})
+    text = sdf(
+        '<model name="top">\n<link name="base"/>\n<include merge="true">'
+        "<uri>package://inc/two.sdf</uri><pose>0 0 2 0 0 0</pose></include>\n"
+        '<joint name="w" type="fixed"><parent>base</parent><child>a</child></joint>\n'
+        "</model>\n"
+    )
+    assert parsed.add(text, "sdf") == ["top"]
+    assert parsed.bodies() == {"top::base", "top::a", "top::b"}
+    assert parsed.joints() == {"j:revolute:a->b", "w:weld:base->a"}
+    top = parsed.plant.GetModelInstanceByName("top")
+    assert parsed.plant.GetFrameByName("_merged__two__model__", top).body().name() == "a"
+    assert parsed.plant.GetFrameByName("tip", top).body().name() == "b"
+    assert default_position(parsed, "top", "b") == [0.0, 0.0, 3.0]
+    assert parsed.report() == ({}, set())
+
+
+def test_sdf_errors_come_in_libsdformats_then_drakes_order(mb: Modules) -> None:
+    """Reading (an undefined element) before loading (a reserved link name) before the
+    frame graphs (an unknown frame) before Drake's own checks (negative damping)."""
+    damped = (
+        '<link name="b"/><joint name="j" type="revolute"><parent>a</parent><child>b</child>'
+        "<axis><xyz>0 0 1</xyz><dynamics><damping>-1</damping></dynamics></axis></joint>\n"
+    )
+    bad_frame = '<frame name="f" attached_to="zz"/>\n'
+    layers = [
+        ("<bogus/>\n", '<data-string>:{line}: error: At XML path /sdf/model[@name="m"]/bogus: '
+         "XML Element[bogus], child of element[model], not defined in SDF. Copying[bogus] as "
+         "children of [model].\n"),
+        ('<link name="world"/>\n', "error: The supplied link name [world] is reserved."),
+        (bad_frame, "error: attached_to name[zz] specified by frame with name[f] does not match "
+         "a nested model, link, joint, or frame name in model with name[m]."),
+        (damped, "<literal-string>.sdf:{line}: error: Joint damping is negative for joint 'j'. "
+         "Joint damping must be a non-negative number."),
+    ]  # fmt: skip
+    for first, (element, message) in enumerate(layers):
+        # The first to fail is last in the text: the stage decides, not the order.
+        body = "".join(text for text, _ in reversed(layers[first:]))
+        line = 4 + body[: body.index(element)].count("\n")
+        with pytest.raises(RuntimeError) as info:
+            Parsed(mb).add(sdf('<model name="m">\n<link name="a"/>' + body + "</model>\n"), "sdf")
+        assert str(info.value) == message.format(line=line)
+
+
+def test_sdf_a_joint_gets_a_parent_frame_only_where_it_is_off_the_parent_body(
+    mb: Modules,
+) -> None:
+    """Drake tests libsdformat's resolved X_PJ for *exact* identity (gz-math arithmetic)."""
+    parsed = Parsed(mb)
+    text = sdf(
+        '<model name="m">\n<pose>1 2 3 0.1 0.2 0.3</pose>\n'
+        '<link name="a"><pose>0.5 0 0 0 0.4 0</pose></link>\n'
+        '<link name="b"><pose>0 0.5 0 0.3 0 0</pose></link>\n'
+        '<link name="c"><pose>0.5 0 0 0 0.4 0</pose></link>\n'
+        '<joint name="j" type="revolute"><pose>0.1 0 0 0 0 0.2</pose><parent>a</parent>'
+        "<child>b</child><axis><xyz>0 1 1</xyz></axis></joint>\n"
+        '<joint name="k" type="fixed"><parent>a</parent><child>c</child></joint>\n'
+        "</model>\n"
+    )
+    parsed.add(text, "sdf")
+    plant = parsed.plant
+    frames = {
+        j.name(): (j.frame_on_parent().name(), j.frame_on_child().name())
+        for j in (plant.get_joint(i) for i in plant.GetJointIndices())
+    }
+    assert frames == {"j": ("j_parent", "j_child"), "k": ("a", "k_child")}
+
+
 # ---------------------------------------------------------------- directives
 
 

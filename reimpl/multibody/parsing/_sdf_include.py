@@ -110,7 +110,7 @@ class _Includes:
         if found is None:
             raise self._error(label, uris[0], f"{path}/uri", f"Unable to find uri[{uri}]")
         if os.path.isdir(found):
-            found = self._model_file(found, uri, label, uris[0], f"{path}/uri")
+            found = self._model_file(found)
         if not _is_sdf_file(found):
             return [include]
         model = self._read(found, label, uris[0], f"{path}/uri")
@@ -124,9 +124,8 @@ class _Includes:
     def _error(label: str, element: XmlElement, path: str, message: str) -> ModelParseError:
         return ModelParseError(f"{label}:{element.line}: error: At XML path {path}: {message}")
 
-    def _model_file(
-        self, directory: str, uri: str, label: str, uri_element: XmlElement, path: str
-    ) -> str:
+    @staticmethod
+    def _model_file(directory: str) -> str:
         """The model file a model directory's ``model.config`` names."""
         config = os.path.join(directory, "model.config")
         if not os.path.exists(config):
@@ -134,25 +133,17 @@ class _Includes:
                 raise Diagnostics(None).error(
                     f"Could not find model.config or manifest.xml in [{directory}]"
                 )
-            config = os.path.join(directory, "manifest.xml")
-        best, best_version = "", version_tuple("0.0")
+            raise Diagnostics(None).error(
+                "The manifest.xml for a model is deprecated. Please rename manifest.xml to "
+                "model.config."
+            )
         try:
             root = ET.parse(config).getroot()
-        except ET.ParseError:
-            root = ET.Element("none")
-        for entry in root.findall("sdf") if root.tag == "model" else []:
-            version = version_tuple(entry.get("version", ""))
-            if best_version < version <= _NEWEST:
-                best, best_version = (entry.text or "").strip(), version
-        if not best:
-            raise self._error(
-                label,
-                uri_element,
-                path,
-                f"Unable to resolve uri[{uri}] to model path [{directory}] since it does not "
-                "contain a model.config file.",
-            )
-        return f"{directory}/{best}"
+        except ET.ParseError as exc:
+            raise Diagnostics(None).error(f"Error parsing XML in file [{config}]: {exc}") from None
+        if root.tag != "model":
+            raise Diagnostics(None).error(f"No <model> element in configFile[{config}]")
+        return f"{directory}/{_best_model_file(root)}"
 
     def _read(self, path: str, label: str, uri_element: XmlElement, uri_path: str) -> XmlElement:
         """The included file's first ``<model>``, read and checked as its own document."""
@@ -223,6 +214,37 @@ class _Includes:
                 )
             model.set("placement_frame", text_of(placement))
             break
+
+
+def _best_model_file(config: ET.Element) -> str:
+    """getBestSupportedModelVersion: the ``<sdf>`` entry of the highest version up to 1.12
+    (else the first); a newer one, or one without a version, is libsdformat's warning (an
+    error for Drake)."""
+    entries = config.findall("sdf")
+    name = (config.findtext("name") or "").strip()
+    chosen = entries[0] if entries else None
+    best: tuple[int, ...] = (0, 0)
+    for entry in entries:
+        version = entry.get("version")
+        if version is None or version_tuple(version) <= best:
+            continue
+        if version_tuple(version) > _NEWEST:
+            raise Diagnostics(None).error(
+                f"Ignoring version {version} for model {name} because is newer than this sdf "
+                "parser (version 1.12)"
+            )
+        chosen, best = entry, version_tuple(version)
+    if chosen is None or not (chosen.text or "").strip():
+        raise Diagnostics(None).error(
+            f"Failure to detect an sdf tag in the model config file for model: {name}"
+        )
+    if chosen.get("version") is None:
+        raise Diagnostics(None).error(
+            "Can not find the XML attribute 'version' in sdf XML tag for model: "
+            f"{name}. Please specify the SDF protocol supported in the model configuration file. "
+            "The first sdf tag in the config file will be used "
+        )
+    return " ".join((chosen.text or "").split())
 
 
 def _is_sdf_file(path: str) -> bool:
