@@ -24,6 +24,7 @@ current directory; else it is the absolute path.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
@@ -53,6 +54,7 @@ __all__ = [
     "Step",
     "default_corpus_root",
     "enclosing_corpus",
+    "in_model_package",
     "load_corpus",
     "load_file",
 ]
@@ -411,14 +413,46 @@ def _record(error: ScenarioError, errors: list[ScenarioError] | None) -> None:
     errors.append(error)
 
 
+#: A folder holding this file is a model package (ROS's and Drake's convention), whose
+#: ``.yaml`` files are model directives, not scenarios: the walker does not enter it.
+PACKAGE_MANIFEST = "package.xml"
+
+
 def _is_scenario(path: Path) -> bool:
-    """A file the walker loads: a known suffix, and not a schema (``*.schema.json``)."""
+    """A file the walker loads: a known suffix, and not a schema (``*.schema.json``) or a
+    model-directives file (``*.dmd.yaml``)."""
     suffix = path.suffix.lower()
+    name = path.name.lower()
     return (
         suffix in DOCUMENT_SUFFIXES
-        and not path.name.lower().endswith(f".schema{suffix}")
+        and not name.endswith((f".schema{suffix}", ".dmd.yaml"))
         and path.is_file()
     )
+
+
+def in_model_package(path: Path, root: Path) -> bool:
+    """Whether ``path`` lies in a model package below ``root`` (a folder between them, or its
+    own, holds PACKAGE_MANIFEST), or is a model-directives file: model data, not a scenario."""
+    if path.name.lower().endswith(".dmd.yaml"):
+        return True
+    folder = path.parent
+    while folder != root and folder.is_relative_to(root):
+        if (folder / PACKAGE_MANIFEST).is_file():
+            return True
+        folder = folder.parent
+    return False
+
+
+def _scenario_files(folder: Path) -> list[Path]:
+    """The scenario files below ``folder``, sorted, outside model packages (PACKAGE_MANIFEST)."""
+    found = []
+    for parent, folders, names in os.walk(folder):
+        if PACKAGE_MANIFEST in names and Path(parent) != folder:
+            folders.clear()
+            continue
+        folders.sort()
+        found += [Path(parent, name) for name in names if _is_scenario(Path(parent, name))]
+    return sorted(found)
 
 
 def _walk(targets: Iterable[Path], errors: list[ScenarioError] | None = None) -> Iterator[Path]:
@@ -430,7 +464,7 @@ def _walk(targets: Iterable[Path], errors: list[ScenarioError] | None = None) ->
     for target in targets:
         try:
             if target.is_dir():
-                found = sorted(p for p in target.rglob("*") if _is_scenario(p))
+                found = _scenario_files(target)
                 if not found:
                     raise ScenarioError(
                         str(target),
@@ -488,7 +522,9 @@ def load_corpus(
     """Loads files and directories, each file once.
 
     Directories are walked recursively for ``*.json``, ``*.yaml`` and ``*.yml``
-    files, skipping schemas (``*.schema.json``). No paths: the embedded corpus.
+    files, skipping schemas (``*.schema.json``), model directives (``*.dmd.yaml``)
+    and model packages (folders holding a ``package.xml``, such as the vendored
+    real models). No paths: the embedded corpus.
     The first bad file raises ScenarioError; with an ``errors`` list, every bad
     file and case is recorded there instead and the good ones are loaded.
     """
