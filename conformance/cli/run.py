@@ -30,6 +30,7 @@ __all__ = [
     "add_run_parser",
     "corpus_cases",
     "load_backends",
+    "run_cases",
     "run_command",
     "select_cases",
 ]
@@ -177,7 +178,7 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         rerun_options=["--strict-divergences"] if args.strict_divergences else [],
         input_errors=[str(exc) for exc in input_errors],
     )
-    code = _run_cases(args, cases, report, err)
+    code = run_cases(args, cases, report, err)
     report.print_failures(out, prog=PROG)
     out.write("\n")
     report.print_xfails(out)
@@ -199,13 +200,18 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     return code
 
 
-def _run_cases(
+def run_cases(
     args: argparse.Namespace,
     cases: Sequence[Case],
     report: RunReport,
     err: TextIO,
+    *,
+    bad_models_are_input_errors: bool = True,
 ) -> int:
-    """Runs the cases into ``report``; stops at the first broken backend or input error."""
+    """Runs the cases into ``report``; stops at the first broken backend or input error.
+
+    ``args`` has ``strict_divergences``, ``step_timeout`` and ``quiet``; see
+    ``run_case`` for ``bad_models_are_input_errors``."""
     try:
         for index, case in enumerate(cases, 1):
             case_report = run_case(
@@ -215,7 +221,7 @@ def _run_cases(
                 strict_divergences=args.strict_divergences,
                 step_timeout=args.step_timeout or None,
                 on_step=_LongCase(err, case.qualified_name, quiet=args.quiet),
-                bad_models_are_input_errors=True,
+                bad_models_are_input_errors=bad_models_are_input_errors,
             )
             report.cases.append(case_report)
             if not args.quiet:

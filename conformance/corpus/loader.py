@@ -42,7 +42,7 @@ from conformance.corpus.documents import (
     clip,
     read_document,
 )
-from conformance.grammar import declared_names, features_of, referenced_names, spec
+from conformance.grammar import ArgKind, declared_names, features_of, referenced_names, spec
 from conformance.grammar.schema import SCHEMA_FILE as SCENARIO_SCHEMA
 from conformance.grammar.schema import scenario_schema
 
@@ -57,6 +57,7 @@ __all__ = [
     "in_model_package",
     "load_corpus",
     "load_file",
+    "scenario_from_data",
 ]
 
 _SPECIAL_REFS = frozenset({"@unknown", "@foreign"})
@@ -226,11 +227,23 @@ def load_file(
     case that names something undeclared is recorded there and left out, and
     the file's other cases are kept; a file that fails its schema still raises.
     """
-    shown = str(path)
     try:
         data = read_document(path)
     except DocumentError as exc:
-        raise ScenarioError(shown, str(exc)) from None
+        raise ScenarioError(str(path), str(exc)) from None
+    return scenario_from_data(data, path, root=root, errors=errors)
+
+
+def scenario_from_data(
+    data: Any,
+    path: Path,
+    *,
+    root: Path | None = None,
+    errors: list[ScenarioError] | None = None,
+) -> ScenarioFile:
+    """A ScenarioFile of scenario data (as a document holds it) standing at ``path``: what
+    ``load_file`` does after reading, for cases a program writes (``corpus.model_files``)."""
+    shown = str(path)
     _validate(shown, data)
     file = ScenarioFile(path=path, name=_name(path, root), description=data["description"])
     file_features = frozenset(data.get("features", ["core"]))
@@ -242,7 +255,7 @@ def load_file(
             raise ScenarioError(shown, "duplicate case description", case=description)
         seen.add(description)
         steps = tuple(_scene_steps(raw.get("scene", {}))) + tuple(
-            _step(i, s) for i, s in enumerate(raw["steps"], 1)
+            _step(i, s, path.parent) for i, s in enumerate(raw["steps"], 1)
         )
         case = Case(
             file=file,
@@ -291,11 +304,16 @@ def _name(path: Path, root: Path | None = None) -> str:
     return name.with_suffix("").as_posix()
 
 
-def _step(index: int, raw: Mapping[str, Any]) -> Step:
+def _step(index: int, raw: Mapping[str, Any], base: Path) -> Step:
+    """A Step of ``raw``; a folder argument (``ArgKind.FOLDER``) is made absolute against
+    ``base``, the scenario file's folder."""
     expect = raw.get("expect", ())
     if isinstance(expect, Mapping):
         expect = (expect,)
     args = {k: v for k, v in raw.items() if k not in _NON_ARGS}
+    for key, kind in spec(raw["op"]).arg_kinds.items():
+        if kind is ArgKind.FOLDER and key in args:
+            args[key] = str((base / args[key]).resolve())
     return Step(index, raw["op"], args, tuple(expect), raw.get("comment"))
 
 
