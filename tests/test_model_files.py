@@ -20,6 +20,7 @@ from conformance.cli.main import main
 from conformance.cli.models import model_file_cases
 from conformance.corpus.loader import default_corpus_root
 from conformance.corpus.model_files import GROUPS_SUFFIX, find_model_files, model_cases
+from conformance.grammar.schema import scenario_schema
 from conformance.protocol import Command, ErrorKind
 
 DRAKE = default_corpus_root() / "real_models" / "drake"
@@ -175,3 +176,10 @@ def test_models_refuses_a_folder_without_model_files(tmp_path: Path) -> None:
     code, _, err = _models(str(tmp_path), "--backend", "pydrake")
     assert code == EXIT_USAGE
     assert "no model files (.urdf, .sdf, .dmd.yaml) below this folder" in err
+
+
+def test_the_schema_accepts_every_error_kind_of_the_protocol() -> None:
+    schema = scenario_schema()
+    kinds = schema["$defs"]["expectation"]["properties"]["error"]["properties"]["kind"]["enum"]
+    assert kinds == [kind.value for kind in ErrorKind]
+    assert "assertion" in kinds
