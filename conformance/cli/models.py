@@ -10,8 +10,10 @@ and roles), and the candidate pairs after each step; files that may declare
 collision filter groups also compare the parser's group report.
 
 A file that every backend rejects with the same message agrees: the answer
-is the error. Exit codes are ``run``'s: 0 every file agrees, 1 a backend
-disagrees with the reference, 2 bad input or a broken backend.
+is the error. A backend that breaks on one file (raises from an observation,
+times out) is reported there, and the other files still run. Exit codes are
+``run``'s: 0 every file agrees, 1 a backend disagrees with the reference, 2
+bad input or a backend that broke.
 """
 
 from __future__ import annotations
@@ -117,7 +119,7 @@ def models_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     report = RunReport(
         backends, specs=list(args.backends or ("reimpl", "pydrake")), reference=reference
     )
-    code = run_cases(args, cases, report, err, bad_models_are_input_errors=False)
+    code = run_cases(args, cases, report, err, bad_models_are_input_errors=False, keep_going=True)
     report.print_failures(out, prog=PROG)
     out.write("\n")
     report.print_xfails(out)

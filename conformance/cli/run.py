@@ -207,11 +207,15 @@ def run_cases(
     err: TextIO,
     *,
     bad_models_are_input_errors: bool = True,
+    keep_going: bool = False,
 ) -> int:
-    """Runs the cases into ``report``; stops at the first broken backend or input error.
+    """Runs the cases into ``report``; stops at the first broken backend or input error,
+    unless ``keep_going``: then every case runs (each from a reset), and a broken one is
+    reported with its error and makes the exit code 2.
 
     ``args`` has ``strict_divergences``, ``step_timeout`` and ``quiet``; see
     ``run_case`` for ``bad_models_are_input_errors``."""
+    code = EXIT_OK
     try:
         for index, case in enumerate(cases, 1):
             case_report = run_case(
@@ -228,6 +232,9 @@ def run_cases(
                 _progress(err, index, len(cases), case.qualified_name, case_report.status)
             if case_report.aborted is not None and case_report.recoverable:
                 err.write(f"    {case_report.aborted}\n    (a new worker takes over)\n")
+            elif case_report.aborted is not None and keep_going:
+                err.write(f"error: {case.qualified_name}: {case_report.aborted}\n")
+                code = EXIT_USAGE
             elif case_report.aborted is not None:
                 report.aborted = f"{case.qualified_name}: {case_report.aborted}"
                 err.write(
@@ -239,4 +246,4 @@ def run_cases(
         report.aborted = "interrupted"
         err.write("interrupted: reporting the cases finished so far\n")
         return EXIT_USAGE
-    return EXIT_OK
+    return code
