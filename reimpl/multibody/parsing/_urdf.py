@@ -80,7 +80,7 @@ def read_urdf(
     path = _absolute(source.path) if source.path is not None else None
     diagnostics = Diagnostics(path or literal_string_name("urdf"), context.strict)
     try:
-        document = parse_document(source.text)
+        document = parse_document(_text(source, path), from_file=path is not None)
     except XmlSyntaxError as exc:
         kind = "file" if path is not None else "string"
         raise diagnostics.error(f"Failed to parse XML {kind}: {exc.name}", exc.line) from None
@@ -97,6 +97,14 @@ def read_urdf(
     root_dir = os.path.dirname(path) if path is not None else None
     reader = _Robot(context, diagnostics, document, robot, root_dir)
     return [reader.add(scoped.join(parent_scope, name))]
+
+
+def _text(source: ModelSource, path: str | None) -> str:
+    """The model text with its line ends as written (tinyxml2 counts LFs only)."""
+    if path is None:
+        return source.text
+    with open(path, encoding="utf-8", newline="") as stream:
+        return stream.read()
 
 
 def _absolute(path: str) -> str:

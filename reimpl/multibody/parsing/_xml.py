@@ -41,8 +41,8 @@ whitespace between tags is no node at all. Comments, declarations and
 ``<!...>`` nodes are read and dropped.
 
 ``XmlSyntaxError.line`` is the line Drake's URDF parser prints (the
-document's: 0 for empty text, else 1); ``error_line`` and ``detail`` are
-tinyxml2's own (``ErrorStr()`` is ``message``).
+document's: 0 for an empty text or a file of no bytes, else 1); ``error_line``
+and ``detail`` are tinyxml2's own (``ErrorStr()`` is ``message``).
 """
 
 from __future__ import annotations
@@ -115,9 +115,15 @@ class XmlSyntaxError(Exception):
         return f"{text}: {self.detail}" if self.detail else text
 
 
-def parse_document(text: str) -> XmlDocument:
-    """The document node of ``text``; raises XmlSyntaxError where tinyxml2 fails."""
-    return _Parser(text.split("\x00", 1)[0]).parse()
+def parse_document(text: str, *, from_file: bool = False) -> XmlDocument:
+    """The document node of ``text``; raises XmlSyntaxError where tinyxml2 fails.
+
+    ``from_file``: the text is a file's (tinyxml2's LoadFile), where only a
+    file of no bytes at all has line 0.
+    """
+    parser = _Parser(text.split("\x00", 1)[0])
+    parser.empty_line = 0 if not text or not from_file else 1
+    return parser.parse()
 
 
 def parse_xml(text: str) -> XmlElement:
@@ -243,6 +249,8 @@ class _Parser:
         self.text = text
         self.pos = 0
         self.line = 1
+        #: The document's line when the text is empty (the C string Drake passes, or the file).
+        self.empty_line = 0
 
     # ------------------------------------------------------------- scanning
     def _peek(self, offset: int = 0) -> str:
@@ -282,7 +290,7 @@ class _Parser:
     def parse(self) -> XmlDocument:
         document = XmlDocument("")
         if not self.text:
-            raise XmlSyntaxError("XML_ERROR_EMPTY_DOCUMENT", 13, 0)
+            raise XmlSyntaxError("XML_ERROR_EMPTY_DOCUMENT", 13, self.empty_line)
         document.line = 1
         self._skip_whitespace()
         if self._peek() == "\ufeff":
