@@ -53,6 +53,7 @@ from reimpl.multibody.parsing._package_map import UriError, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
 from reimpl.multibody.parsing._urdf_constraints import ConstraintReader
 from reimpl.multibody.parsing._urdf_geometry import GeometryReader
+from reimpl.multibody.parsing._urdf_inertia import inertia_warning
 from reimpl.multibody.parsing._urdf_joints import JointReader
 from reimpl.multibody.parsing._urdf_materials import MaterialMap
 from reimpl.multibody.parsing._urdf_transmissions import TransmissionReader
@@ -119,6 +120,10 @@ def _warn_unsupported_attribute(d: Diagnostics, element: XmlElement, attribute: 
             "unsupported and will be ignored.",
             element.line,
         )
+
+
+def _or_zero(value: float | None) -> float:
+    return 0.0 if value is None else value
 
 
 def _ignored(element: XmlElement) -> bool:
@@ -241,15 +246,22 @@ class _Robot:
             )
 
     def _read_inertial(self, inertial: XmlElement) -> None:
-        """The numbers of an ``<inertial>`` (reimpl keeps no mass properties)."""
+        """Reads an ``<inertial>``'s numbers and warns where Drake does (``_urdf_inertia``).
+
+        reimpl keeps no mass properties; absent numbers are 0.
+        """
         origins = children(inertial, "origin")
         if origins:
             origin(origins[0])
-        for mass in children(inertial, "mass")[:1]:
-            self.values.scalar(mass, "value")
-        for inertia in children(inertial, "inertia")[:1]:
-            for moment in _INERTIA:
-                self.values.scalar(inertia, moment)
+        mass = 0.0
+        for node in children(inertial, "mass")[:1]:
+            mass = _or_zero(self.values.scalar(node, "value"))
+        moments = dict.fromkeys(_INERTIA, 0.0)
+        for node in children(inertial, "inertia")[:1]:
+            moments = {m: _or_zero(self.values.scalar(node, m)) for m in _INERTIA}
+        warning = inertia_warning(mass, moments)
+        if warning is not None:
+            self.diagnostics.warning(warning, inertial.line)
 
     # --------------------------------------------------------------- frames
     def _add_frame(self, frame: XmlElement) -> None:
