@@ -37,8 +37,10 @@ Collision filter groups (only with a SceneGraph)::
       <drake:ignored_collision_filter_group name="K"/>
     </drake:collision_filter_group>
 
-``ignore`` drops the group only when exactly ``"true"``. An empty name or link
-is skipped; a missing one is an error at that element's line. The resolver's
+``ignore`` drops the group, unread, only when exactly ``"true"``. An empty
+name or link is skipped; a missing one is an error at that element's line.
+The ignored groups are read after the group is added, so a group without
+members is an error before a nameless ignored group is. The resolver's
 errors about a group carry the ``<robot>`` line.
 """
 
@@ -281,12 +283,15 @@ class _Robot:
         return {value for value in values if value}
 
     def _add_group(self, group: XmlElement) -> None:
+        """Drake's CollectCollisionFilterGroup order (measured): ``ignore``, the name, the
+        members and member groups, the group added (its errors), then the ignored groups."""
+        if group.get("ignore") == "true":
+            return
         name = self._required(group, "name")
-        if not name or group.get("ignore") == "true":
+        if not name:
             return
         members = self._names(group, "drake:member", "link")
         member_groups = self._names(group, "drake:member_group", "name")
-        ignored = self._names(group, "drake:ignored_collision_filter_group", "name")
         scope = self.plant.GetModelInstanceName(self.instance)
         resolver = self.context.resolver
         resolver.add_group(
@@ -297,5 +302,6 @@ class _Robot:
             member_group_names=member_groups,
             scope=scope,
         )
+        ignored = self._names(group, "drake:ignored_collision_filter_group", "name")
         for other in sorted(ignored):
             resolver.add_pair(name, other, scope)
