@@ -144,8 +144,9 @@ def children(element: ET.Element, tag: str) -> list[XmlElement]:
 
 
 def _is_name_start(ch: str) -> bool:
-    """tinyxml2's IsNameStartChar: an ASCII letter, ``:``, ``_``, or any non-ASCII."""
-    return ord(ch) >= 128 or ("a" <= ch.lower() <= "z") or ch in ":_"
+    """tinyxml2's IsNameStartChar: an ASCII letter, ``:``, ``_``, or any non-ASCII
+    (``ch`` is one character, or "" at the end of the text)."""
+    return ch != "" and (ord(ch) >= 128 or ("a" <= ch.lower() <= "z") or ch in ":_")
 
 
 def _is_name_char(ch: str) -> bool:
