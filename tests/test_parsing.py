@@ -1584,6 +1584,18 @@ def test_urdf_materials_are_checked_as_drake_checks_them(mb: Modules, case: str)
         assert urdf_error(mb, text) == f"<literal-string>.urdf:1: error: {error}"
 
 
+def test_a_visual_colour_must_lie_in_0_1_while_a_robot_colour_need_not(mb: Modules) -> None:
+    """The visual's diffuse colour is a geometry::Rgba, which checks its range."""
+    unused = '<material name="m"><color rgba="2 0 0 1"/></material>'
+    assert Parsed(mb).add(f'<robot name="r">{unused}<link name="a"/></robot>', "urdf") == ["r"]
+    used = visual('<material name="m"/>')
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add(f'<robot name="r">{unused}<link name="a">{used}</link></robot>', "urdf")
+    assert str(info.value) == (
+        "Rgba values must be within the range [0, 1]. Values provided: (r=2, g=0, b=0, a=1)"
+    )
+
+
 #: A robot with several errors -> the one Drake raises (its order of checks).
 FIRST_ERRORS = {
     "robot materials before links": (

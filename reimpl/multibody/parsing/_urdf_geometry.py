@@ -120,7 +120,12 @@ class GeometryReader:
             return None
         material = _first(element, "material")
         if material is not None:
-            self.materials.read(material, name_required=False)
+            rgba = self.materials.read(material, name_required=False).rgba
+            if rgba is not None and not all(0 <= v <= 1 for v in rgba):
+                values = ", ".join(f"{c}={shortest(v)}" for c, v in zip("rgba", rgba, strict=True))
+                raise RuntimeError(
+                    f"Rgba values must be within the range [0, 1]. Values provided: ({values})"
+                )
         for accepting in children(element, "drake:accepting_renderer"):
             if accepting.get("name") is None:
                 raise d.error(
