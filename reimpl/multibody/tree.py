@@ -20,6 +20,7 @@ pydrake accepts them and are stored, never used.
 
 from __future__ import annotations
 
+import itertools
 import math
 import numbers
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -1039,3 +1040,123 @@ class ScrewJoint(Joint):
 
     def set_default_translation(self, z: float) -> None:
         self._set_default(0, [self._rotation_of(z)])
+
+
+# ------------------------------------------------------------- curvilinear
+# Neither class is bound in pydrake 1.51.1 (nor 1.58.0): a parsed curvilinear
+# joint is seen there as a plain Joint whose type_name() is "curvilinear".
+# They are reimpl's stand-ins for the C++ classes the URDF parser builds.
+
+#: Where pydrake 1.51.1 reports PiecewiseTrajectory's DRAKE_DEMAND (SystemExit, measured).
+_PIECEWISE_TRAJECTORY_DEMAND = (
+    "Failure at external/drake+/common/trajectories/piecewise_trajectory.cc:19 in "
+    "PiecewiseTrajectory(): condition 'breaks_[i] - breaks_[i - 1] >= kEpsilonTime' failed."
+)
+#: RotationMatrix's internal tolerance for orthonormality: 128 ε.
+_ORTHONORMALITY_TOLERANCE = 128 * np.finfo(float).eps
+
+
+class PiecewiseConstantCurvatureTrajectory:
+    """A planar curve of line segments and circular arcs, by arc length s (C++ only).
+
+    ``breaks`` are the arc lengths where pieces start (``breaks[0] = 0``), the
+    piece from breaks[i] to breaks[i+1] turning at ``turning_rates[i]`` (1/m,
+    0 for a line). At s = 0 the curve's frame M has x along the unit initial
+    tangent t, z along the unit plane normal n and y = n × t. Checks, in
+    Drake's order: each piece at least ε long (DRAKE_DEMAND: SystemExit),
+    then ``The norm of the initial tangent is zero.``, ``The norm of the
+    plane's normal is zero.``, and t · n within 128 ε of 0.
+    """
+
+    def __init__(
+        self,
+        breaks: Any,
+        turning_rates: Any,
+        initial_curve_tangent: Any,
+        plane_normal: Any,
+        *,
+        initial_position: Any,
+        is_periodic: bool,
+    ) -> None:
+        self._breaks = [float(b) for b in breaks]
+        self._rates = [float(r) for r in turning_rates]
+        if any(b - a < np.finfo(float).eps for a, b in itertools.pairwise(self._breaks)):
+            raise SystemExit(_PIECEWISE_TRAJECTORY_DEMAND)
+        if len(self._rates) != len(self._breaks) - 1:
+            raise MultibodyPlantError(
+                "The number of turning rates must be equal to the number of segments."
+            )
+        if self._breaks[0] != 0:
+            raise MultibodyPlantError(
+                "The first break must be 0, as the breaks are in arclength units."
+            )
+        t, n = _vector(initial_curve_tangent), _vector(plane_normal)
+        if np.linalg.norm(t) == 0:
+            raise MultibodyPlantError("The norm of the initial tangent is zero.")
+        if np.linalg.norm(n) == 0:
+            raise MultibodyPlantError("The norm of the plane's normal is zero.")
+        if abs(float(t @ n)) > _ORTHONORMALITY_TOLERANCE:
+            raise MultibodyPlantError(
+                "The initial curve's tangent vector must be perpendicular to the plane's normal."
+            )
+        y = np.cross(n, t)
+        R0 = np.column_stack([t / np.linalg.norm(t), y / np.linalg.norm(y), n / np.linalg.norm(n)])
+        pose: kinematics.Pose = (R0, _vector(initial_position))
+        self._break_poses = [pose]
+        for i, rate in enumerate(self._rates):
+            step = self._in_piece(rate, self._breaks[i + 1] - self._breaks[i])
+            pose = kinematics.compose(pose, step)
+            self._break_poses.append(pose)
+        self._periodic = bool(is_periodic)
+
+    def length(self) -> float:
+        return self._breaks[-1]
+
+    def is_periodic(self) -> bool:
+        return self._periodic
+
+    @staticmethod
+    def _in_piece(rate: float, ds: float) -> kinematics.Pose:
+        """X_MiM: ds along a piece turning at ``rate``, from the piece's start frame Mi."""
+        theta = ds * rate
+        R = kinematics.rotation_about(np.array([0.0, 0.0, 1.0]), theta)
+        if rate == 0:
+            return R, np.array([ds, 0.0, 0.0])
+        return R, np.array([math.sin(theta) / rate, (1 - math.cos(theta)) / rate, 0.0])
+
+    def calc_pose(self, s: float) -> kinematics.Pose:
+        """X_AM(s); a periodic curve wraps s into [0, length), an open one extends its ends."""
+        if self._periodic:
+            s = s - self.length() * math.floor(s / self.length())
+        clamped = min(max(s, 0.0), self.length())
+        piece = min(
+            max(i for i, b in enumerate(self._breaks) if b <= clamped), len(self._rates) - 1
+        )
+        step = self._in_piece(self._rates[piece], s - self._breaks[piece])
+        return kinematics.compose(self._break_poses[piece], step)
+
+
+class CurvilinearJoint(Joint):
+    """q = [s]: X_FM is the curve's pose at arc length s (``curvilinear_path``).
+
+    Limits: (-∞, ∞) for a periodic curve, else [0, length]. Negative damping
+    is ``CurvilinearJoint joint damping must be nonnegative.``
+    """
+
+    kTypeName = "curvilinear"
+    _dofs = (1, 1)
+    _position_suffixes = ("q",)
+
+    @classmethod
+    def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
+        path = Param("curvilinear_path", instance_of(PiecewiseConstantCurvatureTrajectory))
+        return ((path, _real("damping", 0.0)),)
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        if self._parameters["damping"] < 0:
+            raise MultibodyPlantError("CurvilinearJoint joint damping must be nonnegative.")
+
+    def _X_FM(self, s: float) -> kinematics.Pose:
+        path: PiecewiseConstantCurvatureTrajectory = self._parameters["curvilinear_path"]
+        return path.calc_pose(s)
