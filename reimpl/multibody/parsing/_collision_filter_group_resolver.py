@@ -36,8 +36,9 @@ from typing import Any
 
 from reimpl.geometry import GeometrySet
 from reimpl.multibody.parsing import _scoped_name as scoped
-from reimpl.multibody.parsing._collision_filter_groups import CollisionFilterGroups
+from reimpl.multibody.parsing._collision_filter_groups import NameGroups
 from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._instanced_name import InstancedName, instanced, order
 
 __all__ = ["CollisionFilterGroupResolver"]
 
@@ -108,8 +109,9 @@ class CollisionFilterGroupResolver:
                 stack.append(member_group)
         return dict(sorted(bodies.items()))
 
-    def resolve(self) -> CollisionFilterGroups:
-        """Checks every group name, applies the pairs, and reports what was declared.
+    def resolve(self) -> NameGroups[InstancedName]:
+        """Checks every group name, applies the pairs, and reports what was declared,
+        held by model instance index (see _instanced_name).
 
         N.B. Pairs are applied one by one in sorted order, so the pairs sorted
         before one naming an unknown group are applied when it raises (measured).
@@ -125,12 +127,12 @@ class CollisionFilterGroupResolver:
                 (a, self._geometry_set(members[a].values())),
                 (b, self._geometry_set(members[b].values())),
             )
-        report = CollisionFilterGroups()
+        report: NameGroups[str] = NameGroups(str)
         for group, bodies in members.items():
-            report.AddGroup(group, set(bodies))
-        for pair in sorted(self._pairs):
-            report.AddExclusionPair(pair)
-        return report
+            report.add_group(group, set(bodies))
+        for pair in self._pairs:
+            report.add_pair(*pair)
+        return report.convert(lambda name: instanced(self._plant, name), order)
 
     def _check_group(self, diagnostics: Diagnostics, name: str) -> None:
         if name not in self._bodies:

@@ -17,9 +17,10 @@ from reimpl.geometry import SceneGraph
 from reimpl.multibody.parsing._collision_filter_group_resolver import (
     CollisionFilterGroupResolver,
 )
-from reimpl.multibody.parsing._collision_filter_groups import CollisionFilterGroups
+from reimpl.multibody.parsing._collision_filter_groups import CollisionFilterGroups, NameGroups
 from reimpl.multibody.parsing._diagnostics import ModelParseError, literal_string_name
 from reimpl.multibody.parsing._directives import read_directives
+from reimpl.multibody.parsing._instanced_name import InstancedName, order, spelled
 from reimpl.multibody.parsing._package_map import PackageMap, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext, Reader
 from reimpl.multibody.parsing._sdf import read_sdf
@@ -73,7 +74,7 @@ class Parser:
         self._package_map = PackageMap()
         self._auto_renaming = False
         self._strict = False
-        self._groups = CollisionFilterGroups()
+        self._groups: NameGroups[InstancedName] = NameGroups(order)
         plant = Param("plant", instance_of(MultibodyPlant))
         scene_graph = Param("scene_graph", instance_of(SceneGraph), None)
         prefix = Param("model_name_prefix", instance_of(str))
@@ -154,13 +155,12 @@ class Parser:
         self._strict = True
 
     def GetCollisionFilterGroups(self) -> CollisionFilterGroups:
-        """The groups and pairs of every successful parse so far (a copy)."""
-        copy = CollisionFilterGroups()
-        for name, members in self._groups.groups().items():
-            copy.AddGroup(name, members)
-        for pair in self._groups.exclusion_pairs():
-            copy.AddExclusionPair(pair)
-        return copy
+        """The groups and pairs of every parse so far, named with the model
+        instances' current names (see _instanced_name)."""
+        plant = self._plant
+        return CollisionFilterGroups._from(
+            self._groups.convert(lambda name: spelled(plant, name), str)
+        )
 
     # ------------------------------------------------------------ parsing
     def AddModels(self, *args: Any, **kwargs: Any) -> list[Any]:
@@ -211,11 +211,7 @@ class Parser:
             read_file=_read_file,
         )
         instances: list[Any] = read(context)
-        report = context.resolver.resolve()
-        for name, members in sorted(report.groups().items()):
-            self._groups.AddGroup(name, members)
-        for pair in report.exclusion_pairs():
-            self._groups.AddExclusionPair(pair)
+        self._groups.merge(context.resolver.resolve())
         return instances
 
 

@@ -53,6 +53,7 @@ from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody.kinematics import rotation_about
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._group_tags import GroupSyntax, read_group
 from reimpl.multibody.parsing._model_builder import (
     JOINT_TYPES,
     GeometryNamer,
@@ -286,27 +287,20 @@ class _Robot:
         return JointSpec(spec.name, spec.kind, spec.parent, spec.child, spec.line, spec.axis, pitch)
 
     # --------------------------------------------------------------- groups
-    def _names(self, group: XmlElement, tag: str, attribute: str) -> set[str]:
-        """The non-empty ``attribute`` values of ``group``'s ``tag`` children."""
-        values = (self._required(child, attribute) for child in children(group, tag))
-        return {value for value in values if value}
-
     def _add_group(self, group: XmlElement) -> None:
-        name = self._required(group, "name")
-        if not name or group.get("ignore") == "true":
-            return
-        members = self._names(group, "drake:member", "link")
-        member_groups = self._names(group, "drake:member_group", "name")
-        ignored = self._names(group, "drake:ignored_collision_filter_group", "name")
+        """One group, read in Drake's order (see _group_tags); ``ignore`` counts
+        only when it is exactly ``true``."""
+        syntax = GroupSyntax(
+            is_ignored=lambda element: element.get("ignore") == "true",
+            name=lambda element: self._required(element, "name"),
+            value=self._required,
+        )
         scope = self.plant.GetModelInstanceName(self.instance)
-        resolver = self.context.resolver
-        resolver.add_group(
+        read_group(
+            group,
+            syntax,
+            self.context.resolver,
             self.diagnostics,
-            self.robot.line,
-            group_name=name,
-            body_names=members,
-            member_group_names=member_groups,
+            line=self.robot.line,
             scope=scope,
         )
-        for other in sorted(ignored):
-            resolver.add_pair(name, other, scope)
