@@ -67,6 +67,7 @@ class CollisionFilterGroupResolver:
         scope: str,
     ) -> None:
         """Declares group ``scope::group_name``; names are relative to ``scope``."""
+        self._check_scope(scope)
         name = scoped.join(scope, group_name)
         if scoped.is_scoped(group_name):
             raise diagnostics.error(f"group name '{name}' cannot be a scoped name", line)
@@ -79,6 +80,18 @@ class CollisionFilterGroupResolver:
             bodies[body_name] = self._find_body(diagnostics, line, body_name)
         self._bodies[name] = bodies
         self._member_groups[name] = {scoped.join(scope, g) for g in member_group_names}
+
+    def _check_scope(self, scope: str) -> None:
+        """A group's model instance must be one this parse made (Drake's DRAKE_DEMAND;
+        only model directives can name another, by ``model_namespace``)."""
+        plant = self._plant
+        outside = scope and plant.HasModelInstanceNamed(scope)
+        if outside and int(plant.GetModelInstanceByName(scope)) < self._first_new_instance:
+            raise SystemExit(
+                "Failure at external/drake+/multibody/parsing/"
+                "detail_collision_filter_group_resolver.cc:39 in AddGroup(): "
+                "condition '*model_instance >= minimum_model_instance_index_' failed."
+            )
 
     def add_pair(self, group_a: str, group_b: str, scope: str) -> None:
         """Declares that the two groups (relative to ``scope``) do not collide."""

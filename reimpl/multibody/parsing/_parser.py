@@ -19,7 +19,7 @@ from reimpl.multibody.parsing._collision_filter_group_resolver import (
 )
 from reimpl.multibody.parsing._collision_filter_groups import CollisionFilterGroups, NameGroups
 from reimpl.multibody.parsing._diagnostics import ModelParseError, literal_string_name
-from reimpl.multibody.parsing._directives import read_directives
+from reimpl.multibody.parsing._directives import process_directives, read_directives
 from reimpl.multibody.parsing._instanced_name import InstancedName, order, spelled
 from reimpl.multibody.parsing._package_map import PackageMap, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext, Reader
@@ -200,6 +200,10 @@ class Parser:
     def _add_file(self, file_name: str | os.PathLike[str]) -> list[Any]:
         path = os.fspath(file_name)
         return self._parse(lambda c: _read_file(c, path, None, self._prefix))
+
+    def _process_directives(self, directives: Any) -> list[Any]:
+        """ProcessModelDirectives: one parse of ``directives`` at global scope."""
+        return self._parse(lambda context: process_directives(context, directives, ""))
 
     def _parse(self, read: Any) -> list[Any]:
         context = ParseContext(

@@ -33,7 +33,7 @@ import urllib.parse
 from pathlib import Path
 from typing import Any
 
-from reimpl.multibody.parsing._struct import Field, Struct, optional_of, str_list, string
+from reimpl.common._struct import Field, Struct, optional_of, str_list, string
 
 __all__ = ["RemoteParams", "check_remote_params", "fetch", "find_in_cache", "networking_allowed"]
 

@@ -12,7 +12,8 @@ pydrake 1.51.1, such a class:
  a field                            read and written as an attribute; a value of the
                                     wrong type is pybind11's TypeError; a list field
                                     reads as a new list each time (appending to it
-                                    changes nothing)
+                                    changes nothing), a vector as a read-only array,
+                                    a struct field as the struct itself
  ``repr`` and ``str``               ``Name(field=value, ...)`` in ``Serialize`` order
  ``copy.copy``, ``copy.deepcopy``   a deep copy
  ``==``                             identity (no comparison is bound)
@@ -27,9 +28,11 @@ from __future__ import annotations
 import copy
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Self
 
-__all__ = ["Field", "Struct", "optional_of", "str_list", "string"]
+import numpy as np
+
+__all__ = ["Field", "Struct", "as_vector", "optional_of", "str_list", "string", "vector"]
 
 Check = Callable[[object], bool]
 
@@ -42,6 +45,23 @@ def string(value: object) -> bool:
 def str_list(value: object) -> bool:
     """pybind11's ``list[str]`` caster: a list or tuple of strings."""
     return isinstance(value, list | tuple) and all(isinstance(v, str | bytes) for v in value)
+
+
+def vector(size: int | None) -> Check:
+    """pybind11's Eigen vector caster: numbers, ``size`` of them (any number if None)."""
+
+    def check(value: object) -> bool:
+        try:
+            array = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            return False
+        return array.ndim == 1 and (size is None or array.shape == (size,))
+
+    return check
+
+
+def as_vector(value: Any) -> np.ndarray:
+    return np.array(value, dtype=float)
 
 
 def optional_of(check: Check) -> Check:
@@ -92,6 +112,11 @@ class Struct:
     def _owner(cls) -> str:
         return f"{cls.MODULE}.{cls.QUALNAME or cls.__name__}"
 
+    @classmethod
+    def _short_name(cls) -> str:
+        """The class's own name, without the classes it is nested in."""
+        return (cls.QUALNAME or cls.__name__).rsplit(".", 1)[-1]
+
     def __setattr__(self, name: str, value: Any) -> None:
         spec = self._field(name)
         if not spec.check(value):
@@ -107,7 +132,13 @@ class Struct:
         if name.startswith("_"):
             raise AttributeError(name)
         value = object.__getattribute__(self, "_" + self._field(name).name)
-        return list(value) if isinstance(value, list) else value
+        if isinstance(value, list | dict):
+            return type(value)(value)
+        if isinstance(value, np.ndarray):
+            view = value.view()
+            view.flags.writeable = False
+            return view
+        return value
 
     @classmethod
     def _field(cls, name: str) -> Field:
@@ -121,19 +152,19 @@ class Struct:
 
     def __repr__(self) -> str:
         fields = ", ".join(f"{name}={_repr(value)}" for name, value in self._values())
-        return f"{type(self).__name__}({fields})"
+        return f"{self._short_name()}({fields})"
 
-    def __copy__(self) -> Struct:
+    def __copy__(self) -> Self:
         return self.__deepcopy__({})
 
-    def __deepcopy__(self, memo: dict[int, Any]) -> Struct:
+    def __deepcopy__(self, memo: dict[int, Any]) -> Self:
         clone = type(self).__new__(type(self))
         for name, value in self._values():
             object.__setattr__(clone, "_" + name, copy.deepcopy(value, memo))
         return clone
 
     def __reduce__(self) -> Any:
-        raise TypeError(f"cannot pickle '{self.MODULE}.{type(self).__name__}' object")
+        raise TypeError(f"cannot pickle '{self.MODULE}.{self._short_name()}' object")
 
 
 def _repr(value: Any) -> str:
