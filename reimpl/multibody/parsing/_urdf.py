@@ -109,6 +109,12 @@ def read_urdf(
     robot = document if document.tag == "robot" else None
     if robot is None:
         raise diagnostics.error("URDF does not contain a robot tag.", document.line)
+    if robot.get("version") is not None:  # Drake's WarnUnsupportedAttribute (measured)
+        diagnostics.warning(
+            "The attribute 'version' found in a 'robot' tag is currently unsupported and "
+            "will be ignored.",
+            robot.line,
+        )
     name = model_name or robot.get("name")
     if name is None:
         raise diagnostics.error(
