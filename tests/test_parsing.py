@@ -1142,6 +1142,259 @@ def test_directive_groups_are_skipped_without_a_scene_graph(mb: Modules) -> None
     assert parsed.parser.GetCollisionFilterGroups().empty()
 
 
+# ------------------------------------------------- directives: scoping and errors
+#
+# Each case was run on pydrake 1.51.1 (and reimpl) with the same text; the expected
+# values are pydrake's.
+
+DIRECTIVE_SCOPING_ERRORS = {
+    # Drake evaluates AddWeld's arguments right to left: the child is looked up first.
+    "weld with both frames missing": (
+        "- add_weld: {parent: nope::a, child: nope2::b}\n",
+        "GetModelInstanceByName(): There is no model instance named 'nope2'. The current "
+        "model instances are 'DefaultModelInstance', 'WorldModelInstance'.",
+    ),
+    "frame scoped to a missing instance": (
+        box("m") + "- add_frame: {name: nope::f, X_PF: {base_frame: m::base}}\n",
+        "GetModelInstanceByName(): There is no model instance named 'nope'. The current model "
+        "instances are 'DefaultModelInstance', 'WorldModelInstance', 'm'.",
+    ),
+    "nested namespace that is not an instance": (
+        "- add_model_instance: {name: a}\n"
+        "- add_directives: {file: package://test_models/two_boxes.dmd.yaml, "
+        "model_namespace: a}\n"
+        "- add_directives: {file: package://test_models/filter_groups.dmd.yaml, "
+        "model_namespace: a::zz}\n",
+        "Namespace 'a::zz' does not exist as model instance",
+    ),
+    "relative model file": (
+        "- add_model: {name: m, file: simple_box.sdf}\n",
+        "error: URI 'simple_box.sdf' is invalid when parsing a string instead of a filename.",
+    ),
+    "directives file as a model": (
+        "- add_model: {name: m, file: package://test_models/two_boxes.dmd.yaml}\n",
+        "error: '{models}/two_boxes.dmd.yaml' is a model directives data source; it is always "
+        "an error to pass a model directives source to a single-model parser method. Use "
+        "AddModels() instead.",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", DIRECTIVE_SCOPING_ERRORS)
+def test_directive_scoping_error_message(mb: Modules, case: str) -> None:
+    body, message = DIRECTIVE_SCOPING_ERRORS[case]
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add("directives:\n" + body, "dmd.yaml")
+    assert str(info.value) == message.replace("{models}", str(MODELS))
+
+
+def test_an_unscoped_added_frame_goes_to_its_base_frames_instance(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = (
+        "directives:\n"
+        + box("m")
+        + "- add_frame: {name: f, X_PF: {base_frame: m::base, translation: [1, 2, 3]}}\n"
+        + "- add_frame: {name: m::g, X_PF: {base_frame: world}}\n"
+        + "- add_frame: {name: h, X_PF: {base_frame: world}}\n"
+    )
+    parsed.add(text, "dmd.yaml")
+    plant = parsed.plant
+    m = plant.GetModelInstanceByName("m")
+    assert plant.HasFrameNamed("f", m)
+    assert plant.HasFrameNamed("g", m)
+    assert plant.HasFrameNamed("h", plant.world_body().model_instance())
+
+
+def test_a_group_namespace_of_an_earlier_parse_ends_the_program(mb: Modules) -> None:
+    """Drake's resolver DRAKE_DEMANDs that a group's model instance is new in the parse."""
+    parsed = Parsed(mb)
+    parsed.parser.AddModels(url="package://test_models/simple_box.sdf")
+    with pytest.raises(SystemExit) as info:
+        parsed.add(
+            "directives:\n"
+            "- add_collision_filter_group: {name: g, model_namespace: simple_box, "
+            "members: [base]}\n",
+            "dmd.yaml",
+        )
+    assert str(info.value) == (
+        "Failure at external/drake+/multibody/parsing/detail_collision_filter_group_resolver"
+        ".cc:39 in AddGroup(): condition '*model_instance >= minimum_model_instance_index_' "
+        "failed."
+    )
+
+
+def test_a_prefixed_parser_reads_directive_groups_in_the_prefix_instance(mb: Modules) -> None:
+    """The prefix is the top namespace, so a group is read in instance ``pre``, which
+    must exist."""
+    parsed = Parsed(mb)
+    parser = mb.parsing.Parser(plant=parsed.plant, model_name_prefix="pre")
+    parser.package_map().Add(package_name="test_models", package_path=str(MODELS))
+    text = (
+        "directives:\n" + box("m") + "- add_collision_filter_group: {name: g, members: [m::base]}\n"
+    )
+    with pytest.raises(RuntimeError) as info:
+        parser.AddModelsFromString(file_contents=text, file_type="dmd.yaml")
+    assert str(info.value).startswith(
+        "GetModelInstanceByName(): There is no model instance named 'pre'."
+    )
+
+
+def test_default_free_body_pose_from_a_frame_adds_a_floating_joint(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = (
+        "directives:\n"
+        + box("m")
+        + "- add_model:\n    name: n\n    file: package://test_models/simple_box.sdf\n"
+        "    default_free_body_pose: {base: {base_frame: m::base, translation: [1, 2, 3]}}\n"
+    )
+    parsed.add(text, "dmd.yaml")
+    assert "base:quaternion_floating:base->base" in parsed.joints()
+
+
+def test_wrong_sized_default_joint_positions_are_drakes_error(mb: Modules, tmp_path: Path) -> None:
+    (tmp_path / "arm.urdf").write_text(
+        urdf(sphere_link("a"), sphere_link("b"), joint("j", "a", "b"))
+    )
+    parsed = Parsed(mb)
+    text = (
+        f"directives:\n- add_model: {{name: arm, file: 'file://{tmp_path}/arm.urdf', "
+        "default_joint_positions: {j: [0.1, 0.2]}}\n"
+    )
+    with pytest.raises(RuntimeError) as info:
+        parsed.add(text, "dmd.yaml")
+    assert str(info.value) == (
+        "set_default_positions: The number of positions in the input (2) does not match the "
+        "number of positions of the joint 'arm::j' (1)."
+    )
+
+
+def test_auto_renaming_applies_to_added_model_instances(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    parsed.parser.SetAutoRenaming(value=True)
+    parsed.add(
+        "directives:\n- add_model_instance: {name: a}\n- add_model_instance: {name: a}\n",
+        "dmd.yaml",
+    )
+    assert parsed.plant.HasModelInstanceNamed("a_1")
+
+
+DIRECTIVE_YAML_ERRORS = {
+    "duplicate key": (
+        "- add_model_instance: {name: a, name: b}\n",
+        "Cannot Node::Add(key, value) using duplicate key 'name'",
+    ),
+    "sequence for a string": (
+        "- add_model_instance:\n    name: [a]\n",
+        "<string>:3:5: YAML node of type Mapping (with size 1 and keys {name}) has non-Scalar "
+        "(Sequence) entry for std::string name while accepting YAML node of type Mapping "
+        "(with size 1 and keys {add_model_instance}) while visiting "
+        "std::optional<drake::multibody::parsing::AddModelInstance> add_model_instance while "
+        "accepting  (with size 1 and keys {directives[0]}) while visiting "
+        "drake::multibody::parsing::ModelDirective directives[0] while accepting YAML node of "
+        "type Mapping (with size 1 and keys {directives}) while visiting "
+        "std::vector<drake::multibody::parsing::ModelDirective,std::allocator<drake::"
+        "multibody::parsing::ModelDirective>> directives.",
+    ),
+    "short translation": (
+        "- add_frame: {name: f, X_PF: {base_frame: world, translation: [1, 2]}}\n",
+        "<string>:2:30: YAML node of type Mapping (with size 2 and keys {base_frame, "
+        "translation}) has 2-size entry (wanted 3-size) entry for Eigen::Vector3d translation "
+        "while accepting YAML node of type Mapping (with size 2 and keys {X_PF, name}) while "
+        "visiting drake::schema::Transform X_PF while accepting YAML node of type Mapping "
+        "(with size 1 and keys {add_frame}) while visiting "
+        "std::optional<drake::multibody::parsing::AddFrame> add_frame while accepting  (with "
+        "size 1 and keys {directives[0]}) while visiting "
+        "drake::multibody::parsing::ModelDirective directives[0] while accepting YAML node of "
+        "type Mapping (with size 1 and keys {directives}) while visiting "
+        "std::vector<drake::multibody::parsing::ModelDirective,std::allocator<drake::"
+        "multibody::parsing::ModelDirective>> directives.",
+    ),
+    "unknown rotation tag": (
+        "- add_frame: {name: f, X_PF: {base_frame: world, rotation: !Foo {}}}\n",
+        "<string>:2:30: YAML node of type Mapping (with size 2 and keys {base_frame, "
+        "rotation}) has unsupported type tag !Foo while selecting a variant<> entry for "
+        "std::variant<drake::schema::Rotation::Identity,drake::schema::Rotation::Rpy,"
+        "drake::schema::Rotation::AngleAxis,drake::schema::Rotation::Uniform> rotation while "
+        "accepting YAML node of type Mapping (with size 2 and keys {X_PF, name}) while "
+        "visiting drake::schema::Transform X_PF while accepting YAML node of type Mapping "
+        "(with size 1 and keys {add_frame}) while visiting "
+        "std::optional<drake::multibody::parsing::AddFrame> add_frame while accepting  (with "
+        "size 1 and keys {directives[0]}) while visiting "
+        "drake::multibody::parsing::ModelDirective directives[0] while accepting YAML node of "
+        "type Mapping (with size 1 and keys {directives}) while visiting "
+        "std::vector<drake::multibody::parsing::ModelDirective,std::allocator<drake::"
+        "multibody::parsing::ModelDirective>> directives.",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", DIRECTIVE_YAML_ERRORS)
+def test_directive_yaml_error_message(mb: Modules, case: str) -> None:
+    body, message = DIRECTIVE_YAML_ERRORS[case]
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add("directives:\n" + body, "dmd.yaml")
+    assert str(info.value) == message
+
+
+def test_a_finalized_plant_with_a_scene_graph_refuses_any_parse(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    parsed.plant.Finalize()
+    with pytest.raises(SystemExit) as info:
+        parsed.add("directives: []\n", "dmd.yaml")
+    assert str(info.value).endswith(
+        "in GetMutableSceneGraphPreFinalize(): condition '!is_finalized()' failed."
+    )
+
+
+def test_obj_model_text_is_refused(mb: Modules) -> None:
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add("v 0 0 0\n", "obj")
+    assert str(info.value) == (
+        "Parser does not yet support adding models using in-memory OBJ data. The OBJ data "
+        "must be referenced as a file."
+    )
+
+
+PACKAGE_XML_NAMES = {
+    "text, spaces kept": ("<package><name> sp </name></package>", " sp "),
+    "an element": ("<package><name><x/></name></package>", "x"),
+    "text before an element": ("<package><name>a<x/>b</name></package>", "a"),
+}
+
+
+@pytest.mark.parametrize("case", PACKAGE_XML_NAMES)
+def test_a_package_name_is_the_first_child_of_name(mb: Modules, tmp_path: Path, case: str) -> None:
+    text, name = PACKAGE_XML_NAMES[case]
+    (tmp_path / "package.xml").write_text(text)
+    package_map = mb.parsing.PackageMap.MakeEmpty()
+    package_map.AddPackageXml(filename=str(tmp_path / "package.xml"))
+    assert package_map.GetPackageNames() == [name]
+
+
+def test_a_name_of_only_whitespace_ends_the_program(mb: Modules, tmp_path: Path) -> None:
+    (tmp_path / "package.xml").write_text("<package><name>  </name></package>")
+    with pytest.raises(SystemExit) as info:
+        mb.parsing.PackageMap.MakeEmpty().AddPackageXml(filename=str(tmp_path / "package.xml"))
+    assert str(info.value) == (
+        "Failure at external/drake+/multibody/parsing/package_map.cc:886 in "
+        "ParsePackageManifest(): condition '!name_node->NoChildren()' failed."
+    )
+
+
+def test_package_urls_resolve_to_lexically_normal_paths(mb: Modules, tmp_path: Path) -> None:
+    (tmp_path / "a").mkdir()
+    (tmp_path / "a" / "m.sdf").write_text("")
+    package_map = mb.parsing.PackageMap.MakeEmpty()
+    package_map.Add(package_name="p", package_path=str(tmp_path / "a" / ".." / "a"))
+    assert package_map.ResolveUrl(url="package://p//m.sdf") == str(tmp_path / "a" / "m.sdf")
+    assert package_map.ResolveUrl(url="package://p/") == f"{tmp_path}/a/"
+    with pytest.raises(RuntimeError) as info:
+        package_map.ResolveUrl(url="package://p")
+    assert str(info.value) == (
+        "error: URI 'package://p' is invalid when parsing a string instead of a filename."
+    )
+
+
 # ---------------------------------------------------- Parser, PackageMap, groups
 
 

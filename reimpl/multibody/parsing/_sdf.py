@@ -48,6 +48,7 @@ from reimpl.multibody import kinematics
 from reimpl.multibody.kinematics import Pose
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
+from reimpl.multibody.parsing._group_tags import GroupSyntax, read_group
 from reimpl.multibody.parsing._model_builder import (
     JOINT_TYPES,
     GeometryNamer,
@@ -475,37 +476,38 @@ class _Document:
         return np.column_stack([a1, a2, np.cross(a1, a2)]), np.zeros(3)
 
     # --------------------------------------------------------------- groups
-    def _texts(self, group: XmlElement, tag: str) -> set[str]:
-        values = set()
-        for child in children(group, tag):
-            value = (child.text or "").strip()
-            if not value:
-                raise self.diagnostics.error(f"The tag <{tag}> is missing a required string value.")
-            values.add(value)
-        return values
-
-    def _add_group(self, group: XmlElement, model: XmlElement, scope: str) -> None:
+    def _group_name(self, group: XmlElement) -> str:
         name = group.get("name")
         if name is None:
             raise self.diagnostics.error(
                 f'The tag <{_GROUP}> is missing the required attribute "name"'
             )
-        if not name or _bool(group.get("ignore", "false")):
-            return
-        members = self._texts(group, "drake:member")
-        member_groups = self._texts(group, "drake:member_group")
-        ignored = self._texts(group, "drake:ignored_collision_filter_group")
-        resolver = self.context.resolver
-        resolver.add_group(
+        return name
+
+    def _group_value(self, element: XmlElement, _: str) -> str:
+        value = (element.text or "").strip()
+        if not value:
+            raise self.diagnostics.error(
+                f"The tag <{element.tag}> is missing a required string value."
+            )
+        return value
+
+    def _add_group(self, group: XmlElement, model: XmlElement, scope: str) -> None:
+        """One group, read in Drake's order (see _group_tags); ``ignore`` is an
+        SDFormat bool."""
+        syntax = GroupSyntax(
+            is_ignored=lambda element: _bool(element.get("ignore", "false")),
+            name=self._group_name,
+            value=self._group_value,
+        )
+        read_group(
+            group,
+            syntax,
+            self.context.resolver,
             self.diagnostics,
-            model.line,
-            group_name=name,
-            body_names=members,
-            member_group_names=member_groups,
+            line=model.line,
             scope=scope,
         )
-        for other in sorted(ignored):
-            resolver.add_pair(name, other, scope)
 
 
 def _bool(text: str) -> bool:

@@ -51,6 +51,7 @@ from typing import Any
 
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, literal_string_name
+from reimpl.multibody.parsing._group_tags import GroupSyntax, read_group
 from reimpl.multibody.parsing._package_map import UriError, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
 from reimpl.multibody.parsing._urdf_constraints import ConstraintReader
@@ -277,31 +278,20 @@ class _Robot:
         self.plant.AddFrame(FixedOffsetFrame(name, body.body_frame(), origin(frame)))
 
     # --------------------------------------------------------------- groups
-    def _names(self, group: XmlElement, tag: str, attribute: str) -> set[str]:
-        """The non-empty ``attribute`` values of ``group``'s ``tag`` children."""
-        values = (self._required(child, attribute) for child in children(group, tag))
-        return {value for value in values if value}
-
     def _add_group(self, group: XmlElement) -> None:
-        """Drake's CollectCollisionFilterGroup order (measured): ``ignore``, the name, the
-        members and member groups, the group added (its errors), then the ignored groups."""
-        if group.get("ignore") == "true":
-            return
-        name = self._required(group, "name")
-        if not name:
-            return
-        members = self._names(group, "drake:member", "link")
-        member_groups = self._names(group, "drake:member_group", "name")
+        """One group, read in Drake's order (see _group_tags); ``ignore`` counts
+        only when it is exactly ``true``."""
+        syntax = GroupSyntax(
+            is_ignored=lambda element: element.get("ignore") == "true",
+            name=lambda element: self._required(element, "name"),
+            value=self._required,
+        )
         scope = self.plant.GetModelInstanceName(self.instance)
-        resolver = self.context.resolver
-        resolver.add_group(
+        read_group(
+            group,
+            syntax,
+            self.context.resolver,
             self.diagnostics,
-            self.robot.line,
-            group_name=name,
-            body_names=members,
-            member_group_names=member_groups,
+            line=self.robot.line,
             scope=scope,
         )
-        ignored = self._names(group, "drake:ignored_collision_filter_group", "name")
-        for other in sorted(ignored):
-            resolver.add_pair(name, other, scope)
