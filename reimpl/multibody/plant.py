@@ -34,6 +34,7 @@ from typing import Any, TypeVar
 import numpy as np
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._template import scalar_template
 from reimpl.common.value import register_value_type
 from reimpl.geometry.collision_filter_declaration import (
     CollisionFilterDeclaration,
@@ -91,8 +92,10 @@ __all__ = [
     "AddMultibodyPlantSceneGraph",
     "ApplyMultibodyPlantConfig",
     "CoulombFriction",
+    "CoulombFriction_",
     "MultibodyPlant",
     "MultibodyPlantConfig",
+    "MultibodyPlant_",
 ]
 
 _OWNER = "reimpl.multibody.plant.MultibodyPlant"
@@ -1454,3 +1457,7 @@ def AddMultibodyPlant(
     plant, scene_graph = AddMultibodyPlantSceneGraph(builder=builder, time_step=config.time_step)
     ApplyMultibodyPlantConfig(config, plant)
     return plant, scene_graph
+
+
+MultibodyPlant_ = scalar_template("reimpl.multibody.plant", "MultibodyPlant_", MultibodyPlant)
+CoulombFriction_ = scalar_template("reimpl.multibody.plant", "CoulombFriction_", CoulombFriction)
