@@ -29,7 +29,7 @@ from __future__ import annotations
 import copy
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, TypeVar
+from typing import Any, NoReturn, TypeVar
 
 import numpy as np
 
@@ -338,13 +338,14 @@ class MultibodyPlant(LeafSystem):
     def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
         """Renames the instance, and the scoped names of its SceneGraph frames and geometries.
 
-        A geometry named ``old::x`` becomes ``new::x``. N.B. pydrake 1.51.1 aborts
-        (DRAKE_DEMAND) when called after Finalize; reimpl raises. An empty ``name``
+        A geometry named ``old::x`` becomes ``new::x``. After Finalize, pydrake
+        1.51.1 raises SystemExit (a DRAKE_DEMAND at multibody_plant.cc:1372;
+        1.58.0 reports line 1320), and so does reimpl. An empty ``name``
         raises SystemExit as on pydrake (which, measured, still registers ``""``;
         reimpl leaves the instance as it was).
         """
         if self._finalized:
-            raise _demand_failed("RenameModelInstance", "!is_finalized()")
+            _demand_cc(False, 1372, "RenameModelInstance", "!is_finalized()")
         index = self._instance(model_instance)
         old = self._instance_names[index]
         if name == old:
@@ -563,13 +564,46 @@ class MultibodyPlant(LeafSystem):
 
     # ------------------------------------------------------- lookup by name
     def HasBodyNamed(self, name: str, model_instance: ModelInstanceIndex | None = None) -> bool:
-        return bool(self._named(self._bodies, name, model_instance))
+        """Whether a body has the name (in ``model_instance``); see ``_has_named``."""
+        return self._has_named("RigidBody", self._bodies, name, model_instance)
 
     def HasFrameNamed(self, name: str, model_instance: ModelInstanceIndex | None = None) -> bool:
-        return bool(self._named(self._frames, name, model_instance))
+        return self._has_named("Frame", self._frames, name, model_instance)
 
     def HasJointNamed(self, name: str, model_instance: ModelInstanceIndex | None = None) -> bool:
-        return bool(self._named(self._joints, name, model_instance))
+        return self._has_named("Joint", self._joints, name, model_instance)
+
+    def _has_named(
+        self,
+        kind: str,
+        elements: Sequence[_E],
+        name: str,
+        model_instance: ModelInstanceIndex | None,
+    ) -> bool:
+        """Without ``model_instance``, a name held in several instances raises (measured)."""
+        found = sorted(self._named(elements, name, model_instance), key=_instance_order)
+        if model_instance is None and len(found) > 1:
+            instances = ", ".join(self.GetModelInstanceName(e.model_instance()) for e in found)
+            raise NotFoundError(
+                f"Has{kind}Named(): A {kind} named '{name}' appears in multiple model instances "
+                f"({instances}); you must provide a model_instance argument to disambiguate."
+            )
+        return bool(found)
+
+    def NumBodiesWithName(self, name: str) -> int:
+        """How many bodies, in all model instances, have the name."""
+        return len(self._named(self._bodies, name, None))
+
+    def has_joint(self, joint_index: JointIndex) -> bool:
+        return 0 <= int(joint_index) < len(self._joints)
+
+    def get_mutable_joint(self, joint_index: JointIndex) -> Joint:
+        return self.get_joint(joint_index)
+
+    def GetMutableJointByName(
+        self, name: str, model_instance: ModelInstanceIndex | None = None
+    ) -> Joint:
+        return self.GetJointByName(name, model_instance)
 
     def GetBodyByName(
         self, name: str, model_instance: ModelInstanceIndex | None = None
@@ -859,6 +893,99 @@ class MultibodyPlant(LeafSystem):
             if index in bodies:
                 return [self._bodies[b] for b in bodies]
         raise NotFoundError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
+
+    def IsAnchored(self, body: RigidBody) -> bool:
+        """Whether only welds join ``body`` to the world (its welded set is the world's)."""
+        self._check_finalized("IsAnchored")
+        return any(b.index() == body.index() for b in self.GetBodiesWeldedTo(self.world_body()))
+
+    def GetFloatingBaseBodies(self) -> set[BodyIndex]:
+        """The bodies Finalize gave a floating joint (a set, as pydrake returns it)."""
+        self._check_finalized("GetFloatingBaseBodies")
+        return {b.index() for b in self._bodies if b.is_floating_base_body()}
+
+    def _unique_base_body(self, model_instance: ModelInstanceIndex) -> RigidBody | None:
+        """The one body of ``model_instance`` the forest joins directly to the world, if one.
+
+        A body welded to the world counts (measured: with one welded and two free
+        bodies in an instance, it has no unique base body); the world instance has none.
+        """
+        if not 0 <= int(model_instance) < len(self._instance_names):
+            _demand_tree_cc(
+                4275, "MaybeGetUniqueBaseBodyIndex", "model_instances_.has_element(model_instance)"
+            )
+        if int(model_instance) == int(world_model_instance()):
+            return None
+        assert self._forest is not None
+        bases = [
+            self._bodies[m.outboard]
+            for m in self._forest.mobilizers
+            if m.inboard == graph.WORLD
+            and int(self._bodies[m.outboard].model_instance()) == int(model_instance)
+        ]
+        return bases[0] if len(bases) == 1 else None
+
+    def HasUniqueFloatingBaseBody(self, model_instance: ModelInstanceIndex) -> bool:
+        self._check_finalized("HasUniqueFloatingBaseBody")
+        base = self._unique_base_body(model_instance)
+        return base is not None and base.is_floating_base_body()
+
+    def GetUniqueFloatingBaseBodyOrThrow(self, model_instance: ModelInstanceIndex) -> RigidBody:
+        self._check_finalized("GetUniqueFloatingBaseBodyOrThrow")
+        base = self._unique_base_body(model_instance)
+        name = self.GetModelInstanceName(model_instance)
+        if base is None:
+            raise MultibodyPlantError(f"Model {name} does not have a unique base body.")
+        if not base.is_floating_base_body():
+            raise MultibodyPlantError(
+                f"Model {name} has a unique base body, but it is not a floating base body."
+            )
+        return base
+
+    def GetBodiesKinematicallyAffectedBy(
+        self, joint_indexes: Sequence[JointIndex]
+    ) -> list[BodyIndex]:
+        """The bodies outboard of each joint that moves (welds skipped), sorted, unique."""
+        self._check_finalized("GetBodiesKinematicallyAffectedBy")
+        for joint_index in joint_indexes:
+            if not self.has_joint(joint_index):
+                raise NotFoundError(
+                    f"GetBodiesKinematicallyAffectedBy: No joint with index {int(joint_index)} "
+                    "has been registered or it has been removed."
+                )
+        assert self._forest is not None
+        outboard: dict[int, list[int]] = {}
+        placed_by: dict[int, int] = {}
+        for mobilizer in self._forest.mobilizers:
+            outboard.setdefault(mobilizer.inboard, []).append(mobilizer.outboard)
+            placed_by[mobilizer.joint] = mobilizer.outboard
+        affected: set[int] = set()
+        for joint_index in joint_indexes:
+            if self._joints[int(joint_index)].num_velocities() == 0:
+                continue
+            stack = [placed_by[int(joint_index)]]
+            while stack:
+                body = stack.pop()
+                affected.add(body)
+                stack.extend(outboard.get(body, ()))
+        return [BodyIndex(b) for b in sorted(affected)]
+
+    def num_multibody_states(self, model_instance: ModelInstanceIndex | None = None) -> int:
+        """nq + nv (of ``model_instance``)."""
+        return self.num_positions(model_instance) + self.num_velocities(model_instance)
+
+    def EvalSceneGraphInspector(self, context: Context) -> Any:
+        """The inspector of the QueryObject on the ``geometry_query`` port."""
+        port = self.get_geometry_query_input_port()
+        if not port.HasValue(context):
+            raise MultibodyPlantError(
+                "EvalSceneGraphInspector\n\nThe provided context doesn't show a connection for "
+                "the plant's query input port (see "
+                "MultibodyPlant::get_geometry_query_input_port()). See "
+                "https://drake.mit.edu/troubleshooting.html#mbp-unconnected-query-object-port "
+                "for help."
+            )
+        return port.Eval(context).inspector()
 
     # -------------------------------------------------------------- filters
     def set_adjacent_bodies_collision_filters(self, value: bool) -> None:
@@ -1368,6 +1495,14 @@ def _demand_cc(condition: bool, line: int, method: str, text: str) -> None:
     """pydrake 1.51.1's SystemExit for a failed DRAKE_DEMAND in multibody_plant.cc."""
     if not condition:
         raise SystemExit(f"Failure at {_PLANT_CC}:{line} in {method}(): condition '{text}' failed.")
+
+
+def _demand_tree_cc(line: int, method: str, text: str) -> NoReturn:
+    """pydrake 1.51.1's SystemExit for a failed condition in multibody_tree.cc (measured)."""
+    raise SystemExit(
+        f"Failure at external/drake+/multibody/tree/multibody_tree.cc:{line} in {method}(): "
+        f"condition '{text}' failed."
+    )
 
 
 def _is_rgba(value: object) -> bool:

@@ -479,6 +479,56 @@ class RigidBody(_Element):
         joint = self._inboard_joint()
         return joint is not None and joint.kTypeName == "quaternion_floating"
 
+    # ------------------------------------------------- floating base body
+    # Where a floating base body's joint keeps its state; pydrake 1.51.1's errors
+    # (measured): RuntimeError before Finalize, SystemExit for another body.
+    def _floating_joint(self, method: str, line: int) -> Joint:
+        plant = self.GetParentPlant()
+        if not plant.is_finalized():
+            raise MultibodyPlantError(
+                f"From '{method}'. The model to which this rigid body belongs must be "
+                "finalized. See MultibodyPlant::Finalize()."
+            )
+        joint = self._inboard_joint()
+        if joint is None or not joint.is_ephemeral():
+            raise _rigid_body_demand(line, method, "is_floating_base_body()")
+        return joint
+
+    def floating_positions_start(self) -> int:
+        return self._floating_joint("floating_positions_start", 342).position_start()
+
+    def floating_velocities_start_in_v(self) -> int:
+        return self._floating_joint("floating_velocities_start_in_v", 355).velocity_start()
+
+    def floating_position_suffix(self, position_index_in_body: int) -> str:
+        joint = self._floating_joint("floating_position_suffix", 368)
+        if not 0 <= position_index_in_body < joint.num_positions():
+            raise _rigid_body_demand(
+                370,
+                "floating_position_suffix",
+                "0 <= position_index_in_body && position_index_in_body < 7",
+            )
+        return joint.position_suffix(position_index_in_body)
+
+    def floating_velocity_suffix(self, velocity_index_in_body: int) -> str:
+        joint = self._floating_joint("floating_velocity_suffix", 385)
+        if not 0 <= velocity_index_in_body < joint.num_velocities():
+            raise _rigid_body_demand(
+                386,
+                "floating_velocity_suffix",
+                "0 <= velocity_index_in_body && velocity_index_in_body < 6",
+            )
+        return joint.velocity_suffix(velocity_index_in_body)
+
+
+def _rigid_body_demand(line: int, method: str, condition: str) -> SystemExit:
+    """pydrake 1.51.1's SystemExit for a failed condition in rigid_body.h (measured)."""
+    return SystemExit(
+        "Failure at bazel-out/k8-opt/bin/external/drake+/multibody/tree/_virtual_includes/"
+        f"multibody_tree_core/drake/multibody/tree/rigid_body.h:{line} in {method}(): "
+        f"condition '{condition}' failed."
+    )
+
 
 class Frame(_Element):
     """A frame fixed to a body."""
