@@ -10,6 +10,7 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
+import numpy as np
 import pytest
 
 from conformance.backends.api import Api
@@ -269,3 +270,72 @@ class TestRename:
             f"Failure at external/drake+/multibody/plant/multibody_plant.cc:{line} in "
             "RenameModelInstance(): condition '!is_finalized()' failed."
         )
+
+
+class TestPoseReadBacks:
+    """Rotations of frames and the small pose helpers of pydrake.math (values from 1.51.1)."""
+
+    def test_a_frames_rotations_are_the_rotation_parts_of_its_poses(self, api: Api) -> None:
+        assert api.plant is not None
+        assert api.tree is not None
+        M, tree = api.math, api.tree
+        plant = api.plant.MultibodyPlant(time_step=0.0)
+        a, b = plant.AddRigidBody(name="a"), plant.AddRigidBody(name="b")
+        plant.AddJoint(tree.RevoluteJoint("j", a.body_frame(), b.body_frame(), [0, 0, 1], 0.0))
+        X_BF = M.RigidTransform(M.RotationMatrix.MakeXRotation(0.4), [1, 2, 3])
+        f = plant.AddFrame(frame=tree.FixedOffsetFrame("f", b.body_frame(), X_BF))
+        plant.Finalize()
+        context = plant.CreateDefaultContext()
+        plant.SetPositions(context, [1, 0, 0, 0, 0.1, 0.2, 0.3, 0.7])
+        R_FQ = M.RotationMatrix.MakeYRotation(0.2)
+        R_BF = M.RotationMatrix.MakeXRotation(0.4)
+        R_AF = M.RotationMatrix.MakeZRotation(0.7) @ R_BF
+
+        def near(R: Any, expected: Any) -> bool:
+            return bool(np.allclose(R.matrix(), expected.matrix(), rtol=0, atol=1e-15))
+
+        assert near(f.GetFixedRotationMatrixInBodyFrame(), R_BF)
+        assert near(f.GetFixedRotationMatrixInBody(R_FQ=R_FQ), R_BF @ R_FQ)
+        assert near(f.CalcOffsetRotationMatrixInBody(context=context, R_FQ=R_FQ), R_BF @ R_FQ)
+        assert near(f.CalcRotationMatrix(context=context, frame_M=a.body_frame()), R_AF)
+        assert near(
+            plant.CalcRelativeRotationMatrix(context=context, frame_A=a.body_frame(), frame_B=f),
+            R_AF,
+        )
+        assert near(f.CalcRotationMatrixInWorld(context=context), R_AF)
+
+    def test_rigid_transform_comparisons(self, api: Api) -> None:
+        M = api.math
+        X = M.RigidTransform(M.RotationMatrix.MakeZRotation(0.3), [1, 2, 3])
+        Y = M.RigidTransform(M.RotationMatrix.MakeXRotation(0.2), [1, 2, 3.5])
+        assert X.GetAsMatrix34().shape == (3, 4)
+        assert X.IsExactlyEqualTo(other=M.RigidTransform(X))
+        assert X.GetMaximumAbsoluteTranslationDifference(other=Y) == 0.5
+        assert X.GetMaximumAbsoluteDifference(other=Y) == 0.5  # the translation dominates
+        assert X.IsNearlyEqualTo(other=Y, tolerance=0.5)  # ≤ tolerance
+        assert not X.IsNearlyEqualTo(other=Y, tolerance=0.4999)
+        assert X.InvertAndCompose(other=X).IsNearlyIdentity(translation_tolerance=1e-15)
+        assert M.RigidTransform([1e-9, 0, 0]).IsNearlyIdentity(translation_tolerance=1e-9)
+        assert not M.RigidTransform([1e-9, 0, 0]).IsNearlyIdentity(translation_tolerance=1e-10)
+        Z = M.RigidTransform(X)
+        Z.set(R=M.RotationMatrix(), p=[4, 5, 6])
+        assert Z.translation().tolist() == [4.0, 5.0, 6.0]
+        returned = Z.SetIdentity()
+        # pybind11 (1.51.1) returns the transform itself; nanobind (1.58.0) an equal copy.
+        assert (returned is Z) == (api.version == "1.51.1")
+        assert returned.IsExactlyIdentity()
+        assert Z.IsExactlyIdentity()
+
+    def test_rotation_rows_columns_and_identity_tolerance(self, api: Api) -> None:
+        M = api.math
+        R = M.RotationMatrix.MakeZRotation(0.3)
+        assert R.row(index=2).tolist() == [0.0, 0.0, 1.0]
+        assert R.col(index=2).tolist() == [0.0, 0.0, 1.0]
+        assert R.transpose().matrix().tolist() == R.matrix().T.tolist()
+        assert R.InvertAndCompose(other=R).IsNearlyIdentity()
+        assert M.RotationMatrix.MakeZRotation(1e-15).IsNearlyIdentity()
+        # The default tolerance is 128 ε ≈ 2.84e-14.
+        assert not M.RotationMatrix.MakeZRotation(1e-13).IsNearlyIdentity()
+        assert M.RotationMatrix.MakeZRotation(1e-13).IsNearlyIdentity(tolerance=1e-12)
+        rpy = M.RollPitchYaw(0.1, 0.2, 0.3)
+        assert (rpy.roll_angle(), rpy.pitch_angle(), rpy.yaw_angle()) == (0.1, 0.2, 0.3)

@@ -1340,6 +1340,12 @@ class MultibodyPlant(LeafSystem):
         """X_AB = X_WA⁻¹ · X_WB."""
         return frame_A.CalcPoseInWorld(context).inverse() @ frame_B.CalcPoseInWorld(context)
 
+    def CalcRelativeRotationMatrix(
+        self, context: Context, frame_A: Frame, frame_B: Frame
+    ) -> RotationMatrix:
+        """R_AB, the rotation part of X_AB."""
+        return self.CalcRelativeTransform(context, frame_A, frame_B).rotation()
+
     def _free_body_joint(self, body: RigidBody) -> Any:
         """The floating joint that places ``body`` (Drake's error if none)."""
         assert self._forest is not None

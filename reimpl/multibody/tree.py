@@ -572,6 +572,28 @@ class Frame(_Element):
         X_MF: RigidTransform = self.GetParentPlant().CalcRelativeTransform(context, frame_M, self)
         return X_MF
 
+    # The rotations: the rotation part of the poses above.
+    def GetFixedRotationMatrixInBodyFrame(self) -> RotationMatrix:
+        """R_BF."""
+        return self.GetFixedPoseInBodyFrame().rotation()
+
+    def GetFixedRotationMatrixInBody(self, R_FQ: RotationMatrix) -> RotationMatrix:
+        """R_BQ = R_BF · R_FQ."""
+        return self.GetFixedRotationMatrixInBodyFrame() @ R_FQ
+
+    def CalcRotationMatrixInBodyFrame(self, context: Any) -> RotationMatrix:
+        return self.CalcPoseInBodyFrame(context).rotation()
+
+    def CalcOffsetRotationMatrixInBody(self, context: Any, R_FQ: RotationMatrix) -> RotationMatrix:
+        return self.GetFixedRotationMatrixInBody(R_FQ)
+
+    def CalcRotationMatrixInWorld(self, context: Any) -> RotationMatrix:
+        return self.CalcPoseInWorld(context).rotation()
+
+    def CalcRotationMatrix(self, context: Any, frame_M: Frame) -> RotationMatrix:
+        """R_MF."""
+        return self.CalcPose(context, frame_M).rotation()
+
 
 class RigidBodyFrame(Frame):
     """The frame of a rigid body: same name and model instance as its body."""
