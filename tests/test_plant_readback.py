@@ -236,6 +236,40 @@ class TestStructure:
         assert base.floating_position_suffix(0) == "qw"
 
 
+class TestCoordinateNames:
+    def test_velocity_and_state_names_follow_v_and_q(self, m: Parsed) -> None:
+        m.plant.Finalize()
+        free = [f"base_{s}" for s in ("wx", "wy", "wz", "vx", "vy", "vz")]
+        assert m.plant.GetVelocityNames() == [
+            *(f"r_{n}" for n in free),
+            "r_j1_w",
+            "r_j3_v",
+            *(f"r_1_{n}" for n in free),
+            "r_1_j1_w",
+            "r_1_j3_v",
+        ]
+        short = m.plant.GetVelocityNames(add_model_instance_prefix=False, always_add_suffix=False)
+        assert short == [*free, "j1", "j3"] * 2
+        q_names = [f"base_{s}" for s in ("qw", "qx", "qy", "qz", "x", "y", "z")]
+        assert m.plant.GetStateNames(model_instance=m.r) == [
+            *q_names,
+            "j1_q",
+            "j3_x",
+            *free,
+            "j1_w",
+            "j3_v",
+        ]
+        assert m.plant.GetStateNames(add_model_instance_prefix=False)[:3] == q_names[:3]
+
+    def test_velocity_names_need_finalize(self, m: Parsed) -> None:
+        with pytest.raises(RuntimeError) as info:
+            m.plant.GetVelocityNames()
+        assert str(info.value) == (
+            "Pre-finalize calls to 'GetVelocityNames()' are not allowed; you must call "
+            "Finalize() first."
+        )
+
+
 class TestRename:
     def test_renaming_renames_the_scoped_frame_and_geometry_names(self, m: Parsed) -> None:
         m.plant.RenameModelInstance(model_instance=m.r_1, name="renamed")
