@@ -197,8 +197,9 @@ class MultibodyPlant(LeafSystem):
 
     def __init__(self, time_step: float) -> None:
         super().__init__()
-        if time_step < 0:
-            raise _demand_failed("MultibodyPlant", "time_step >= 0")
+        _demand_cc(
+            time_step >= 0, _DEMAND_LINES["MultibodyPlant"], "MultibodyPlant", "time_step >= 0"
+        )
         self._time_step = float(time_step)
         self._instance_names = [_WORLD_INSTANCE_NAME, _DEFAULT_INSTANCE_NAME]
         self._bodies: list[RigidBody] = []
@@ -242,15 +243,22 @@ class MultibodyPlant(LeafSystem):
 
     # --------------------------------------------------------- SceneGraph
     def RegisterAsSourceForSceneGraph(self, scene_graph: SceneGraph) -> SourceId:
-        """Registers this plant (by its name) as a source; every body so far gets a frame."""
+        """Registers this plant (by its name) as a source; every body so far gets a frame.
+
+        Measured on pydrake 1.51.1: a second registration fails its demand before
+        Finalize is checked.
+        """
+        method = "RegisterAsSourceForSceneGraph"
+        _demand_cc(
+            self._source_id is None,
+            _DEMAND_LINES[method],
+            method,
+            "!geometry_source_is_registered()",
+        )
         if self._finalized:
             raise FinalizedError(
                 "This MultibodyPlant is finalized already; RegisterAsSourceForSceneGraph() "
                 "must be called before Finalize()."
-            )
-        if self._source_id is not None:
-            raise _demand_failed(
-                "RegisterAsSourceForSceneGraph", "!geometry_source_is_registered()"
             )
         self._source_id = scene_graph.RegisterSource(name=self.get_name())
         self._scene_graph = scene_graph
@@ -265,8 +273,13 @@ class MultibodyPlant(LeafSystem):
         return self._source_id
 
     def _registered_scene_graph(self, method: str) -> tuple[SceneGraph, SourceId]:
+        """The SceneGraph and source id; pydrake's SystemExit (measured) for a public
+        ``method`` of a plant that is no source, DemandFailedError for an internal one."""
         if self._scene_graph is None or self._source_id is None:
-            raise _demand_failed(method, "geometry_source_is_registered()")
+            condition = "geometry_source_is_registered()"
+            if method in _DEMAND_LINES:
+                _demand_cc(False, _DEMAND_LINES[method], method, condition)
+            raise _demand_failed(method, condition)
         return self._scene_graph, self._source_id
 
     def _register_body_frame(self, body: RigidBody) -> None:
@@ -338,8 +351,11 @@ class MultibodyPlant(LeafSystem):
     def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
         """Renames the instance, and the scoped names of its SceneGraph frames and geometries.
 
-        A geometry named ``old::x`` becomes ``new::x``. After Finalize, pydrake
-        1.51.1 raises SystemExit (a DRAKE_DEMAND at multibody_plant.cc:1372;
+        As Drake does it: every frame of this plant's source whose frame group is
+        the instance, and every geometry on such a frame (whoever registered it),
+        named ``old::x`` becomes ``new::x``; other names (a frame the user
+        renamed, an unscoped name) are left alone. After Finalize, pydrake
+        1.51.1 raises SystemExit (a DRAKE_THROW_UNLESS at multibody_plant.cc:1372;
         1.58.0 reports line 1320), and so does reimpl. An empty ``name``
         raises SystemExit as on pydrake (which, measured, still registers ``""``;
         reimpl leaves the instance as it was).
@@ -354,22 +370,27 @@ class MultibodyPlant(LeafSystem):
             raise _empty_instance_name()
         self._check_new_instance_name(name)
         self._instance_names[index] = name
-        if self._scene_graph is None or index < _FIRST_SCOPED_INSTANCE:
+        if self._scene_graph is None or self._source_id is None:
             return
-        inspector = self._scene_graph.model_inspector()
-        for body in self._bodies:
-            if int(body.model_instance()) != index:
-                continue
-            b = int(body.index())
-            self._scene_graph.RenameFrame(
-                frame_id=self._body_frame_ids[b], name=self._scoped(model_instance, body.name())
+        scene_graph = self._scene_graph
+        inspector = scene_graph.model_inspector()
+        old_prefix = f"{old}::"
+
+        def renamed(current: str) -> str | None:
+            return (
+                f"{name}::{current[len(old_prefix) :]}" if current.startswith(old_prefix) else None
             )
-            for geometry_id in self._collision_geometries[b] + self._visual_geometries[b]:
-                geometry_name = inspector.GetName(geometry_id)
-                if geometry_name.startswith(f"{old}::"):
-                    self._scene_graph.RenameGeometry(
-                        geometry_id=geometry_id, name=f"{name}::{geometry_name[len(old) + 2 :]}"
-                    )
+
+        for frame_id in inspector.FramesForSource(source_id=self._source_id):
+            if inspector.GetFrameGroup(frame_id=frame_id) != index:
+                continue
+            new_name = renamed(inspector.GetName(frame_id=frame_id))
+            if new_name is not None:
+                scene_graph.RenameFrame(frame_id=frame_id, name=new_name)
+            for geometry_id in inspector.GetGeometryIds(GeometrySet(frame_id=frame_id)):
+                new_name = renamed(inspector.GetName(geometry_id=geometry_id))
+                if new_name is not None:
+                    scene_graph.RenameGeometry(geometry_id=geometry_id, name=new_name)
 
     # ---------------------------------------------------------------- bodies
     def AddRigidBody(self, *args: Any, **kwargs: Any) -> RigidBody:
@@ -1546,6 +1567,16 @@ def _positions_vector(q: Any) -> Any:
     return np.asarray(q, dtype=float).reshape(-1)
 
 
+#: Where multibody_plant.cc (pydrake 1.51.1) demands what the public methods check
+#: with DRAKE_DEMAND / DRAKE_THROW_UNLESS: a plant that is (not) a SceneGraph source, a
+#: nonnegative time step. pydrake raises SystemExit (measured; 1.58.0 reports other lines).
+_DEMAND_LINES = {
+    "MultibodyPlant": 323,
+    "RegisterAsSourceForSceneGraph": 1036,
+    "RegisterVisualGeometry": 1074,
+    "RegisterCollisionGeometry": 1139,
+    "CollectRegisteredGeometries": 1178,
+}
 #: The accessors of a joint's positions and of its velocities: count, start, suffix.
 _COORDINATES = {
     "position": ("num_positions", "position_start", "position_suffix"),
