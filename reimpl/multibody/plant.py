@@ -49,6 +49,7 @@ from reimpl.geometry.geometry_roles import (
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
 from reimpl.geometry.query_object import FramePoseVector
+from reimpl.geometry.rgba import Rgba
 from reimpl.geometry.scene_graph import SceneGraph
 from reimpl.geometry.shape import Shape
 from reimpl.math import RigidTransform, RotationMatrix
@@ -774,9 +775,12 @@ class MultibodyPlant(LeafSystem):
         def with_color(
             body: RigidBody, X_BG: RigidTransform, shape: Shape, name: str, diffuse_color: Any
         ) -> GeometryId:
+            # N.B. Measured: an out-of-range color raises before anything registers.
+            r, g, b, a = (float(v) for v in np.asarray(diffuse_color, dtype=float).reshape(4))
+            diffuse = Rgba(r, g, b, a)
             illustration, perception = IllustrationProperties(), PerceptionProperties()
             for properties in (illustration, perception):
-                properties.AddProperty("phong", "diffuse", np.asarray(diffuse_color, dtype=float))
+                properties.AddProperty("phong", "diffuse", diffuse)
             instance = GeometryInstance(X_PG=X_BG, shape=shape, name=name)
             return self._register_visual(body, instance, illustration, perception)
 

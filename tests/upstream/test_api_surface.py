@@ -171,7 +171,7 @@ LEFT_OUT: tuple[Entry, ...] = (
         "DrakeVisualizer DrakeVisualizerParams DrakeVisualizer_ MakePhongIllustrationProperties "
         "Meshcat MeshcatAnimation MeshcatParams MeshcatPointCloudVisualizer "
         "MeshcatPointCloudVisualizer_ MeshcatVisualizer MeshcatVisualizerParams "
-        "MeshcatVisualizer_ Rgba StartMeshcat",
+        "MeshcatVisualizer_ StartMeshcat",
         None,
     ),
     (VISUALIZATION, ("geometry",), "MeshcatVisualizerSurfaceVelocityData", "1.58.0"),
