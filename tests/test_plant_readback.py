@@ -156,6 +156,51 @@ class TestNames:
         assert not m.plant.has_joint(joint_index=m.tree.JointIndex(6))
 
 
+class TestInvalidModelInstances:
+    """An index no instance has: each family of calls has its own error (1.51.1 and 1.58.0)."""
+
+    def test_counts_and_names_use_the_index_tables_message(self, m: Parsed) -> None:
+        m.plant.Finalize()
+        index = m.tree.ModelInstanceIndex
+        for call in (
+            lambda mi: m.plant.num_positions(model_instance=mi),
+            lambda mi: m.plant.num_velocities(model_instance=mi),
+            lambda mi: m.plant.GetPositionNames(model_instance=mi),
+            lambda mi: m.plant.GetStateNames(model_instance=mi),
+            lambda mi: m.plant.GetDefaultPositions(model_instance=mi),
+        ):
+            with pytest.raises(RuntimeError) as info:
+                call(index(9))
+            assert str(info.value) == (
+                "The given ModelInstanceIndex(9) is out of bounds (must be less than 4)"
+            )
+            with pytest.raises(RuntimeError) as info:
+                call(index())
+            assert str(info.value) == (
+                "The given default-constructed ModelInstanceIndex() cannot be used. You must "
+                "pass a valid integer as the index."
+            )
+
+    def test_listings_end_in_system_exit(self, api: Api, m: Parsed) -> None:
+        # multibody_tree.cc's demand, measured: 1.51.1 at 481/494/521 (GetBodyIndices);
+        # 1.58.0 at 486 (named GetLinkIndices)/499/526.
+        lines = {"GetBodyIndices": 481, "GetJointIndices": 494, "GetFrameIndices": 521}
+        renamed = {"GetBodyIndices": "GetLinkIndices"}
+        for method, line_1_51 in lines.items():
+            with pytest.raises(SystemExit) as info:
+                getattr(m.plant, method)(m.tree.ModelInstanceIndex(9))
+            line, where = line_1_51, method
+            if api.version != "1.51.1":
+                line, where = line_1_51 + 5, renamed.get(method, method)
+            assert str(info.value) == (
+                f"Failure at external/drake+/multibody/tree/multibody_tree.cc:{line} in "
+                f"{where}(): condition 'model_instances_.has_element(model_instance)' failed."
+            )
+        # Name lookups give the name lookup's message.
+        with pytest.raises(RuntimeError, match=r"^There is no model instance id 9 in the model\.$"):
+            m.plant.HasBodyNamed("l1", m.tree.ModelInstanceIndex(9))
+
+
 class TestStructure:
     def test_counts_and_joint_types(self, m: Parsed) -> None:
         assert (m.plant.num_bodies(), m.plant.num_joints(), m.plant.num_model_instances()) == (

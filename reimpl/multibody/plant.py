@@ -344,9 +344,38 @@ class MultibodyPlant(LeafSystem):
         return self._instance_names[self._instance(model_instance)]
 
     def _instance(self, model_instance: ModelInstanceIndex) -> int:
+        """The index; Drake's name lookup's error if no instance has it."""
         index = int(model_instance)
         if not 0 <= index < len(self._instance_names):
             raise NotFoundError(f"There is no model instance id {index} in the model.")
+        return index
+
+    def _indexed_instance(self, model_instance: ModelInstanceIndex) -> int:
+        """The index; the error of Drake's per-instance tables (the counts, q and
+        its names), measured on pydrake 1.51.1 and 1.58.0."""
+        index = int(model_instance)
+        if index < 0:
+            raise NotFoundError(
+                "The given default-constructed ModelInstanceIndex() cannot be used. You must "
+                "pass a valid integer as the index."
+            )
+        if index >= len(self._instance_names):
+            raise NotFoundError(
+                f"The given ModelInstanceIndex({index}) is out of bounds (must be less than "
+                f"{len(self._instance_names)})"
+            )
+        return index
+
+    def _listed_instance(self, method: str, model_instance: ModelInstanceIndex) -> int:
+        """The index; the SystemExit of Drake's element listings (multibody_tree.cc,
+        pydrake 1.51.1; measured)."""
+        index = int(model_instance)
+        if not 0 <= index < len(self._instance_names):
+            _demand_tree_cc(
+                _LISTING_DEMAND_LINES[method],
+                method,
+                "model_instances_.has_element(model_instance)",
+            )
         return index
 
     def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
@@ -470,7 +499,7 @@ class MultibodyPlant(LeafSystem):
         return self._bodies[self._in_range("RigidBodyIndex", body_index, self._bodies)]
 
     def GetBodyIndices(self, model_instance: ModelInstanceIndex) -> list[BodyIndex]:
-        index = self._instance(model_instance)
+        index = self._listed_instance("GetBodyIndices", model_instance)
         return [b.index() for b in self._bodies if int(b.model_instance()) == index]
 
     def _in_range(self, kind: str, index: Any, elements: Sequence[object]) -> int:
@@ -504,7 +533,7 @@ class MultibodyPlant(LeafSystem):
         return self._frames[self._in_range("FrameIndex", frame_index, self._frames)]
 
     def GetFrameIndices(self, model_instance: ModelInstanceIndex) -> list[FrameIndex]:
-        index = self._instance(model_instance)
+        index = self._listed_instance("GetFrameIndices", model_instance)
         return [f.index() for f in self._frames if int(f.model_instance()) == index]
 
     # ---------------------------------------------------------------- joints
@@ -558,7 +587,7 @@ class MultibodyPlant(LeafSystem):
         def of(model_instance: ModelInstanceIndex | None = None) -> list[JointIndex]:
             if model_instance is None:
                 return [j.index() for j in self._joints]
-            index = self._instance(model_instance)
+            index = self._listed_instance("GetJointIndices", model_instance)
             return [j.index() for j in self._joints if int(j.model_instance()) == index]
 
         return dispatch(  # type: ignore[no-any-return]
@@ -581,7 +610,7 @@ class MultibodyPlant(LeafSystem):
     def _joints_of(self, model_instance: ModelInstanceIndex | None) -> list[Joint]:
         if model_instance is None:
             return list(self._joints)
-        index = self._instance(model_instance)
+        index = self._indexed_instance(model_instance)
         return [j for j in self._joints if int(j.model_instance()) == index]
 
     # ------------------------------------------------------- lookup by name
@@ -1581,6 +1610,8 @@ _DEMAND_LINES = {
     "RegisterCollisionGeometry": 1139,
     "CollectRegisteredGeometries": 1178,
 }
+#: Where multibody_tree.cc (pydrake 1.51.1) demands that a listing's model instance exists.
+_LISTING_DEMAND_LINES = {"GetBodyIndices": 481, "GetJointIndices": 494, "GetFrameIndices": 521}
 #: The accessors of a joint's positions and of its velocities: count, start, suffix.
 _COORDINATES = {
     "position": ("num_positions", "position_start", "position_suffix"),
