@@ -195,19 +195,6 @@ class TestJointConstructors:
         assert (joint.can_rotate(), joint.can_translate()) == (True, True)
 
 
-@pytest.fixture
-def urdf_joint_parameters(api: Api, request: pytest.FixtureRequest) -> None:
-    """reimpl's URDF parser does not yet hand limits and damping to the joints
-    (the URDF work does, in parallel): strictly expected to fail there until it merges."""
-    if api.name == "reimpl":
-        request.node.add_marker(
-            pytest.mark.xfail(
-                reason="reimpl's URDF parser passes no limits or damping yet", strict=True
-            )
-        )
-
-
-@pytest.mark.usefixtures("urdf_joint_parameters")
 class TestJointsInParsedModels:
     @pytest.mark.parametrize("kind", ["revolute", "prismatic", "continuous"])
     def test_urdf_limits_out_of_order_end_in_system_exit(self, api: Api, kind: str) -> None:

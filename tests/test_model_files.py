@@ -65,16 +65,7 @@ def _execute(backend: Any, op: str, **args: Any) -> Any:
     return backend.execute(Command(op, args))
 
 
-@pytest.mark.parametrize(
-    "name",
-    [
-        pytest.param(
-            "reimpl",
-            marks=pytest.mark.xfail(reason="reimpl's URDF reader lacks <frame> (issue 27)"),
-        ),
-        "pydrake",
-    ],
-)
+@pytest.mark.parametrize("name", ["reimpl", "pydrake"])
 def test_model_inventory_lists_models_bodies_frames_joints_and_geometries(name: str) -> None:
     backend = load_backend(name)
     backend.reset()

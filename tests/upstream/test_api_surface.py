@@ -629,30 +629,6 @@ LEFT_OUT: tuple[Entry, ...] = (
     (NEW_IN_1_58, ("math.RollPitchYaw",), "IsNearlyEqualTo", "1.58.0"),
 )
 
-# ------------------------------------------------------------------------------------------
-# ADDED BY THE PARSING WORK (the directives helper adds these to reimpl.multibody.parsing in
-# parallel). The lead empties this section when the branches merge; a name still missing
-# then fails the first test below.
-PARSING_WORK = "added by the parsing work (directives helper, in parallel)"
-LEFT_OUT_UNTIL_MERGE: tuple[Entry, ...] = (
-    (
-        PARSING_WORK,
-        ("multibody.parsing",),
-        "AddCollisionFilterGroup AddDirectives AddFrame AddModel AddModelInstance AddWeld "
-        "FlattenModelDirectives GetScopedFrameByName GetScopedFrameByNameMaybe "
-        "LoadModelDirectives LoadModelDirectivesFromString ModelDirective ModelDirectives "
-        "ModelInstanceInfo ProcessModelDirectives",
-        None,
-    ),
-    (
-        PARSING_WORK,
-        ("multibody.parsing.PackageMap",),
-        "AddPackageXml AddRemote PopulateFromEnvironment PopulateFromFolder "
-        "PopulateFromRosPackagePath RemoteParams",
-        None,
-    ),
-)
-# ------------------------------------------------------------------------------------------
 
 RELEASE = importlib.metadata.version("drake")
 #: The classes whose LeafSystem names are left out (SYSTEMS).
@@ -692,7 +668,7 @@ def _applies(release: str | None) -> bool:
 def _left_out(target: str, *, applicable_only: bool) -> dict[str, str]:
     """Name → reason for ``target``: the listed names, then the rules (LeafSystem, scalars)."""
     reasons: dict[str, str] = {}
-    for reason, targets, names, release in LEFT_OUT + LEFT_OUT_UNTIL_MERGE:
+    for reason, targets, names, release in LEFT_OUT:
         if target in targets and (_applies(release) or not applicable_only):
             reasons.update(dict.fromkeys(names.split(), reason))
     return reasons
@@ -745,7 +721,7 @@ def test_a_left_out_name_exists_in_pydrake(target: str) -> None:
 
 def test_every_entry_names_a_reason_and_a_target_of_the_subset() -> None:
     targets = set(_targets())
-    for reason, entry_targets, names, release in LEFT_OUT + LEFT_OUT_UNTIL_MERGE:
+    for reason, entry_targets, names, release in LEFT_OUT:
         assert reason
         assert names.split()
         assert set(entry_targets) <= targets, entry_targets
