@@ -203,10 +203,41 @@ def _exact_differences(reference: Any, other: Any) -> list[str]:
     return [] if reference == other else ["values differ"]
 
 
+def _inventory_differences(reference: Any, other: Any) -> list[str]:
+    """``{key: [entries]}``: per key, the entries only one side has (a few of each shown)."""
+    if reference == other:
+        return []
+    if not isinstance(reference, Mapping) or not isinstance(other, Mapping):
+        return ["values differ"]
+    lines = []
+    for key in sorted(set(reference) | set(other)):
+        ours, theirs = reference.get(key, []), other.get(key, [])
+        if ours == theirs:
+            continue
+        if not isinstance(ours, list) or not isinstance(theirs, list):
+            lines.append(f"{key} differ")
+            continue
+        only_ours = [e for e in ours if e not in theirs]
+        only_theirs = [e for e in theirs if e not in ours]
+        lines.append(
+            f"{key}: only reference {_some(only_ours)}, only other {_some(only_theirs)}"
+            if only_ours or only_theirs
+            else f"{key}: same entries in another order"
+        )
+    return lines
+
+
+def _some(entries: Sequence[Any], shown: int = 3) -> str:
+    """``entries`` for a one-line report: the first few and how many more."""
+    listed = json.dumps(list(entries[:shown]))
+    return listed if len(entries) <= shown else f"{listed} and {len(entries) - shown} more"
+
+
 _COMPARISONS: Mapping[Comparison, Callable[[Any, Any], list[str]]] = {
     Comparison.EXACT: _exact_differences,
     Comparison.PROXIMITY: _proximity_differences,
     Comparison.POSE: _pose_differences,
+    Comparison.INVENTORY: _inventory_differences,
 }
 
 

@@ -40,6 +40,7 @@ __all__ = [
     "Result",
     "UnknownNameError",
     "backend_id",
+    "classify_assertion",
     "classify_error",
     "normalise_message",
 ]
@@ -81,6 +82,9 @@ class ErrorKind(enum.Enum):
     INVALID_QUERY = "invalid_query"
     BINDING = "binding"  # TypeError: no overload accepts the arguments.
     REFUSED = "refused"  # The harness would not send this call (it crashes some release).
+    #: A DRAKE_DEMAND failed: pydrake raises SystemExit("Failure at <file>:<line> in <fn>():
+    #: condition '...' failed."), and reimpl imitates it (``classify_assertion``).
+    ASSERTION = "assertion"
     OTHER = "other"
 
 
@@ -107,6 +111,19 @@ def normalise_message(message: str) -> str:
     """Replaces id values (every integer but a model file's line) with ``#``: ids differ
     between runs; lines in a model file do not, and name the element."""
     return _POSITION_OR_ID.sub(lambda m: m.group(1) or "#", message.strip())
+
+
+#: How pydrake's SystemExit for a failed DRAKE_DEMAND begins.
+ASSERTION_PREFIX = "Failure at "
+
+
+def classify_assertion(exception: SystemExit) -> ErrorInfo | None:
+    """The ErrorInfo of a SystemExit that reports a failed DRAKE_DEMAND, else None (a real
+    exit, which no backend may answer with)."""
+    message = str(exception)
+    if not message.startswith(ASSERTION_PREFIX):
+        return None
+    return ErrorInfo(ErrorKind.ASSERTION, normalise_message(message))
 
 
 def classify_error(exception: BaseException) -> ErrorInfo:

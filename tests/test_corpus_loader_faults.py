@@ -574,3 +574,23 @@ def test_a_file_with_a_utf8_byte_order_mark_loads_like_one_without(
     without = load_file(write(tmp_path, name, text))
     assert [c.steps for c in with_bom.cases] == [c.steps for c in without.cases]
     assert with_bom.cases[0].description == DESCRIPTION
+
+
+def test_a_folder_walk_skips_model_packages_and_model_directives(tmp_path: Path) -> None:
+    (tmp_path / "a.json").write_text(json.dumps(SCENARIO), encoding="utf-8")
+    package = tmp_path / "models" / "robot"
+    package.mkdir(parents=True)
+    (package / "package.xml").write_text("<package><name>robot</name></package>")
+    (package / "setup.yaml").write_text("directives: []\n", encoding="utf-8")
+    (tmp_path / "cell.dmd.yaml").write_text("directives: []\n", encoding="utf-8")
+    errors: list[ScenarioError] = []
+    files = load_corpus([tmp_path], errors=errors)
+    assert [f.path.name for f in files] == ["a.json"]
+    assert errors == []
+
+
+def test_the_embedded_corpus_loads_without_reading_the_vendored_model_files() -> None:
+    errors: list[ScenarioError] = []
+    files = load_corpus(errors=errors)
+    assert errors == []
+    assert not [f for f in files if "real_models/drake/" in f.name]

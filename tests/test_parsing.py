@@ -17,12 +17,14 @@ from __future__ import annotations
 import importlib
 import itertools
 from dataclasses import dataclass
+from importlib.metadata import version
 from pathlib import Path
 from types import ModuleType
 from typing import Any
 
 import pytest
 
+from conformance.policy.versions import version_in_range
 from tests.conftest import IMPLEMENTATIONS
 
 MODELS = Path(__file__).parent / "models"
@@ -1089,9 +1091,9 @@ def test_sdf_an_included_model_directory_names_its_file_in_model_config(
         (tmp_path / name / "model.config").write_text(
             f'<?xml version="1.0"?>\n<model><name>{name}</name>{entries}</model>\n'
         )
-        for version in versions:
-            model = f'<model name="v{version.replace(".", "_")}">\n' + link("a") + "</model>\n"
-            (tmp_path / name / f"v{version}.sdf").write_text(sdf(model))
+        for number in versions:
+            model = f'<model name="v{number.replace(".", "_")}">\n' + link("a") + "</model>\n"
+            (tmp_path / name / f"v{number}.sdf").write_text(sdf(model))
 
     def include(uri: str) -> str:
         return sdf(
@@ -1325,6 +1327,259 @@ def test_directive_groups_are_skipped_without_a_scene_graph(mb: Modules) -> None
     assert parsed.parser.GetCollisionFilterGroups().empty()
 
 
+# ------------------------------------------------- directives: scoping and errors
+#
+# Each case was run on pydrake 1.51.1 (and reimpl) with the same text; the expected
+# values are pydrake's.
+
+DIRECTIVE_SCOPING_ERRORS = {
+    # Drake evaluates AddWeld's arguments right to left: the child is looked up first.
+    "weld with both frames missing": (
+        "- add_weld: {parent: nope::a, child: nope2::b}\n",
+        "GetModelInstanceByName(): There is no model instance named 'nope2'. The current "
+        "model instances are 'DefaultModelInstance', 'WorldModelInstance'.",
+    ),
+    "frame scoped to a missing instance": (
+        box("m") + "- add_frame: {name: nope::f, X_PF: {base_frame: m::base}}\n",
+        "GetModelInstanceByName(): There is no model instance named 'nope'. The current model "
+        "instances are 'DefaultModelInstance', 'WorldModelInstance', 'm'.",
+    ),
+    "nested namespace that is not an instance": (
+        "- add_model_instance: {name: a}\n"
+        "- add_directives: {file: package://test_models/two_boxes.dmd.yaml, "
+        "model_namespace: a}\n"
+        "- add_directives: {file: package://test_models/filter_groups.dmd.yaml, "
+        "model_namespace: a::zz}\n",
+        "Namespace 'a::zz' does not exist as model instance",
+    ),
+    "relative model file": (
+        "- add_model: {name: m, file: simple_box.sdf}\n",
+        "error: URI 'simple_box.sdf' is invalid when parsing a string instead of a filename.",
+    ),
+    "directives file as a model": (
+        "- add_model: {name: m, file: package://test_models/two_boxes.dmd.yaml}\n",
+        "error: '{models}/two_boxes.dmd.yaml' is a model directives data source; it is always "
+        "an error to pass a model directives source to a single-model parser method. Use "
+        "AddModels() instead.",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", DIRECTIVE_SCOPING_ERRORS)
+def test_directive_scoping_error_message(mb: Modules, case: str) -> None:
+    body, message = DIRECTIVE_SCOPING_ERRORS[case]
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add("directives:\n" + body, "dmd.yaml")
+    assert str(info.value) == message.replace("{models}", str(MODELS))
+
+
+def test_an_unscoped_added_frame_goes_to_its_base_frames_instance(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = (
+        "directives:\n"
+        + box("m")
+        + "- add_frame: {name: f, X_PF: {base_frame: m::base, translation: [1, 2, 3]}}\n"
+        + "- add_frame: {name: m::g, X_PF: {base_frame: world}}\n"
+        + "- add_frame: {name: h, X_PF: {base_frame: world}}\n"
+    )
+    parsed.add(text, "dmd.yaml")
+    plant = parsed.plant
+    m = plant.GetModelInstanceByName("m")
+    assert plant.HasFrameNamed("f", m)
+    assert plant.HasFrameNamed("g", m)
+    assert plant.HasFrameNamed("h", plant.world_body().model_instance())
+
+
+def test_a_group_namespace_of_an_earlier_parse_ends_the_program(mb: Modules) -> None:
+    """Drake's resolver DRAKE_DEMANDs that a group's model instance is new in the parse."""
+    parsed = Parsed(mb)
+    parsed.parser.AddModels(url="package://test_models/simple_box.sdf")
+    with pytest.raises(SystemExit) as info:
+        parsed.add(
+            "directives:\n"
+            "- add_collision_filter_group: {name: g, model_namespace: simple_box, "
+            "members: [base]}\n",
+            "dmd.yaml",
+        )
+    assert str(info.value) == (
+        "Failure at external/drake+/multibody/parsing/detail_collision_filter_group_resolver"
+        ".cc:39 in AddGroup(): condition '*model_instance >= minimum_model_instance_index_' "
+        "failed."
+    )
+
+
+def test_a_prefixed_parser_reads_directive_groups_in_the_prefix_instance(mb: Modules) -> None:
+    """The prefix is the top namespace, so a group is read in instance ``pre``, which
+    must exist."""
+    parsed = Parsed(mb)
+    parser = mb.parsing.Parser(plant=parsed.plant, model_name_prefix="pre")
+    parser.package_map().Add(package_name="test_models", package_path=str(MODELS))
+    text = (
+        "directives:\n" + box("m") + "- add_collision_filter_group: {name: g, members: [m::base]}\n"
+    )
+    with pytest.raises(RuntimeError) as info:
+        parser.AddModelsFromString(file_contents=text, file_type="dmd.yaml")
+    assert str(info.value).startswith(
+        "GetModelInstanceByName(): There is no model instance named 'pre'."
+    )
+
+
+def test_default_free_body_pose_from_a_frame_adds_a_floating_joint(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    text = (
+        "directives:\n"
+        + box("m")
+        + "- add_model:\n    name: n\n    file: package://test_models/simple_box.sdf\n"
+        "    default_free_body_pose: {base: {base_frame: m::base, translation: [1, 2, 3]}}\n"
+    )
+    parsed.add(text, "dmd.yaml")
+    assert "base:quaternion_floating:base->base" in parsed.joints()
+
+
+def test_wrong_sized_default_joint_positions_are_drakes_error(mb: Modules, tmp_path: Path) -> None:
+    (tmp_path / "arm.urdf").write_text(
+        urdf(sphere_link("a"), sphere_link("b"), joint("j", "a", "b"))
+    )
+    parsed = Parsed(mb)
+    text = (
+        f"directives:\n- add_model: {{name: arm, file: 'file://{tmp_path}/arm.urdf', "
+        "default_joint_positions: {j: [0.1, 0.2]}}\n"
+    )
+    with pytest.raises(RuntimeError) as info:
+        parsed.add(text, "dmd.yaml")
+    assert str(info.value) == (
+        "set_default_positions: The number of positions in the input (2) does not match the "
+        "number of positions of the joint 'arm::j' (1)."
+    )
+
+
+def test_auto_renaming_applies_to_added_model_instances(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    parsed.parser.SetAutoRenaming(value=True)
+    parsed.add(
+        "directives:\n- add_model_instance: {name: a}\n- add_model_instance: {name: a}\n",
+        "dmd.yaml",
+    )
+    assert parsed.plant.HasModelInstanceNamed("a_1")
+
+
+DIRECTIVE_YAML_ERRORS = {
+    "duplicate key": (
+        "- add_model_instance: {name: a, name: b}\n",
+        "Cannot Node::Add(key, value) using duplicate key 'name'",
+    ),
+    "sequence for a string": (
+        "- add_model_instance:\n    name: [a]\n",
+        "<string>:3:5: YAML node of type Mapping (with size 1 and keys {name}) has non-Scalar "
+        "(Sequence) entry for std::string name while accepting YAML node of type Mapping "
+        "(with size 1 and keys {add_model_instance}) while visiting "
+        "std::optional<drake::multibody::parsing::AddModelInstance> add_model_instance while "
+        "accepting  (with size 1 and keys {directives[0]}) while visiting "
+        "drake::multibody::parsing::ModelDirective directives[0] while accepting YAML node of "
+        "type Mapping (with size 1 and keys {directives}) while visiting "
+        "std::vector<drake::multibody::parsing::ModelDirective,std::allocator<drake::"
+        "multibody::parsing::ModelDirective>> directives.",
+    ),
+    "short translation": (
+        "- add_frame: {name: f, X_PF: {base_frame: world, translation: [1, 2]}}\n",
+        "<string>:2:30: YAML node of type Mapping (with size 2 and keys {base_frame, "
+        "translation}) has 2-size entry (wanted 3-size) entry for Eigen::Vector3d translation "
+        "while accepting YAML node of type Mapping (with size 2 and keys {X_PF, name}) while "
+        "visiting drake::schema::Transform X_PF while accepting YAML node of type Mapping "
+        "(with size 1 and keys {add_frame}) while visiting "
+        "std::optional<drake::multibody::parsing::AddFrame> add_frame while accepting  (with "
+        "size 1 and keys {directives[0]}) while visiting "
+        "drake::multibody::parsing::ModelDirective directives[0] while accepting YAML node of "
+        "type Mapping (with size 1 and keys {directives}) while visiting "
+        "std::vector<drake::multibody::parsing::ModelDirective,std::allocator<drake::"
+        "multibody::parsing::ModelDirective>> directives.",
+    ),
+    "unknown rotation tag": (
+        "- add_frame: {name: f, X_PF: {base_frame: world, rotation: !Foo {}}}\n",
+        "<string>:2:30: YAML node of type Mapping (with size 2 and keys {base_frame, "
+        "rotation}) has unsupported type tag !Foo while selecting a variant<> entry for "
+        "std::variant<drake::schema::Rotation::Identity,drake::schema::Rotation::Rpy,"
+        "drake::schema::Rotation::AngleAxis,drake::schema::Rotation::Uniform> rotation while "
+        "accepting YAML node of type Mapping (with size 2 and keys {X_PF, name}) while "
+        "visiting drake::schema::Transform X_PF while accepting YAML node of type Mapping "
+        "(with size 1 and keys {add_frame}) while visiting "
+        "std::optional<drake::multibody::parsing::AddFrame> add_frame while accepting  (with "
+        "size 1 and keys {directives[0]}) while visiting "
+        "drake::multibody::parsing::ModelDirective directives[0] while accepting YAML node of "
+        "type Mapping (with size 1 and keys {directives}) while visiting "
+        "std::vector<drake::multibody::parsing::ModelDirective,std::allocator<drake::"
+        "multibody::parsing::ModelDirective>> directives.",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", DIRECTIVE_YAML_ERRORS)
+def test_directive_yaml_error_message(mb: Modules, case: str) -> None:
+    body, message = DIRECTIVE_YAML_ERRORS[case]
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add("directives:\n" + body, "dmd.yaml")
+    assert str(info.value) == message
+
+
+def test_a_finalized_plant_with_a_scene_graph_refuses_any_parse(mb: Modules) -> None:
+    parsed = Parsed(mb)
+    parsed.plant.Finalize()
+    with pytest.raises(SystemExit) as info:
+        parsed.add("directives: []\n", "dmd.yaml")
+    assert str(info.value).endswith(
+        "in GetMutableSceneGraphPreFinalize(): condition '!is_finalized()' failed."
+    )
+
+
+def test_obj_model_text_is_refused(mb: Modules) -> None:
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add("v 0 0 0\n", "obj")
+    assert str(info.value) == (
+        "Parser does not yet support adding models using in-memory OBJ data. The OBJ data "
+        "must be referenced as a file."
+    )
+
+
+PACKAGE_XML_NAMES = {
+    "text, spaces kept": ("<package><name> sp </name></package>", " sp "),
+    "an element": ("<package><name><x/></name></package>", "x"),
+    "text before an element": ("<package><name>a<x/>b</name></package>", "a"),
+}
+
+
+@pytest.mark.parametrize("case", PACKAGE_XML_NAMES)
+def test_a_package_name_is_the_first_child_of_name(mb: Modules, tmp_path: Path, case: str) -> None:
+    text, name = PACKAGE_XML_NAMES[case]
+    (tmp_path / "package.xml").write_text(text)
+    package_map = mb.parsing.PackageMap.MakeEmpty()
+    package_map.AddPackageXml(filename=str(tmp_path / "package.xml"))
+    assert package_map.GetPackageNames() == [name]
+
+
+def test_a_name_of_only_whitespace_ends_the_program(mb: Modules, tmp_path: Path) -> None:
+    (tmp_path / "package.xml").write_text("<package><name>  </name></package>")
+    with pytest.raises(SystemExit) as info:
+        mb.parsing.PackageMap.MakeEmpty().AddPackageXml(filename=str(tmp_path / "package.xml"))
+    assert str(info.value) == (
+        "Failure at external/drake+/multibody/parsing/package_map.cc:886 in "
+        "ParsePackageManifest(): condition '!name_node->NoChildren()' failed."
+    )
+
+
+def test_package_urls_resolve_to_lexically_normal_paths(mb: Modules, tmp_path: Path) -> None:
+    (tmp_path / "a").mkdir()
+    (tmp_path / "a" / "m.sdf").write_text("")
+    package_map = mb.parsing.PackageMap.MakeEmpty()
+    package_map.Add(package_name="p", package_path=str(tmp_path / "a" / ".." / "a"))
+    assert package_map.ResolveUrl(url="package://p//m.sdf") == str(tmp_path / "a" / "m.sdf")
+    assert package_map.ResolveUrl(url="package://p/") == f"{tmp_path}/a/"
+    with pytest.raises(RuntimeError) as info:
+        package_map.ResolveUrl(url="package://p")
+    assert str(info.value) == (
+        "error: URI 'package://p' is invalid when parsing a string instead of a filename."
+    )
+
+
 # ---------------------------------------------------- Parser, PackageMap, groups
 
 
@@ -1507,3 +1762,408 @@ def test_urdf_joints_and_drake_joints_are_added_in_document_order(mod: str) -> N
     plant, _ = plant_module.AddMultibodyPlantSceneGraph(framework.DiagramBuilder(), 0.0)
     parsing.Parser(plant).AddModelsFromString(urdf, "urdf")
     assert [plant.get_joint(j).name() for j in plant.GetJointIndices()] == ["a", "b", "c"]
+
+
+# ------------------------------------------ URDF reading as Drake reads it (1.51.1)
+# Measured on pydrake 1.51.1 (and 1.58.0 where a test branches): tinyxml2's grammar,
+# istream numbers, meshes, materials, curvilinear joints, the order of checks.
+
+REAL_MODELS = Path(__file__).parent.parent / "scenarios" / "real_models" / "drake"
+URDF_TEST_DIR = REAL_MODELS / "multibody/parsing/test/urdf_parser_test"
+
+
+def _is_1_51(mb: Modules) -> bool:
+    """reimpl follows 1.51.1; pydrake is the installed release."""
+    return mb.plant.__name__.startswith("reimpl") or version_in_range(
+        version("drake"), "1.51", "1.51"
+    )
+
+
+def urdf_error(mb: Modules, text: str, *, strict: bool = False) -> str:
+    parsed = Parsed(mb)
+    if strict:
+        parsed.parser.SetStrictParsing()
+    with pytest.raises(RuntimeError) as info:
+        parsed.add(text, "urdf")
+    return str(info.value)
+
+
+R = '<robot name="r"><link name="a"/></robot>'
+
+#: Text tinyxml2 accepts (an XML parser like expat rejects each) -> the models it gives.
+TINYXML2_ACCEPTS = {
+    "'--' inside a comment": '<robot name="r"><!-- a -- b --><link name="a"/></robot>',
+    "blank lines before <?xml": '\n\n<?xml version="1.0"?>\n' + R,
+    "a trailing NUL": R + "\x00",
+    "text before the robot": "junk " + R,
+    "a second top-level element": R + '<robot name="q"/>',
+    "'<' and unknown entities in a value": '<robot name="r&foo;<"><link name="a"/></robot>',
+    "a DOCTYPE": "<!DOCTYPE robot>" + R,
+    "whitespace after '<'": '< robot name="r"><link name="a"/></robot >',
+    "attributes without space between": '<robot name="r"><link name="a"type="x"/></robot>',
+    "the robot after another element": '<foo/><robot name="r"><link name="a"/></robot>',
+}
+
+
+@pytest.mark.parametrize("case", TINYXML2_ACCEPTS)
+def test_urdf_text_is_read_with_tinyxml2s_grammar(mb: Modules, case: str) -> None:
+    expected = ["r&foo;<"] if case.startswith("'<'") else ["r"]
+    assert Parsed(mb).add(TINYXML2_ACCEPTS[case], "urdf") == expected
+
+
+#: Text tinyxml2 rejects -> its error name (Drake prints line 1, or 0 for no text).
+TINYXML2_REJECTS = {
+    "text after the robot": (R + " junk", "XML_ERROR_PARSING_TEXT", 1),
+    "<?xml after an element": (R + '<?xml version="1.0"?>', "XML_ERROR_PARSING_DECLARATION", 1),
+    "an unclosed comment": ('<robot name="r"/><!-- c ', "XML_ERROR_PARSING_COMMENT", 1),
+    "an unclosed CDATA": ('<robot name="r"><![CDATA[x</robot>', "XML_ERROR_PARSING_CDATA", 1),
+    "a duplicate attribute": ('<robot name="r" name="q"/>', "XML_ERROR_PARSING_ATTRIBUTE", 1),
+    "an unquoted attribute": ("<robot name=r/>", "XML_ERROR_PARSING_ATTRIBUTE", 1),
+    "a tag name starting with a digit": ('<robot name="r"><1a/></robot>', "XML_ERROR_PARSING", 1),
+    "an end tag of another name": (
+        '<robot name="r">\n<a>\n</b></robot>',
+        "XML_ERROR_MISMATCHED_ELEMENT",
+        1,
+    ),
+    "a cut tag": ('<robot name="r"', "XML_ERROR_PARSING_ELEMENT", 1),
+    "only whitespace": (" \n ", "XML_ERROR_EMPTY_DOCUMENT", 1),
+    "nothing": ("", "XML_ERROR_EMPTY_DOCUMENT", 0),
+    "a NUL first": ("\x00" + R, "XML_ERROR_EMPTY_DOCUMENT", 0),
+}
+
+
+@pytest.mark.parametrize("case", TINYXML2_REJECTS)
+def test_urdf_syntax_errors_carry_tinyxml2s_names(mb: Modules, case: str) -> None:
+    text, name, line = TINYXML2_REJECTS[case]
+    assert urdf_error(mb, text) == (
+        f"<literal-string>.urdf:{line}: error: Failed to parse XML string: {name}"
+    )
+
+
+def test_a_urdf_file_with_a_syntax_error_is_named_a_file(mb: Modules, tmp_path: Path) -> None:
+    """Drake's wording names a file 'XML file' (Drake's own sdf_parser_test/bad.urdf)."""
+    path = REAL_MODELS / "multibody/parsing/test/sdf_parser_test/bad.urdf"
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).parser.AddModels(file_name=str(path))
+    assert str(info.value) == f"{path}:1: error: Failed to parse XML file: XML_ERROR_PARSING_TEXT"
+    empty = tmp_path / "empty.urdf"
+    empty.write_text("")
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).parser.AddModels(file_name=str(empty))
+    assert (
+        str(info.value) == f"{empty}:0: error: Failed to parse XML file: XML_ERROR_EMPTY_DOCUMENT"
+    )
+
+
+def test_a_cr_only_urdf_file_counts_lines_by_lf(mb: Modules, tmp_path: Path) -> None:
+    """tinyxml2 counts LFs only: a file with CR line ends is all line 1."""
+    path = tmp_path / "cr.urdf"
+    path.write_bytes(b'<robot name="r">\r<link/>\r</robot>')
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).parser.AddModels(file_name=str(path))
+    assert str(info.value) == f"{path}:1: error: link tag is missing name attribute."
+
+
+def sphere_robot(radius: str) -> str:
+    return (
+        f'<robot name="r"><link name="a"><collision><geometry><sphere radius="{radius}"/>'
+        "</geometry></collision></link></robot>"
+    )
+
+
+#: A number as C++'s ``istream >> double`` reads it: the prefix that is a number,
+#: reading stopping at the first failure; exactly one must come out.
+NUMBERS_READ = ["1", " 1 ", "1abc", ".5", "+1", "1.", "1e5x", "2 x", "0x10", "1,5", "1 2e"]
+NUMBERS_REJECTED = ["1 2", "abc", "", "1e", "1e+", "inf", "nan", "1.5.5", "1e400", "-"]
+
+
+@pytest.mark.parametrize("text", NUMBERS_READ)
+def test_a_urdf_number_is_its_leading_numeric_text(mb: Modules, text: str) -> None:
+    parsed = Parsed(mb)
+    parsed.add(sphere_robot(text), "urdf")
+    assert parsed.geometries() == {"r::a/Sphere"}
+
+
+@pytest.mark.parametrize("text", NUMBERS_REJECTED)
+def test_a_urdf_number_must_be_one_finite_number(mb: Modules, text: str) -> None:
+    assert urdf_error(mb, sphere_robot(text)) == (
+        f"<literal-string>.urdf:1: error: Expected single value for attribute 'radius' got '{text}'"
+    )
+
+
+def mesh_robot(path: Path, *meshes: str) -> str:
+    collisions = "".join(
+        f'<collision><geometry><mesh filename="{path}"{m}</geometry></collision>' for m in meshes
+    )
+    return f'<robot name="r" {DRAKE_NS}><link name="a">{collisions}</link></robot>'
+
+
+@pytest.fixture
+def obj_file(tmp_path: Path) -> Path:
+    path = tmp_path / "tri_cube.obj"
+    path.write_bytes((REAL_MODELS / "multibody/parsing/test/tri_cube.obj").read_bytes())
+    return path
+
+
+def test_declare_convex_makes_a_convex_named_after_its_type(
+    mb: Modules, tmp_path: Path, obj_file: Path
+) -> None:
+    """Unnamed: Convex, Convex_1, then a plain mesh is Mesh (names per link and role)."""
+    parsed = Parsed(mb)
+    convex = "><drake:declare_convex/></mesh>"
+    path = tmp_path / "m.urdf"
+    path.write_text(mesh_robot(obj_file, convex, convex, "/>"))
+    parsed.parser.AddModels(file_name=str(path))
+    inspector = parsed.scene_graph.model_inspector()
+    shapes = {
+        inspector.GetName(g): type(inspector.GetShape(g)).__name__
+        for g in inspector.GetAllGeometryIds()
+    }
+    assert shapes == {"r::Convex": "Convex", "r::Convex_1": "Convex", "r::Mesh": "Mesh"}
+
+
+@pytest.mark.parametrize(
+    ("scale", "scale3"), [("2", [2, 2, 2]), ("2abc", [2, 2, 2]), ("1 2 3", [1, 2, 3])]
+)
+def test_a_mesh_scale_is_one_number_for_all_axes_or_three(
+    mb: Modules, tmp_path: Path, obj_file: Path, scale: str, scale3: list[float]
+) -> None:
+    parsed = Parsed(mb)
+    path = tmp_path / "m.urdf"
+    path.write_text(mesh_robot(obj_file, f' scale="{scale}"/>'))
+    parsed.parser.AddModels(file_name=str(path))
+    inspector = parsed.scene_graph.model_inspector()
+    (geometry_id,) = inspector.GetAllGeometryIds()
+    assert list(inspector.GetShape(geometry_id).scale3()) == scale3
+
+
+@pytest.mark.parametrize(
+    ("scale", "raised"),
+    [
+        ("2 3", (ValueError, "Expected 3 values for attribute scale got 2 3")),
+        ("2 3 4 5", (ValueError, "Expected 3 values for attribute scale got 2 3 4 5")),
+        (" 2", (ValueError, "Expected 3 values for attribute scale got  2")),
+        (
+            "2\t3\t4",
+            (RuntimeError, "error: Expected single value for attribute 'scale' got '2\t3\t4'"),
+        ),
+        ("abc", (RuntimeError, "error: Expected single value for attribute 'scale' got 'abc'")),
+    ],
+)
+def test_a_mesh_scale_with_a_space_needs_three_numbers_else_one(
+    mb: Modules, tmp_path: Path, obj_file: Path, scale: str, raised: tuple[type, str]
+) -> None:
+    """A space makes it a vector (ValueError without a source); else one number, whose
+    error names no source either."""
+    error, message = raised
+    path = tmp_path / "m.urdf"
+    path.write_text(mesh_robot(obj_file, f' scale="{scale}"/>'))
+    with pytest.raises(error) as info:
+        Parsed(mb).parser.AddModels(file_name=str(path))
+    assert str(info.value) == message
+
+
+@pytest.mark.parametrize("file", ["conflicting_materials", "duplicate_materials"])
+def test_a_robot_material_defined_twice_is_an_error_even_when_equal(mb: Modules, file: str) -> None:
+    path = URDF_TEST_DIR / f"{file}.urdf"
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).parser.AddModels(file_name=str(path))
+    new = ("0.2", "0.2") if file == "conflicting_materials" else ("0.79607843137", "0.67843137254")
+    if _is_1_51(mb):
+        existing = "0.93333333333 0.79607843137 0.67843137254             1"
+        given = f"0.93333333333 {new[0]:>13} {new[1]:>13}             1"
+    else:  # N.B. Measured on 1.58.0: fmt_eigen prints a column vector.
+        existing = "[0.93333333333, 0.79607843137, 0.67843137254, 1]ᵀ"
+        given = f"[0.93333333333, {new[0]}, {new[1]}, 1]ᵀ"
+    assert str(info.value) == (
+        f"{path}:6: error: Material 'brown' was previously defined.\n"
+        f"  - existing definition: RGBA: {existing}, Diffuse map: None\n"
+        f"  - new definition:      RGBA: {given}, Diffuse map: None"
+    )
+
+
+def visual(material: str) -> str:
+    return f'<visual><geometry><box size="1 1 1"/></geometry>{material}</visual>'
+
+
+NAMED_X = '<material name="x"/>'
+RED_X = '<material name="x"><color rgba="1 0 0 1"/></material>'
+ALMOST_RED_X = '<material name="x"><color rgba="1 0 0 1.00000000001"/></material>'
+
+#: Robot body -> Drake's error (None: it parses).
+MATERIALS = {
+    # A visual may name a robot material, wherever the robot defines it...
+    "a robot material": (f'<link name="a">{visual(NAMED_X)}</link>{RED_X}', None),
+    # ... but not one that only a later visual defines.
+    "used before defined": (
+        f'<link name="a">{visual(NAMED_X)}{visual(RED_X)}</link>',
+        "Material 'x' not previously defined, but has no color or texture information.",
+    ),
+    # A visual redefining a material within 1e-10 of its colour is no error.
+    "the same colour": (f'{RED_X}<link name="a">{visual(ALMOST_RED_X)}</link>', None),
+    "no name": (
+        '<material><color rgba="1 0 0 1"/></material>',
+        "Material tag is missing a required name",
+    ),
+    "no rgba": (
+        '<material name="x"><color/></material>',
+        "Failed to parse 'rgba' attribute of <color>}",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", MATERIALS)
+def test_urdf_materials_are_checked_as_drake_checks_them(mb: Modules, case: str) -> None:
+    body, error = MATERIALS[case]
+    text = f'<robot name="r">{body}</robot>'
+    if error is None:
+        assert Parsed(mb).add(text, "urdf") == ["r"]
+    else:
+        assert urdf_error(mb, text) == f"<literal-string>.urdf:1: error: {error}"
+
+
+def test_a_visual_colour_must_lie_in_0_1_while_a_robot_colour_need_not(mb: Modules) -> None:
+    """The visual's diffuse colour is a geometry::Rgba, which checks its range."""
+    unused = '<material name="m"><color rgba="2 0 0 1"/></material>'
+    assert Parsed(mb).add(f'<robot name="r">{unused}<link name="a"/></robot>', "urdf") == ["r"]
+    used = visual('<material name="m"/>')
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add(f'<robot name="r">{unused}<link name="a">{used}</link></robot>', "urdf")
+    assert str(info.value) == (
+        "Rgba values must be within the range [0, 1]. Values provided: (r=2, g=0, b=0, a=1)"
+    )
+
+
+#: A robot with several errors -> the one Drake raises (its order of checks).
+FIRST_ERRORS = {
+    "robot materials before links": (
+        '<robot name="r">\n<link/>\n<material name="m"/>\n</robot>',
+        "3: error: Material 'm' not previously defined, but has no color or texture information.",
+    ),
+    "visuals before collisions": (
+        '<robot name="r">\n<link name="a">\n<collision/>\n<visual/>\n</link>\n</robot>',
+        "4: error: Link a has a visual element without geometry.",
+    ),
+    "groups before joints": (
+        f'<robot name="r" {DRAKE_NS}>\n<link name="a"/>\n'
+        '<joint name="j" type="weird"><parent link="a"/><child link="a"/></joint>\n'
+        '<drake:collision_filter_group name="g"><drake:member link="zz"/>'
+        "</drake:collision_filter_group>\n</robot>",
+        "1: error: body with name 'r::zz' not found",
+    ),
+    "a zero axis before an unknown type": (
+        '<robot name="r">\n<link name="a"/><link name="b"/>\n'
+        '<joint name="j" type="weird"><parent link="a"/><child link="b"/>\n'
+        '<axis xyz="0 0 0"/></joint>\n</robot>',
+        "4: error: Joint 'j' axis is zero.  Don't do that.",
+    ),
+    "the element's tag before the limits": (
+        '<robot name="r">\n<link name="a"/><link name="b"/>\n'
+        '<drake:joint name="j" type="revolute"><parent link="a"/><child link="b"/>\n'
+        '<limit lower="1 2"/></drake:joint>\n</robot>',
+        "3: error: Joint j of type revolute is a standard joint type, and should be a <joint>",
+    ),
+    "dynamics before the screw pitch": (
+        '<robot name="r">\n<link name="a"/><link name="b"/>\n'
+        '<drake:joint name="j" type="screw"><parent link="a"/><child link="b"/>\n'
+        '<dynamics damping="1 2"/></drake:joint>\n</robot>',
+        "4: error: Expected single value for attribute 'damping' got '1 2'",
+    ),
+    "mimics before transmissions": (
+        '<robot name="r">\n<link name="a"/><link name="b"/>\n<transmission/>\n'
+        '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>\n'
+        "<mimic/></joint>\n</robot>",
+        "5: error: Joint 'j' mimic element is missing the required 'joint' attribute.",
+    ),
+    "transmissions before frames": (
+        '<robot name="r">\n<link name="a"/>\n<frame name="f" link="zz"/>\n<transmission/>\n'
+        "</robot>",
+        "4: error: Transmission element is missing a type.",
+    ),
+    "loop joints before frames": (
+        '<robot name="r">\n<frame name="f"/>\n<loop_joint/>\n</robot>',
+        "1: error: loop joints are not supported in MultibodyPlant",
+    ),
+    "frames before bushings": (
+        f'<robot name="r" {DRAKE_NS}>\n<link name="a"/>\n<drake:linear_bushing_rpy/>\n'
+        '<frame name="f"/>\n</robot>',
+        "4: error: missing link name for frame f.",
+    ),
+    "the screw pitch's value": (
+        '<robot name="r">\n<link name="a"/><link name="b"/>\n'
+        '<drake:joint name="j" type="screw"><parent link="a"/><child link="b"/>\n'
+        "<drake:screw_thread_pitch/></drake:joint>\n</robot>",
+        "4: error: A screw joint has a <drake:screw_thread_pitch> tag that is missing the "
+        "'value' attribute.",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", FIRST_ERRORS)
+def test_the_first_urdf_error_in_drakes_order_is_raised(mb: Modules, case: str) -> None:
+    text, message = FIRST_ERRORS[case]
+    assert urdf_error(mb, text) == f"<literal-string>.urdf:{message}"
+
+
+def curvilinear_robot() -> str:
+    sphere = '<collision><geometry><sphere radius="0.1"/></geometry></collision>'
+    return (
+        f'<robot name="r" {DRAKE_NS}><link name="w0">{sphere}</link><link name="a">{sphere}'
+        f'</link><link name="b">{sphere}</link>'
+        '<joint name="w" type="revolute"><parent link="w0"/><child link="a"/>'
+        '<axis xyz="0 0 1"/></joint>'
+        '<drake:joint name="j" type="curvilinear"><origin xyz="1 2 3" rpy="0.1 0.2 0.3"/>'
+        '<parent link="a"/><child link="b"/><drake:initial_tangent xyz="0 0 1"/>'
+        '<drake:plane_normal xyz="1 0 0"/><drake:is_periodic value="true"/><drake:curves>'
+        '<drake:line_segment length="1.0"/><drake:circular_arc radius="2.0" angle="1.5"/>'
+        '<drake:circular_arc radius="2.0" angle="-1.0"/></drake:curves></drake:joint></robot>'
+    )
+
+
+#: Arc length s -> p_FM of the curvilinear joint above (line 1, arcs of 3 and 2: length 6).
+CURVE_POINTS = {
+    0.0: [0.0, 0.0, 0.0],
+    0.5: [0.0, 0.0, 0.5],
+    2.0: [0.0, -0.244835, 1.958851],
+    3.4: [0.0, -1.275284, 2.864078],
+    5.0: [0.0, -2.797656, 3.307038],
+    -1.0: [0.0, -2.797656, 3.307038],  # periodic: s = 5
+    20.0: [0.0, -0.244835, 1.958851],  # periodic: s = 2
+}
+
+
+def test_a_curvilinear_joint_follows_its_curve_and_filters_its_links(mb: Modules) -> None:
+    """Drake's CurvilinearJoint (not bound in pydrake: type_name() only); its links are
+    adjacent for the default filters, like any joint's but a quaternion floating one's."""
+    parsed = Parsed(mb)
+    parsed.add(curvilinear_robot(), "urdf")
+    plant = parsed.plant
+    plant.Finalize()
+    assert parsed.candidates() == {pair("r::b/Sphere", "r::w0/Sphere")}
+    joint = plant.GetJointByName("j")
+    assert (joint.type_name(), joint.num_positions()) == ("curvilinear", 1)
+    context = plant.CreateDefaultContext()
+    for s, p_FM in CURVE_POINTS.items():
+        q = plant.GetPositions(context)
+        q[joint.position_start()] = s
+        plant.SetPositions(context, q)
+        X_FM = plant.CalcRelativeTransform(
+            context, plant.GetFrameByName("j_parent"), plant.GetFrameByName("b")
+        )
+        assert X_FM.translation() == pytest.approx(p_FM, abs=1e-6)
+
+
+def test_an_implausible_inertia_is_a_warning_and_a_strict_error(mb: Modules) -> None:
+    text = (
+        '<robot name="r"><link name="a"><inertial><mass value="1"/>'
+        '<inertia ixx="-1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>'
+    )
+    assert Parsed(mb).add(text, "urdf") == ["r"]
+    assert urdf_error(mb, text, strict=True) == (
+        "<literal-string>.urdf:1: error: While parsing inertia matrix: "
+        "MakeFromMomentsAndProductsOfInertia(): The rotational inertia\n"
+        "[-1   0   0]\n[ 0   1   0]\n[ 0   0   1]\n"
+        "did not pass the test CouldBePhysicallyValid().\n"
+        "The associated principal moments of inertia:\n-1  1  1\n"
+        "are invalid since at least one is negative."
+    )

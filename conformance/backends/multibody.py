@@ -33,13 +33,21 @@ from collections.abc import Mapping
 from pathlib import Path
 from types import ModuleType
 from typing import TYPE_CHECKING, Any
+from xml.etree import ElementTree
 
 from conformance.protocol import UnknownNameError
 
 if TYPE_CHECKING:
     from conformance.backends.api import Api
 
-__all__ = ["JOINT_CLASSES", "PACKAGE", "PLANT_SOURCE", "MultibodyCommands", "model_features"]
+__all__ = [
+    "JOINT_CLASSES",
+    "PACKAGE",
+    "PLANT_SOURCE",
+    "MultibodyCommands",
+    "model_features",
+    "package_names",
+]
 
 #: The package name of a case's files.
 PACKAGE = "pkg"
@@ -73,6 +81,28 @@ _FEATURE_NEEDS: Mapping[str, tuple[str, str, str | None]] = {
     "adjacency_opt_out": ("plant", "MultibodyPlant", "set_adjacent_bodies_collision_filters"),
     "filter_groups_report": ("parsing", "Parser", "GetCollisionFilterGroups"),
 }
+
+
+#: Role name → the SceneGraphInspector method that reads its properties (None: no role).
+_ROLE_READERS: Mapping[str, str] = {
+    "proximity": "GetProximityProperties",
+    "illustration": "GetIllustrationProperties",
+    "perception": "GetPerceptionProperties",
+}
+
+
+def package_names(folder: Path) -> list[str]:
+    """The names of the packages below ``folder`` (each ``package.xml``'s ``<name>``), in the
+    sorted order of their folders, each once."""
+    names: dict[str, None] = {}
+    for manifest in sorted(folder.rglob("package.xml")):
+        try:
+            name = ElementTree.parse(manifest).getroot().findtext("name")
+        except (ElementTree.ParseError, OSError):
+            continue
+        if name and name.strip():
+            names.setdefault(name.strip())
+    return list(names)
 
 
 def model_features(api: Api) -> frozenset[str]:
@@ -200,11 +230,25 @@ class MultibodyCommands:
                 self.geometries[name] = geometry_id
                 self.names_by_value[geometry_id.get_value()] = name
 
-    def _local(self, exc: Exception) -> Exception:
-        """``exc`` with the case's folder cut out of its message."""
-        if self._folder is not None and exc.args and isinstance(exc.args[0], str):
-            exc.args = (exc.args[0].replace(f"{self._folder}/", ""), *exc.args[1:])
+    def _local(self, exc: Exception, *folders: Path) -> Exception:
+        """``exc`` with the case's folder (and ``folders``) cut out of its message."""
+        cut = [f for f in (self._folder, *folders) if f is not None]
+        if cut and exc.args and isinstance(exc.args[0], str):
+            message = exc.args[0]
+            for folder in cut:
+                message = message.replace(f"{folder}/", "")
+            exc.args = (message, *exc.args[1:])
         return exc
+
+    def _add_packages(self, parser: Any, folder: Path) -> None:
+        """The packages below ``folder``: PopulateFromFolder(path=), after removing the
+        packages of the map (Drake's defaults ``drake``, ``drake_models``) that the folder
+        also provides, so that its own copy is the one found."""
+        package_map = parser.package_map()
+        for name in package_names(folder):
+            if package_map.Contains(package_name=name):
+                package_map.Remove(package_name=name)
+        package_map.PopulateFromFolder(path=str(folder))
 
     # ------------------------------------------------------------ commands
     def add_models(self, args: Mapping[str, Any]) -> list[str]:
@@ -220,22 +264,26 @@ class MultibodyCommands:
                 raise _missing(self.api, "Parser.SetAutoRenaming")
             parser.SetAutoRenaming(value=args["auto_renaming"])
         files = args.get("files", {})
-        if files or "path" in args:
+        if files or ("path" in args and "folder" not in args):
             folder = self._package()
             for relative, text in files.items():
                 target = folder / relative
                 target.parent.mkdir(parents=True, exist_ok=True)
                 target.write_text(text, encoding="utf-8")
             parser.package_map().Add(package_name=PACKAGE, package_path=str(folder))
+        models_folder = Path(args["folder"]) if "folder" in args else None
         try:
-            if "path" in args:
+            if models_folder is not None:
+                self._add_packages(parser, models_folder)
+                models = parser.AddModels(file_name=str(models_folder / args["path"]))
+            elif "path" in args:
                 models = parser.AddModels(file_name=str(self._package() / args["path"]))
             else:
                 models = parser.AddModelsFromString(
                     file_contents=args["text"], file_type=args["format"]
                 )
         except Exception as exc:
-            raise self._local(exc) from None
+            raise self._local(exc, *filter(None, [models_folder])) from None
         finally:
             self._name_plant_geometries()
         return [plant.GetModelInstanceName(model_instance=m) for m in models]
@@ -249,6 +297,56 @@ class MultibodyCommands:
         return {
             "groups": {name: sorted(members) for name, members in sorted(groups.groups().items())},
             "pairs": sorted(sorted(pair) for pair in groups.exclusion_pairs()),
+        }
+
+    def model_inventory(self, args: Mapping[str, Any]) -> dict[str, list[str]]:
+        """The plant's model instances, bodies, frames and joints (``model::name``), and its
+        geometries (``frame/name: Shape [roles]``), each list sorted."""
+        plant, tree = self._plant(), self._module("tree")
+        inspector = self.scene_graph.model_inspector()
+
+        def scoped(element: Any) -> str:
+            model = plant.GetModelInstanceName(model_instance=element.model_instance())
+            return f"{model}{_SCOPE}{element.name()}"
+
+        count = {
+            "bodies": plant.num_bodies(),
+            "frames": plant.num_frames(),
+            "joints": plant.num_joints(),
+        }
+        source = self.sources[PLANT_SOURCE]
+        geometries = []
+        for geometry_id in inspector.GetAllGeometryIds():
+            if not inspector.BelongsToSource(geometry_id=geometry_id, source_id=source):
+                continue
+            frame = inspector.GetName(frame_id=inspector.GetFrameId(geometry_id=geometry_id))
+            name = inspector.GetName(geometry_id=geometry_id)
+            shape = type(inspector.GetShape(geometry_id=geometry_id)).__name__
+            roles = [
+                role
+                for role, read in _ROLE_READERS.items()
+                if getattr(inspector, read)(geometry_id=geometry_id) is not None
+            ]
+            geometries.append(f"{frame}/{name}: {shape} [{', '.join(roles)}]")
+        return {
+            "models": sorted(
+                plant.GetModelInstanceName(model_instance=tree.ModelInstanceIndex(i))
+                for i in range(plant.num_model_instances())
+            ),
+            "bodies": sorted(
+                scoped(plant.get_body(body_index=tree.BodyIndex(i))) for i in range(count["bodies"])
+            ),
+            "frames": sorted(
+                scoped(plant.get_frame(frame_index=tree.FrameIndex(i)))
+                for i in range(count["frames"])
+            ),
+            "joints": sorted(
+                f"{scoped(joint)} ({joint.type_name()})"
+                for joint in (
+                    plant.get_joint(joint_index=tree.JointIndex(i)) for i in range(count["joints"])
+                )
+            ),
+            "geometries": sorted(geometries),
         }
 
     def add_rigid_body(self, args: Mapping[str, Any]) -> None:

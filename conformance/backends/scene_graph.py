@@ -34,6 +34,7 @@ from conformance.protocol import (
     Pair,
     Result,
     UnknownNameError,
+    classify_assertion,
     classify_error,
 )
 
@@ -124,6 +125,11 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
             return Result(error=ErrorInfo(ErrorKind.REFUSED, str(exc)))
         except _IMPLEMENTATION_ERRORS as exc:
             return Result(error=classify_error(exc))
+        except SystemExit as exc:  # a failed DRAKE_DEMAND is an answer; any other exit is not
+            assertion = classify_assertion(exc)
+            if assertion is None:
+                raise
+            return Result(error=assertion)
 
     def observe(self) -> Observation:
         locations = {MODEL: self._observe(None)}

@@ -4,7 +4,8 @@
 backend (by default reimpl and pydrake) and compares them pair by pair.
 ``fuzz`` drives two backends (by default reimpl against pydrake) with
 Hypothesis-generated command sequences and writes each shrunk divergence as a
-scenario file that ``run`` replays. ``schema`` prints the scenario schema.
+scenario file that ``run`` replays. ``models`` parses model files on every
+backend and compares what each gives. ``schema`` prints the scenario schema.
 
 Exit codes: 0 every case passed (no divergence); 1 a conformance failure (a
 divergence); 2 a usage or input error (bad arguments, a malformed scenario,
@@ -28,6 +29,7 @@ from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
 from conformance.cli.legacy_diff import add_legacy_diff_parser, legacy_diff_command
 from conformance.cli.matrix import add_matrix_parser, matrix_command
+from conformance.cli.models import add_models_parser, models_command
 from conformance.cli.options import add_backend_options, seconds
 from conformance.cli.run import PROG, add_run_parser, run_command
 from conformance.fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
@@ -53,6 +55,7 @@ def _parser() -> argparse.ArgumentParser:
     add_matrix_parser(commands)
     add_bisect_parser(commands)
     add_legacy_diff_parser(commands)
+    add_models_parser(commands)
     schema = commands.add_parser(
         "schema", help="print the scenario schema (its step rules come from the grammar)"
     )
@@ -170,28 +173,27 @@ def main(
 ) -> int:
     """Entry point; returns the exit code."""
     args = _parser().parse_args(argv)
-    out, err = out or sys.stdout, err or sys.stderr
-    if args.command == "run":
-        return run_command(args, out, err)
-    if args.command == "fuzz":
-        return fuzz_command(args, out, err)
-    if args.command == "matrix":
-        return matrix_command(args, out, err)
-    if args.command == "bisect":
-        return bisect_command(args, out, err)
-    if args.command == "legacy-diff":
-        return legacy_diff_command(args, out, err)
-    if args.command == "schema":
-        return _schema(args, out)
-    raise AssertionError(args.command)  # pragma: no cover
+    return _COMMANDS[args.command](args, out or sys.stdout, err or sys.stderr)
 
 
-def _schema(args: argparse.Namespace, out: TextIO) -> int:
+def _schema(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     if args.write:
         out.write(f"wrote {write_schema()}\n")
     else:
         out.write(json.dumps(scenario_schema(), indent=2) + "\n")
     return EXIT_OK
+
+
+#: Subcommand → what runs it: (args, out, err) → exit code.
+_COMMANDS: dict[str, Callable[[argparse.Namespace, TextIO, TextIO], int]] = {
+    "run": run_command,
+    "fuzz": fuzz_command,
+    "matrix": matrix_command,
+    "bisect": bisect_command,
+    "legacy-diff": legacy_diff_command,
+    "models": models_command,
+    "schema": _schema,
+}
 
 
 def main_console() -> None:

@@ -30,6 +30,7 @@ __all__ = [
     "add_run_parser",
     "corpus_cases",
     "load_backends",
+    "run_cases",
     "run_command",
     "select_cases",
 ]
@@ -177,7 +178,7 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         rerun_options=["--strict-divergences"] if args.strict_divergences else [],
         input_errors=[str(exc) for exc in input_errors],
     )
-    code = _run_cases(args, cases, report, err)
+    code = run_cases(args, cases, report, err)
     report.print_failures(out, prog=PROG)
     out.write("\n")
     report.print_xfails(out)
@@ -199,13 +200,22 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     return code
 
 
-def _run_cases(
+def run_cases(
     args: argparse.Namespace,
     cases: Sequence[Case],
     report: RunReport,
     err: TextIO,
+    *,
+    bad_models_are_input_errors: bool = True,
+    keep_going: bool = False,
 ) -> int:
-    """Runs the cases into ``report``; stops at the first broken backend or input error."""
+    """Runs the cases into ``report``; stops at the first broken backend or input error,
+    unless ``keep_going``: then every case runs (each from a reset), and a broken one is
+    reported with its error and makes the exit code 2.
+
+    ``args`` has ``strict_divergences``, ``step_timeout`` and ``quiet``; see
+    ``run_case`` for ``bad_models_are_input_errors``."""
+    code = EXIT_OK
     try:
         for index, case in enumerate(cases, 1):
             case_report = run_case(
@@ -215,13 +225,16 @@ def _run_cases(
                 strict_divergences=args.strict_divergences,
                 step_timeout=args.step_timeout or None,
                 on_step=_LongCase(err, case.qualified_name, quiet=args.quiet),
-                bad_models_are_input_errors=True,
+                bad_models_are_input_errors=bad_models_are_input_errors,
             )
             report.cases.append(case_report)
             if not args.quiet:
                 _progress(err, index, len(cases), case.qualified_name, case_report.status)
             if case_report.aborted is not None and case_report.recoverable:
                 err.write(f"    {case_report.aborted}\n    (a new worker takes over)\n")
+            elif case_report.aborted is not None and keep_going:
+                err.write(f"error: {case.qualified_name}: {case_report.aborted}\n")
+                code = EXIT_USAGE
             elif case_report.aborted is not None:
                 report.aborted = f"{case.qualified_name}: {case_report.aborted}"
                 err.write(
@@ -233,4 +246,4 @@ def _run_cases(
         report.aborted = "interrupted"
         err.write("interrupted: reporting the cases finished so far\n")
         return EXIT_USAGE
-    return EXIT_OK
+    return code

@@ -24,6 +24,7 @@ current directory; else it is the absolute path.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
@@ -41,7 +42,7 @@ from conformance.corpus.documents import (
     clip,
     read_document,
 )
-from conformance.grammar import declared_names, features_of, referenced_names, spec
+from conformance.grammar import ArgKind, declared_names, features_of, referenced_names, spec
 from conformance.grammar.schema import SCHEMA_FILE as SCENARIO_SCHEMA
 from conformance.grammar.schema import scenario_schema
 
@@ -53,8 +54,10 @@ __all__ = [
     "Step",
     "default_corpus_root",
     "enclosing_corpus",
+    "in_model_package",
     "load_corpus",
     "load_file",
+    "scenario_from_data",
 ]
 
 _SPECIAL_REFS = frozenset({"@unknown", "@foreign"})
@@ -224,11 +227,23 @@ def load_file(
     case that names something undeclared is recorded there and left out, and
     the file's other cases are kept; a file that fails its schema still raises.
     """
-    shown = str(path)
     try:
         data = read_document(path)
     except DocumentError as exc:
-        raise ScenarioError(shown, str(exc)) from None
+        raise ScenarioError(str(path), str(exc)) from None
+    return scenario_from_data(data, path, root=root, errors=errors)
+
+
+def scenario_from_data(
+    data: Any,
+    path: Path,
+    *,
+    root: Path | None = None,
+    errors: list[ScenarioError] | None = None,
+) -> ScenarioFile:
+    """A ScenarioFile of scenario data (as a document holds it) standing at ``path``: what
+    ``load_file`` does after reading, for cases a program writes (``corpus.model_files``)."""
+    shown = str(path)
     _validate(shown, data)
     file = ScenarioFile(path=path, name=_name(path, root), description=data["description"])
     file_features = frozenset(data.get("features", ["core"]))
@@ -240,7 +255,7 @@ def load_file(
             raise ScenarioError(shown, "duplicate case description", case=description)
         seen.add(description)
         steps = tuple(_scene_steps(raw.get("scene", {}))) + tuple(
-            _step(i, s) for i, s in enumerate(raw["steps"], 1)
+            _step(i, s, path.parent) for i, s in enumerate(raw["steps"], 1)
         )
         case = Case(
             file=file,
@@ -289,11 +304,16 @@ def _name(path: Path, root: Path | None = None) -> str:
     return name.with_suffix("").as_posix()
 
 
-def _step(index: int, raw: Mapping[str, Any]) -> Step:
+def _step(index: int, raw: Mapping[str, Any], base: Path) -> Step:
+    """A Step of ``raw``; a folder argument (``ArgKind.FOLDER``) is made absolute against
+    ``base``, the scenario file's folder."""
     expect = raw.get("expect", ())
     if isinstance(expect, Mapping):
         expect = (expect,)
     args = {k: v for k, v in raw.items() if k not in _NON_ARGS}
+    for key, kind in spec(raw["op"]).arg_kinds.items():
+        if kind is ArgKind.FOLDER and key in args:
+            args[key] = str((base / args[key]).resolve())
     return Step(index, raw["op"], args, tuple(expect), raw.get("comment"))
 
 
@@ -411,14 +431,46 @@ def _record(error: ScenarioError, errors: list[ScenarioError] | None) -> None:
     errors.append(error)
 
 
+#: A folder holding this file is a model package (ROS's and Drake's convention), whose
+#: ``.yaml`` files are model directives, not scenarios: the walker does not enter it.
+PACKAGE_MANIFEST = "package.xml"
+
+
 def _is_scenario(path: Path) -> bool:
-    """A file the walker loads: a known suffix, and not a schema (``*.schema.json``)."""
+    """A file the walker loads: a known suffix, and not a schema (``*.schema.json``) or a
+    model-directives file (``*.dmd.yaml``)."""
     suffix = path.suffix.lower()
+    name = path.name.lower()
     return (
         suffix in DOCUMENT_SUFFIXES
-        and not path.name.lower().endswith(f".schema{suffix}")
+        and not name.endswith((f".schema{suffix}", ".dmd.yaml"))
         and path.is_file()
     )
+
+
+def in_model_package(path: Path, root: Path) -> bool:
+    """Whether ``path`` lies in a model package below ``root`` (a folder between them, or its
+    own, holds PACKAGE_MANIFEST), or is a model-directives file: model data, not a scenario."""
+    if path.name.lower().endswith(".dmd.yaml"):
+        return True
+    folder = path.parent
+    while folder != root and folder.is_relative_to(root):
+        if (folder / PACKAGE_MANIFEST).is_file():
+            return True
+        folder = folder.parent
+    return False
+
+
+def _scenario_files(folder: Path) -> list[Path]:
+    """The scenario files below ``folder``, sorted, outside model packages (PACKAGE_MANIFEST)."""
+    found = []
+    for parent, folders, names in os.walk(folder):
+        if PACKAGE_MANIFEST in names and Path(parent) != folder:
+            folders.clear()
+            continue
+        folders.sort()
+        found += [Path(parent, name) for name in names if _is_scenario(Path(parent, name))]
+    return sorted(found)
 
 
 def _walk(targets: Iterable[Path], errors: list[ScenarioError] | None = None) -> Iterator[Path]:
@@ -430,7 +482,7 @@ def _walk(targets: Iterable[Path], errors: list[ScenarioError] | None = None) ->
     for target in targets:
         try:
             if target.is_dir():
-                found = sorted(p for p in target.rglob("*") if _is_scenario(p))
+                found = _scenario_files(target)
                 if not found:
                     raise ScenarioError(
                         str(target),
@@ -488,7 +540,9 @@ def load_corpus(
     """Loads files and directories, each file once.
 
     Directories are walked recursively for ``*.json``, ``*.yaml`` and ``*.yml``
-    files, skipping schemas (``*.schema.json``). No paths: the embedded corpus.
+    files, skipping schemas (``*.schema.json``), model directives (``*.dmd.yaml``)
+    and model packages (folders holding a ``package.xml``, such as the vendored
+    real models). No paths: the embedded corpus.
     The first bad file raises ScenarioError; with an ``errors`` list, every bad
     file and case is recorded there instead and the good ones are loaded.
     """

@@ -21,7 +21,7 @@ tag                         ops                                           since
 
 from __future__ import annotations
 
-from conformance.grammar.spec import Arg, ArgKind, CommandSpec
+from conformance.grammar.spec import Arg, ArgKind, CommandSpec, Comparison
 
 __all__ = ["JOINT_TYPES", "MODEL_COMMANDS"]
 
@@ -46,13 +46,16 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
             Arg("prefix", K.MODEL_INSTANCE),
             Arg("auto_renaming", K.BOOL),
             Arg("files", K.FILES),
+            Arg("folder", K.FOLDER),
         ),
         "parsing",
         "A new Parser(plant=[, model_name_prefix=]): AddModelsFromString(file_contents=, "
-        "file_type=) or AddModels(file_name=); ``files`` form the package 'pkg'; "
+        "file_type=) or AddModels(file_name=); ``files`` form the package 'pkg'; with "
+        "``folder``, ``path`` is below it and its packages are added "
+        "(PopulateFromFolder(path=), replacing default packages of the same name); "
         "returns the new model instances' names",
         one_of=(("text", "path"),),
-        needs=(("text", ("format",)),),
+        needs=(("text", ("format",)), ("folder", ("path",))),
         domain="model",
         scoped_names=True,
     ),
@@ -64,6 +67,16 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
         '{"groups": {name: sorted members}, "pairs": sorted [a, b] lists}',
         since="1.31",
         domain="model",
+    ),
+    CommandSpec(
+        "model_inventory",
+        (),
+        "multibody",
+        'What the plant holds, by scoped name: returns {"models", "bodies", '
+        '"frames", "joints" ("m::j (type)"), "geometries" '
+        '("frame/name: Shape [roles]")}, each a sorted list',
+        domain="model",
+        compare=Comparison.INVENTORY,
     ),
     CommandSpec(
         "add_rigid_body",

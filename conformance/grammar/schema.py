@@ -24,6 +24,7 @@ from typing import Any
 
 from conformance.grammar import GRAMMAR, CommandSpec
 from conformance.grammar.queries import DEFINITIONS
+from conformance.protocol import ErrorKind
 
 __all__ = [
     "SCHEMA_FILE",
@@ -94,6 +95,8 @@ def scenario_schema() -> dict[str, Any]:
     schema["$defs"]["step"] = step_schema()
     features = schema["$defs"]["features"]["items"]
     features["enum"] = feature_tags(features["enum"])
+    error = schema["$defs"]["expectation"]["properties"]["error"]["properties"]
+    error["kind"]["enum"] = [kind.value for kind in ErrorKind]
     return schema
 
 

@@ -92,7 +92,21 @@ class ArgKind(enum.Enum):
         None,
         None,
     )
-    PATH = ({**_RELATIVE_PATH, "description": "A path below the package 'pkg'."}, None, None)
+    PATH = (
+        {**_RELATIVE_PATH, "description": "A path below ``folder`` if given, else below 'pkg'."},
+        None,
+        None,
+    )
+    FOLDER = (
+        {
+            "type": "string",
+            "minLength": 1,
+            "description": "A folder of model files and their packages: absolute, or "
+            "relative to the scenario file.",
+        },
+        None,
+        None,
+    )
     BOOL = ({"type": "boolean"}, None, None)
     # Posed scenes and proximity queries (grammar.queries).
     SHAPE = ({"$ref": "#/$defs/shape"}, None, None)
@@ -142,12 +156,15 @@ class Comparison(enum.Enum):
     - ``PROXIMITY``: query records (``{"pair", "shapes", ...}``, one or a
       sorted list): the pairs and shapes equal, every number within the
       tolerance of its shape pair (``conformance.tolerances``);
-    - ``POSE``: ``{"xyz", "rotation"}`` within ``tolerances.POSE_TOLERANCE``.
+    - ``POSE``: ``{"xyz", "rotation"}`` within ``tolerances.POSE_TOLERANCE``;
+    - ``INVENTORY``: ``{key: sorted list of strings}``, equal; a difference names,
+      per key, the entries only one side has.
     """
 
     EXACT = "exact"
     PROXIMITY = "proximity"
     POSE = "pose"
+    INVENTORY = "inventory"
 
 
 @dataclass(frozen=True)

@@ -41,6 +41,7 @@ from conformance.corpus.loader import (
     Case,
     ScenarioError,
     enclosing_corpus,
+    in_model_package,
     load_file,
 )
 from conformance.grammar.schema import scenario_schema
@@ -125,8 +126,9 @@ def pytest_collect_file(parent: pytest.Collector, file_path: Path) -> pytest.Col
     if file_path.suffix.lower() not in SCENARIO_SUFFIXES or file_path.name == SCENARIO_SCHEMA:
         return None
     explicit = parent.session.isinitpath(file_path)
+    root = _scenario_root(parent.config, file_path)
     if not explicit and (
-        _scenario_root(parent.config, file_path) is None or _other_data(file_path)
+        root is None or in_model_package(file_path, root) or _other_data(file_path)
     ):
         return None
     return ScenarioFileCollector.from_parent(parent, path=file_path)

@@ -35,6 +35,7 @@ from reimpl.geometry.query_results import (
     SignedDistancePair,
     SignedDistancePair_,
 )
+from reimpl.geometry.rgba import Rgba
 from reimpl.geometry.scene_graph import SceneGraph, SceneGraph_
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector, SceneGraphInspector_
 from reimpl.geometry.shape import (
@@ -79,6 +80,7 @@ __all__ = [
     "ProximityProperties",
     "QueryObject",
     "QueryObject_",
+    "Rgba",
     "Role",
     "RoleAssign",
     "SceneGraph",

@@ -41,6 +41,7 @@ from reimpl.geometry.geometry_roles import (
 )
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
+from reimpl.geometry.mesh import _MeshShape
 from reimpl.geometry.shape import Shape
 from reimpl.math import RigidTransform
 
@@ -319,6 +320,13 @@ class GeometryState:
                 f"The name '{geometry.name}' has already been used by a geometry with the "
                 f"'{name}' role."
             )
+        if role is Role.kProximity and isinstance(geometry.shape, _MeshShape):
+            # N.B. Drake computes the hull after it stored the properties, and a
+            # failure leaves them on a geometry its proximity engine never got
+            # (measured on 1.51.1: the filter queries then raise IndexError
+            # '_Map_base::at' and no context can be made). reimpl raises first,
+            # so the geometry stays registered without the role.
+            geometry.shape._check_proximity()
         geometry.properties[role] = type(properties)(properties)
         if role is Role.kProximity:
             self.revision += 1

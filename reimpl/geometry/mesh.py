@@ -1,7 +1,22 @@
 """Mesh, Convex and MeshSource for meshes named by a file path, as pydrake 1.51.1 measures them.
 
-reimpl never reads a mesh file; it keeps the path and the scale, as Drake's
-shape specification does:
+reimpl keeps the path and the scale, as Drake's shape specification does, and
+reads a mesh file only where pydrake's answer depends on it: when a Mesh or
+Convex gets the proximity role (SceneGraph.AssignRole, a GeometryInstance
+registered with proximity properties, MultibodyPlant.RegisterCollisionGeometry,
+so a parsed <collision>), Drake makes its convex hull and may fail. To decide
+those errors (see reimpl.geometry._proximity_mesh for the rules and messages)
+reimpl reads no more than:
+
+* an ``.obj``: whether it can be opened, its ``v`` lines (the vertices, for
+  their count and whether they are all within 1e-12 of one point or on one
+  line), and, for a Mesh, which of the ``f``, ``l``, ``p`` elements it has;
+* a ``.vtk`` (legacy ASCII): its DATASET kind, POINTS, cell sizes and
+  CELL_TYPES (whether every cell is a tetrahedron, and that there is one);
+* a ``.gltf``: whether it can be opened.
+
+A visual (illustration or perception) mesh is never read, as on pydrake 1.51.1
+(measured: an empty ``.obj`` as a visual registers fine). The shape itself:
 
 * ``Mesh(filename, scale=1.0)``, ``Mesh(filename, scale3=[x, y, z])`` and the
   same with ``source=MeshSource(...)``. A relative filename is made absolute
@@ -41,6 +56,7 @@ import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl.geometry._drake_text import eigen_row
+from reimpl.geometry._proximity_mesh import check_proximity_mesh
 from reimpl.geometry._shape_args import is_float, is_path_like, is_vector, path_text
 from reimpl.geometry.shape import Shape
 
@@ -173,6 +189,15 @@ class _MeshShape(Shape):
 
     def extension(self) -> str:
         return self._source.extension()
+
+    def _check_proximity(self) -> None:
+        """Raises what Drake raises making this shape's proximity representation."""
+        check_proximity_mesh(
+            self._source.description(),
+            self.extension(),
+            self._scale3,
+            is_convex=isinstance(self, Convex),
+        )
 
     def scale(self) -> float:
         x, y, z = self._scale3

@@ -226,6 +226,27 @@ class SceneGraphInspector:
     def GetFrameId(self, geometry_id: GeometryId) -> FrameId:
         return self._state.geometry_frame(geometry_id)
 
+    def GetParentFrame(self, *args: Any, **kwargs: Any) -> FrameId:
+        """The frame ``frame_id`` was registered on; the world frame's parent is itself.
+
+        N.B. Bound since pydrake 1.52.0 (measured on 1.58.0: an unknown id raises
+        RuntimeError ``No frame name available for invalid frame id: N``);
+        pydrake 1.51.1 has no such method. reimpl has it, so Drake's newer
+        scene_graph_test.py runs.
+        """
+
+        def parent(frame_id: FrameId) -> FrameId:
+            self._state.frame_name(frame_id)  # validates, with Drake's message
+            return self._state.frame_parent(frame_id)
+
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "GetParentFrame",
+            (Overload((Param("frame_id", instance_of(FrameId)),), parent),),
+            args,
+            kwargs,
+        )
+
     def GetFrameGroup(self, frame_id: FrameId) -> int:
         return self._state.frame_group(frame_id)
 

@@ -27,6 +27,9 @@ __all__ = [
 
 Vector3 = npt.NDArray[np.float64]
 
+#: Drake's RotationMatrix orthonormality tolerance, 128 ε (the IsNearlyIdentity default).
+_ORTHONORMALITY_TOLERANCE = 128 * np.finfo(float).eps
+
 
 def _is_vector3(value: object) -> bool:
     try:
@@ -83,6 +86,15 @@ class RollPitchYaw:
 
     def vector(self) -> Vector3:
         return self._rpy.copy()
+
+    def roll_angle(self) -> float:
+        return float(self._rpy[0])
+
+    def pitch_angle(self) -> float:
+        return float(self._rpy[1])
+
+    def yaw_angle(self) -> float:
+        return float(self._rpy[2])
 
     def ToRotationMatrix(self) -> RotationMatrix:
         """R = Rz(y) · Ry(p) · Rx(r), entry by entry as Drake writes it (c₀ = cos r, s₁ = sin p, …).
@@ -153,8 +165,29 @@ class RotationMatrix:
     def matrix(self) -> npt.NDArray[np.float64]:
         return self._R.copy()
 
+    def row(self, index: int) -> Vector3:
+        """Row ``index`` (pydrake 1.51.1 reads out of bounds unchecked; reimpl raises)."""
+        return np.array(self._R[index])
+
+    def col(self, index: int) -> Vector3:
+        return np.array(self._R[:, index])
+
     def inverse(self) -> RotationMatrix:
         return RotationMatrix(self._R.T)
+
+    def transpose(self) -> RotationMatrix:
+        return RotationMatrix(self._R.T)
+
+    def InvertAndCompose(self, other: RotationMatrix) -> RotationMatrix:
+        """R_BC = R_ABᵀ · R_AC."""
+        return RotationMatrix(self._R.T @ other._R)
+
+    def IsExactlyIdentity(self) -> bool:
+        return bool(np.array_equal(self._R, np.eye(3)))
+
+    def IsNearlyIdentity(self, tolerance: float = _ORTHONORMALITY_TOLERANCE) -> bool:
+        """max |R − I| ≤ tolerance (default 128 ε, Drake's orthonormality tolerance)."""
+        return bool(np.abs(self._R - np.eye(3)).max() <= tolerance)
 
     def multiply(self, other: RotationMatrix) -> RotationMatrix:
         return RotationMatrix(self._R @ other._R)
@@ -208,11 +241,47 @@ class RigidTransform:
     def set_rotation(self, R: RotationMatrix) -> None:
         self._R = RotationMatrix(R)
 
+    def set(self, R: RotationMatrix, p: Vector3) -> None:
+        self._set_pose(R, p)
+
+    def SetIdentity(self) -> RigidTransform:
+        """Sets X to the identity; returns this transform (as pydrake does)."""
+        self._set_pose(RotationMatrix(), np.zeros(3))
+        return self
+
     def GetAsMatrix4(self) -> npt.NDArray[np.float64]:
         m = np.eye(4)
         m[:3, :3] = self._R.matrix()
         m[:3, 3] = self._p
         return m
+
+    def GetAsMatrix34(self) -> npt.NDArray[np.float64]:
+        return self.GetAsMatrix4()[:3]
+
+    def IsExactlyIdentity(self) -> bool:
+        return bool((self._p == 0).all()) and self._R.IsExactlyIdentity()
+
+    def IsNearlyIdentity(self, translation_tolerance: float) -> bool:
+        """max |p| ≤ translation_tolerance and R nearly the identity (default tolerance)."""
+        return bool(np.abs(self._p).max() <= translation_tolerance) and self._R.IsNearlyIdentity()
+
+    def IsExactlyEqualTo(self, other: RigidTransform) -> bool:
+        return bool((self.GetAsMatrix34() == other.GetAsMatrix34()).all())
+
+    def GetMaximumAbsoluteDifference(self, other: RigidTransform) -> float:
+        """max |X₃ₓ₄ − Y₃ₓ₄|, over rotation and translation entries."""
+        return float(np.abs(self.GetAsMatrix34() - other.GetAsMatrix34()).max())
+
+    def GetMaximumAbsoluteTranslationDifference(self, other: RigidTransform) -> float:
+        return float(np.abs(self._p - other._p).max())
+
+    def IsNearlyEqualTo(self, other: RigidTransform, tolerance: float) -> bool:
+        return self.GetMaximumAbsoluteDifference(other) <= tolerance
+
+    def InvertAndCompose(self, other: RigidTransform) -> RigidTransform:
+        """X_BC = X_AB⁻¹ · X_AC = (R_ABᵀ·R_AC, R_ABᵀ·(p_AC − p_AB))."""
+        R_BA = self._R.matrix().T
+        return RigidTransform(RotationMatrix(R_BA @ other._R.matrix()), R_BA @ (other._p - self._p))
 
     def inverse(self) -> RigidTransform:
         R_inv = self._R.inverse()

@@ -51,6 +51,7 @@ ADJACENCY_RULE: Mapping[str, bool] = MappingProxyType(
         "screw": True,
         "universal": True,
         "ball_rpy": True,
+        "curvilinear": True,
         "planar": True,
         "rpy_floating": True,  # 6 dofs, yet filtered
         "quaternion_floating": False,  # the one type skipped

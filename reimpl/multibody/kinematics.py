@@ -29,6 +29,7 @@ universal            [θ₀, θ₁]                       (R_x(θ₀)·R_y(θ₁
 planar               [x, y, θ]                      (R_z(θ), [x, y, 0])
 rpy_floating         [r, p, y, x, y, z]             (R_rpy(r, p, y), [x, y, z])
 quaternion_floating  [qw, qx, qy, qz, x, y, z]      (R(q/|q|), [x, y, z])
+curvilinear          [s]                            the curve's pose at arc length s
 ==================== ============================== ===========================
 
 Poses here are pairs ``(R, p)`` of numpy arrays; the plant turns them into
@@ -266,6 +267,7 @@ _X_FM: dict[str, Callable[[Any, Array], Pose]] = {
         rotation_from_quaternion(q[:4]),
         np.array(q[4:7], dtype=float),
     ),
+    "curvilinear": lambda joint, q: joint._X_FM(float(q[0])),
 }
 
 

@@ -29,11 +29,12 @@ from __future__ import annotations
 import copy
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, TypeVar
+from typing import Any, NoReturn, TypeVar
 
 import numpy as np
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._template import scalar_template
 from reimpl.common.value import register_value_type
 from reimpl.geometry.collision_filter_declaration import (
     CollisionFilterDeclaration,
@@ -48,6 +49,7 @@ from reimpl.geometry.geometry_roles import (
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
 from reimpl.geometry.query_object import FramePoseVector
+from reimpl.geometry.rgba import Rgba
 from reimpl.geometry.scene_graph import SceneGraph
 from reimpl.geometry.shape import Shape
 from reimpl.math import RigidTransform, RotationMatrix
@@ -91,8 +93,10 @@ __all__ = [
     "AddMultibodyPlantSceneGraph",
     "ApplyMultibodyPlantConfig",
     "CoulombFriction",
+    "CoulombFriction_",
     "MultibodyPlant",
     "MultibodyPlantConfig",
+    "MultibodyPlant_",
 ]
 
 _OWNER = "reimpl.multibody.plant.MultibodyPlant"
@@ -194,8 +198,9 @@ class MultibodyPlant(LeafSystem):
 
     def __init__(self, time_step: float) -> None:
         super().__init__()
-        if time_step < 0:
-            raise _demand_failed("MultibodyPlant", "time_step >= 0")
+        _demand_cc(
+            time_step >= 0, _DEMAND_LINES["MultibodyPlant"], "MultibodyPlant", "time_step >= 0"
+        )
         self._time_step = float(time_step)
         self._instance_names = [_WORLD_INSTANCE_NAME, _DEFAULT_INSTANCE_NAME]
         self._bodies: list[RigidBody] = []
@@ -239,15 +244,22 @@ class MultibodyPlant(LeafSystem):
 
     # --------------------------------------------------------- SceneGraph
     def RegisterAsSourceForSceneGraph(self, scene_graph: SceneGraph) -> SourceId:
-        """Registers this plant (by its name) as a source; every body so far gets a frame."""
+        """Registers this plant (by its name) as a source; every body so far gets a frame.
+
+        Measured on pydrake 1.51.1: a second registration fails its demand before
+        Finalize is checked.
+        """
+        method = "RegisterAsSourceForSceneGraph"
+        _demand_cc(
+            self._source_id is None,
+            _DEMAND_LINES[method],
+            method,
+            "!geometry_source_is_registered()",
+        )
         if self._finalized:
             raise FinalizedError(
                 "This MultibodyPlant is finalized already; RegisterAsSourceForSceneGraph() "
                 "must be called before Finalize()."
-            )
-        if self._source_id is not None:
-            raise _demand_failed(
-                "RegisterAsSourceForSceneGraph", "!geometry_source_is_registered()"
             )
         self._source_id = scene_graph.RegisterSource(name=self.get_name())
         self._scene_graph = scene_graph
@@ -262,8 +274,13 @@ class MultibodyPlant(LeafSystem):
         return self._source_id
 
     def _registered_scene_graph(self, method: str) -> tuple[SceneGraph, SourceId]:
+        """The SceneGraph and source id; pydrake's SystemExit (measured) for a public
+        ``method`` of a plant that is no source, DemandFailedError for an internal one."""
         if self._scene_graph is None or self._source_id is None:
-            raise _demand_failed(method, "geometry_source_is_registered()")
+            condition = "geometry_source_is_registered()"
+            if method in _DEMAND_LINES:
+                _demand_cc(False, _DEMAND_LINES[method], method, condition)
+            raise _demand_failed(method, condition)
         return self._scene_graph, self._source_id
 
     def _register_body_frame(self, body: RigidBody) -> None:
@@ -327,21 +344,54 @@ class MultibodyPlant(LeafSystem):
         return self._instance_names[self._instance(model_instance)]
 
     def _instance(self, model_instance: ModelInstanceIndex) -> int:
+        """The index; Drake's name lookup's error if no instance has it."""
         index = int(model_instance)
         if not 0 <= index < len(self._instance_names):
             raise NotFoundError(f"There is no model instance id {index} in the model.")
         return index
 
+    def _indexed_instance(self, model_instance: ModelInstanceIndex) -> int:
+        """The index; the error of Drake's per-instance tables (the counts, q and
+        its names), measured on pydrake 1.51.1 and 1.58.0."""
+        index = int(model_instance)
+        if index < 0:
+            raise NotFoundError(
+                "The given default-constructed ModelInstanceIndex() cannot be used. You must "
+                "pass a valid integer as the index."
+            )
+        if index >= len(self._instance_names):
+            raise NotFoundError(
+                f"The given ModelInstanceIndex({index}) is out of bounds (must be less than "
+                f"{len(self._instance_names)})"
+            )
+        return index
+
+    def _listed_instance(self, method: str, model_instance: ModelInstanceIndex) -> int:
+        """The index; the SystemExit of Drake's element listings (multibody_tree.cc,
+        pydrake 1.51.1; measured)."""
+        index = int(model_instance)
+        if not 0 <= index < len(self._instance_names):
+            _demand_tree_cc(
+                _LISTING_DEMAND_LINES[method],
+                method,
+                "model_instances_.has_element(model_instance)",
+            )
+        return index
+
     def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
         """Renames the instance, and the scoped names of its SceneGraph frames and geometries.
 
-        A geometry named ``old::x`` becomes ``new::x``. N.B. pydrake 1.51.1 aborts
-        (DRAKE_DEMAND) when called after Finalize; reimpl raises. An empty ``name``
+        As Drake does it: every frame of this plant's source whose frame group is
+        the instance, and every geometry on such a frame (whoever registered it),
+        named ``old::x`` becomes ``new::x``; other names (a frame the user
+        renamed, an unscoped name) are left alone. After Finalize, pydrake
+        1.51.1 raises SystemExit (a DRAKE_THROW_UNLESS at multibody_plant.cc:1372;
+        1.58.0 reports line 1320), and so does reimpl. An empty ``name``
         raises SystemExit as on pydrake (which, measured, still registers ``""``;
         reimpl leaves the instance as it was).
         """
         if self._finalized:
-            raise _demand_failed("RenameModelInstance", "!is_finalized()")
+            _demand_cc(False, 1372, "RenameModelInstance", "!is_finalized()")
         index = self._instance(model_instance)
         old = self._instance_names[index]
         if name == old:
@@ -350,22 +400,27 @@ class MultibodyPlant(LeafSystem):
             raise _empty_instance_name()
         self._check_new_instance_name(name)
         self._instance_names[index] = name
-        if self._scene_graph is None or index < _FIRST_SCOPED_INSTANCE:
+        if self._scene_graph is None or self._source_id is None:
             return
-        inspector = self._scene_graph.model_inspector()
-        for body in self._bodies:
-            if int(body.model_instance()) != index:
-                continue
-            b = int(body.index())
-            self._scene_graph.RenameFrame(
-                frame_id=self._body_frame_ids[b], name=self._scoped(model_instance, body.name())
+        scene_graph = self._scene_graph
+        inspector = scene_graph.model_inspector()
+        old_prefix = f"{old}::"
+
+        def renamed(current: str) -> str | None:
+            return (
+                f"{name}::{current[len(old_prefix) :]}" if current.startswith(old_prefix) else None
             )
-            for geometry_id in self._collision_geometries[b] + self._visual_geometries[b]:
-                geometry_name = inspector.GetName(geometry_id)
-                if geometry_name.startswith(f"{old}::"):
-                    self._scene_graph.RenameGeometry(
-                        geometry_id=geometry_id, name=f"{name}::{geometry_name[len(old) + 2 :]}"
-                    )
+
+        for frame_id in inspector.FramesForSource(source_id=self._source_id):
+            if inspector.GetFrameGroup(frame_id=frame_id) != index:
+                continue
+            new_name = renamed(inspector.GetName(frame_id=frame_id))
+            if new_name is not None:
+                scene_graph.RenameFrame(frame_id=frame_id, name=new_name)
+            for geometry_id in inspector.GetGeometryIds(GeometrySet(frame_id=frame_id)):
+                new_name = renamed(inspector.GetName(geometry_id=geometry_id))
+                if new_name is not None:
+                    scene_graph.RenameGeometry(geometry_id=geometry_id, name=new_name)
 
     # ---------------------------------------------------------------- bodies
     def AddRigidBody(self, *args: Any, **kwargs: Any) -> RigidBody:
@@ -444,7 +499,7 @@ class MultibodyPlant(LeafSystem):
         return self._bodies[self._in_range("RigidBodyIndex", body_index, self._bodies)]
 
     def GetBodyIndices(self, model_instance: ModelInstanceIndex) -> list[BodyIndex]:
-        index = self._instance(model_instance)
+        index = self._listed_instance("GetBodyIndices", model_instance)
         return [b.index() for b in self._bodies if int(b.model_instance()) == index]
 
     def _in_range(self, kind: str, index: Any, elements: Sequence[object]) -> int:
@@ -478,7 +533,7 @@ class MultibodyPlant(LeafSystem):
         return self._frames[self._in_range("FrameIndex", frame_index, self._frames)]
 
     def GetFrameIndices(self, model_instance: ModelInstanceIndex) -> list[FrameIndex]:
-        index = self._instance(model_instance)
+        index = self._listed_instance("GetFrameIndices", model_instance)
         return [f.index() for f in self._frames if int(f.model_instance()) == index]
 
     # ---------------------------------------------------------------- joints
@@ -532,7 +587,7 @@ class MultibodyPlant(LeafSystem):
         def of(model_instance: ModelInstanceIndex | None = None) -> list[JointIndex]:
             if model_instance is None:
                 return [j.index() for j in self._joints]
-            index = self._instance(model_instance)
+            index = self._listed_instance("GetJointIndices", model_instance)
             return [j.index() for j in self._joints if int(j.model_instance()) == index]
 
         return dispatch(  # type: ignore[no-any-return]
@@ -555,18 +610,51 @@ class MultibodyPlant(LeafSystem):
     def _joints_of(self, model_instance: ModelInstanceIndex | None) -> list[Joint]:
         if model_instance is None:
             return list(self._joints)
-        index = self._instance(model_instance)
+        index = self._indexed_instance(model_instance)
         return [j for j in self._joints if int(j.model_instance()) == index]
 
     # ------------------------------------------------------- lookup by name
     def HasBodyNamed(self, name: str, model_instance: ModelInstanceIndex | None = None) -> bool:
-        return bool(self._named(self._bodies, name, model_instance))
+        """Whether a body has the name (in ``model_instance``); see ``_has_named``."""
+        return self._has_named("RigidBody", self._bodies, name, model_instance)
 
     def HasFrameNamed(self, name: str, model_instance: ModelInstanceIndex | None = None) -> bool:
-        return bool(self._named(self._frames, name, model_instance))
+        return self._has_named("Frame", self._frames, name, model_instance)
 
     def HasJointNamed(self, name: str, model_instance: ModelInstanceIndex | None = None) -> bool:
-        return bool(self._named(self._joints, name, model_instance))
+        return self._has_named("Joint", self._joints, name, model_instance)
+
+    def _has_named(
+        self,
+        kind: str,
+        elements: Sequence[_E],
+        name: str,
+        model_instance: ModelInstanceIndex | None,
+    ) -> bool:
+        """Without ``model_instance``, a name held in several instances raises (measured)."""
+        found = sorted(self._named(elements, name, model_instance), key=_instance_order)
+        if model_instance is None and len(found) > 1:
+            instances = ", ".join(self.GetModelInstanceName(e.model_instance()) for e in found)
+            raise NotFoundError(
+                f"Has{kind}Named(): A {kind} named '{name}' appears in multiple model instances "
+                f"({instances}); you must provide a model_instance argument to disambiguate."
+            )
+        return bool(found)
+
+    def NumBodiesWithName(self, name: str) -> int:
+        """How many bodies, in all model instances, have the name."""
+        return len(self._named(self._bodies, name, None))
+
+    def has_joint(self, joint_index: JointIndex) -> bool:
+        return 0 <= int(joint_index) < len(self._joints)
+
+    def get_mutable_joint(self, joint_index: JointIndex) -> Joint:
+        return self.get_joint(joint_index)
+
+    def GetMutableJointByName(
+        self, name: str, model_instance: ModelInstanceIndex | None = None
+    ) -> Joint:
+        return self.GetJointByName(name, model_instance)
 
     def GetBodyByName(
         self, name: str, model_instance: ModelInstanceIndex | None = None
@@ -716,9 +804,12 @@ class MultibodyPlant(LeafSystem):
         def with_color(
             body: RigidBody, X_BG: RigidTransform, shape: Shape, name: str, diffuse_color: Any
         ) -> GeometryId:
+            # N.B. Measured: an out-of-range color raises before anything registers.
+            r, g, b, a = (float(v) for v in np.asarray(diffuse_color, dtype=float).reshape(4))
+            diffuse = Rgba(r, g, b, a)
             illustration, perception = IllustrationProperties(), PerceptionProperties()
             for properties in (illustration, perception):
-                properties.AddProperty("phong", "diffuse", np.asarray(diffuse_color, dtype=float))
+                properties.AddProperty("phong", "diffuse", diffuse)
             instance = GeometryInstance(X_PG=X_BG, shape=shape, name=name)
             return self._register_visual(body, instance, illustration, perception)
 
@@ -856,6 +947,99 @@ class MultibodyPlant(LeafSystem):
             if index in bodies:
                 return [self._bodies[b] for b in bodies]
         raise NotFoundError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
+
+    def IsAnchored(self, body: RigidBody) -> bool:
+        """Whether only welds join ``body`` to the world (its welded set is the world's)."""
+        self._check_finalized("IsAnchored")
+        return any(b.index() == body.index() for b in self.GetBodiesWeldedTo(self.world_body()))
+
+    def GetFloatingBaseBodies(self) -> set[BodyIndex]:
+        """The bodies Finalize gave a floating joint (a set, as pydrake returns it)."""
+        self._check_finalized("GetFloatingBaseBodies")
+        return {b.index() for b in self._bodies if b.is_floating_base_body()}
+
+    def _unique_base_body(self, model_instance: ModelInstanceIndex) -> RigidBody | None:
+        """The one body of ``model_instance`` the forest joins directly to the world, if one.
+
+        A body welded to the world counts (measured: with one welded and two free
+        bodies in an instance, it has no unique base body); the world instance has none.
+        """
+        if not 0 <= int(model_instance) < len(self._instance_names):
+            _demand_tree_cc(
+                4275, "MaybeGetUniqueBaseBodyIndex", "model_instances_.has_element(model_instance)"
+            )
+        if int(model_instance) == int(world_model_instance()):
+            return None
+        assert self._forest is not None
+        bases = [
+            self._bodies[m.outboard]
+            for m in self._forest.mobilizers
+            if m.inboard == graph.WORLD
+            and int(self._bodies[m.outboard].model_instance()) == int(model_instance)
+        ]
+        return bases[0] if len(bases) == 1 else None
+
+    def HasUniqueFloatingBaseBody(self, model_instance: ModelInstanceIndex) -> bool:
+        self._check_finalized("HasUniqueFloatingBaseBody")
+        base = self._unique_base_body(model_instance)
+        return base is not None and base.is_floating_base_body()
+
+    def GetUniqueFloatingBaseBodyOrThrow(self, model_instance: ModelInstanceIndex) -> RigidBody:
+        self._check_finalized("GetUniqueFloatingBaseBodyOrThrow")
+        base = self._unique_base_body(model_instance)
+        name = self.GetModelInstanceName(model_instance)
+        if base is None:
+            raise MultibodyPlantError(f"Model {name} does not have a unique base body.")
+        if not base.is_floating_base_body():
+            raise MultibodyPlantError(
+                f"Model {name} has a unique base body, but it is not a floating base body."
+            )
+        return base
+
+    def GetBodiesKinematicallyAffectedBy(
+        self, joint_indexes: Sequence[JointIndex]
+    ) -> list[BodyIndex]:
+        """The bodies outboard of each joint that moves (welds skipped), sorted, unique."""
+        self._check_finalized("GetBodiesKinematicallyAffectedBy")
+        for joint_index in joint_indexes:
+            if not self.has_joint(joint_index):
+                raise NotFoundError(
+                    f"GetBodiesKinematicallyAffectedBy: No joint with index {int(joint_index)} "
+                    "has been registered or it has been removed."
+                )
+        assert self._forest is not None
+        outboard: dict[int, list[int]] = {}
+        placed_by: dict[int, int] = {}
+        for mobilizer in self._forest.mobilizers:
+            outboard.setdefault(mobilizer.inboard, []).append(mobilizer.outboard)
+            placed_by[mobilizer.joint] = mobilizer.outboard
+        affected: set[int] = set()
+        for joint_index in joint_indexes:
+            if self._joints[int(joint_index)].num_velocities() == 0:
+                continue
+            stack = [placed_by[int(joint_index)]]
+            while stack:
+                body = stack.pop()
+                affected.add(body)
+                stack.extend(outboard.get(body, ()))
+        return [BodyIndex(b) for b in sorted(affected)]
+
+    def num_multibody_states(self, model_instance: ModelInstanceIndex | None = None) -> int:
+        """nq + nv (of ``model_instance``)."""
+        return self.num_positions(model_instance) + self.num_velocities(model_instance)
+
+    def EvalSceneGraphInspector(self, context: Context) -> Any:
+        """The inspector of the QueryObject on the ``geometry_query`` port."""
+        port = self.get_geometry_query_input_port()
+        if not port.HasValue(context):
+            raise MultibodyPlantError(
+                "EvalSceneGraphInspector\n\nThe provided context doesn't show a connection for "
+                "the plant's query input port (see "
+                "MultibodyPlant::get_geometry_query_input_port()). See "
+                "https://drake.mit.edu/troubleshooting.html#mbp-unconnected-query-object-port "
+                "for help."
+            )
+        return port.Eval(context).inspector()
 
     # -------------------------------------------------------------- filters
     def set_adjacent_bodies_collision_filters(self, value: bool) -> None:
@@ -1110,53 +1294,57 @@ class MultibodyPlant(LeafSystem):
         )
 
     def GetPositionNames(self, *args: Any, **kwargs: Any) -> list[str]:
-        """``[instance_]joint[_suffix]`` for each position, in q's order.
+        """``[instance_]joint[_suffix]`` for each position, in q's order (see ``_names``)."""
+        return self._dispatch_names("position", args, kwargs)
 
-        Without ``always_add_suffix``, a one-position joint's name has no suffix.
-        For one model instance, Drake writes joint J's names at
-        ``position_start(J) − min_J position_start(J)`` and demands that they
-        fit: an instance whose positions are not contiguous (a free tree's
-        quaternion after another instance's joints) ends the program (SystemExit,
-        measured on pydrake 1.51.1).
-        """
+    def GetVelocityNames(self, *args: Any, **kwargs: Any) -> list[str]:
+        """``[instance_]joint[_suffix]`` for each velocity, in v's order (see ``_names``)."""
+        return self._dispatch_names("velocity", args, kwargs)
+
+    def GetStateNames(self, *args: Any, **kwargs: Any) -> list[str]:
+        """The position names, then the velocity names, always with their suffixes."""
+
+        def names(
+            model_instance: ModelInstanceIndex | None = None,
+            add_model_instance_prefix: bool = True,
+        ) -> list[str]:
+            return [
+                *self._names("position", model_instance, add_model_instance_prefix, True),
+                *self._names("velocity", model_instance, add_model_instance_prefix, True),
+            ]
+
+        flag = instance_of(bool)
+        return dispatch(  # type: ignore[no-any-return]
+            _OWNER,
+            "GetStateNames",
+            (
+                Overload((Param("add_model_instance_prefix", flag, True),), names),
+                Overload(
+                    (
+                        Param("model_instance", instance_of(ModelInstanceIndex)),
+                        Param("add_model_instance_prefix", flag, False),
+                    ),
+                    names,
+                ),
+            ),
+            args,
+            kwargs,
+        )
+
+    def _dispatch_names(self, kind: str, args: Any, kwargs: Any) -> list[str]:
+        """Binds GetPositionNames' or GetVelocityNames' two overloads."""
 
         def names(
             model_instance: ModelInstanceIndex | None = None,
             add_model_instance_prefix: bool = True,
             always_add_suffix: bool = True,
         ) -> list[str]:
-            self._check_finalized("GetPositionNames")
-            joints = self._joints_in_position_order(model_instance)
-            size = sum(j.num_positions() for j in joints)
-            offset = 0
-            if model_instance is not None:
-                offset = min(
-                    (j.position_start() for j in joints if j.num_positions()),
-                    default=self.num_positions(),
-                )
-            result = [""] * size
-            for joint in joints:
-                _demand_cc(
-                    joint.position_start() + joint.num_positions() - offset <= size,
-                    1955,
-                    "GetPositionNames",
-                    "joint.position_start() + joint.num_positions() - position_offset <= "
-                    "ssize(names)",
-                )
-                prefix = ""
-                if add_model_instance_prefix:
-                    prefix = f"{self.GetModelInstanceName(joint.model_instance())}_"
-                for i in range(joint.num_positions()):
-                    name = f"{prefix}{joint.name()}"
-                    if always_add_suffix or joint.num_positions() > 1:
-                        name = f"{name}_{joint.position_suffix(i)}"
-                    result[joint.position_start() + i - offset] = name
-            return result
+            return self._names(kind, model_instance, add_model_instance_prefix, always_add_suffix)
 
         flag = instance_of(bool)
         return dispatch(  # type: ignore[no-any-return]
             _OWNER,
-            "GetPositionNames",
+            f"Get{kind.capitalize()}Names",
             (
                 Overload(
                     (
@@ -1177,6 +1365,57 @@ class MultibodyPlant(LeafSystem):
             args,
             kwargs,
         )
+
+    def _names(
+        self,
+        kind: str,
+        model_instance: ModelInstanceIndex | None,
+        add_model_instance_prefix: bool,
+        always_add_suffix: bool,
+    ) -> list[str]:
+        """Drake's names of q (``kind`` "position") or v ("velocity").
+
+        Joint J's names go at ``start(J) + i``; for one model instance at
+        ``start(J) + i − min_J start(J)`` (the minimum over all the instance's
+        joints, welds included), which Drake demands fit: an instance whose
+        coordinates are not contiguous (a free tree's quaternion after another
+        instance's joints) ends the program (SystemExit, measured on pydrake
+        1.51.1). Without ``always_add_suffix``, a one-coordinate joint's name
+        has no suffix. Welds are skipped.
+        """
+        method = f"Get{kind.capitalize()}Names"
+        self._check_finalized(method)
+        count_of, start_of, suffix_of = _COORDINATES[kind]
+        joints = self._joints_of(model_instance)
+        size = sum(getattr(j, count_of)() for j in joints)
+        offset = 0
+        if model_instance is not None:
+            offset = min(
+                (getattr(j, start_of)() for j in joints), default=getattr(self, count_of)()
+            )
+        result = [""] * size
+        line = _NAMES_DEMAND_LINES[kind]
+        for joint in joints:
+            if joint.num_positions() == 0:
+                continue
+            count, start = getattr(joint, count_of)(), getattr(joint, start_of)()
+            if model_instance is not None:
+                _demand_cc(start >= offset, line, method, f"joint.{start_of}() >= {kind}_offset")
+                _demand_cc(
+                    start + count - offset <= size,
+                    line + 1,
+                    method,
+                    f"joint.{start_of}() + joint.{count_of}() - {kind}_offset <= ssize(names)",
+                )
+            prefix = ""
+            if add_model_instance_prefix:
+                prefix = f"{self.GetModelInstanceName(joint.model_instance())}_"
+            for i in range(count):
+                name = f"{prefix}{joint.name()}"
+                if always_add_suffix or count > 1:
+                    name = f"{name}_{getattr(joint, suffix_of)(i)}"
+                result[start + i - offset] = name
+        return result
 
     # -------------------------------------------------------------- poses
     def _body_poses(self, context: Context) -> list[kinematics.Pose]:
@@ -1209,6 +1448,12 @@ class MultibodyPlant(LeafSystem):
     ) -> RigidTransform:
         """X_AB = X_WA⁻¹ · X_WB."""
         return frame_A.CalcPoseInWorld(context).inverse() @ frame_B.CalcPoseInWorld(context)
+
+    def CalcRelativeRotationMatrix(
+        self, context: Context, frame_A: Frame, frame_B: Frame
+    ) -> RotationMatrix:
+        """R_AB, the rotation part of X_AB."""
+        return self.CalcRelativeTransform(context, frame_A, frame_B).rotation()
 
     def _free_body_joint(self, body: RigidBody) -> Any:
         """The floating joint that places ``body`` (Drake's error if none)."""
@@ -1355,6 +1600,28 @@ def _positions_vector(q: Any) -> Any:
     return np.asarray(q, dtype=float).reshape(-1)
 
 
+#: Where multibody_plant.cc (pydrake 1.51.1) demands what the public methods check
+#: with DRAKE_DEMAND / DRAKE_THROW_UNLESS: a plant that is (not) a SceneGraph source, a
+#: nonnegative time step. pydrake raises SystemExit (measured; 1.58.0 reports other lines).
+_DEMAND_LINES = {
+    "MultibodyPlant": 323,
+    "RegisterAsSourceForSceneGraph": 1036,
+    "RegisterVisualGeometry": 1074,
+    "RegisterCollisionGeometry": 1139,
+    "CollectRegisteredGeometries": 1178,
+}
+#: Where multibody_tree.cc (pydrake 1.51.1) demands that a listing's model instance exists.
+_LISTING_DEMAND_LINES = {"GetBodyIndices": 481, "GetJointIndices": 494, "GetFrameIndices": 521}
+#: The accessors of a joint's positions and of its velocities: count, start, suffix.
+_COORDINATES = {
+    "position": ("num_positions", "position_start", "position_suffix"),
+    "velocity": ("num_velocities", "velocity_start", "velocity_suffix"),
+}
+#: Where GetPositionNames and GetVelocityNames demand that a joint's names fit
+#: (multibody_plant.cc, pydrake 1.51.1): this line and the next.
+_NAMES_DEMAND_LINES = {"position": 1954, "velocity": 2021}
+
+
 def _demand(condition: bool, line: int, method: str, text: str) -> None:
     """pydrake 1.51.1's SystemExit for a failed DRAKE_DEMAND in multibody_plant.h."""
     if not condition:
@@ -1365,6 +1632,14 @@ def _demand_cc(condition: bool, line: int, method: str, text: str) -> None:
     """pydrake 1.51.1's SystemExit for a failed DRAKE_DEMAND in multibody_plant.cc."""
     if not condition:
         raise SystemExit(f"Failure at {_PLANT_CC}:{line} in {method}(): condition '{text}' failed.")
+
+
+def _demand_tree_cc(line: int, method: str, text: str) -> NoReturn:
+    """pydrake 1.51.1's SystemExit for a failed condition in multibody_tree.cc (measured)."""
+    raise SystemExit(
+        f"Failure at external/drake+/multibody/tree/multibody_tree.cc:{line} in {method}(): "
+        f"condition '{text}' failed."
+    )
 
 
 def _is_rgba(value: object) -> bool:
@@ -1454,3 +1729,7 @@ def AddMultibodyPlant(
     plant, scene_graph = AddMultibodyPlantSceneGraph(builder=builder, time_step=config.time_step)
     ApplyMultibodyPlantConfig(config, plant)
     return plant, scene_graph
+
+
+MultibodyPlant_ = scalar_template("reimpl.multibody.plant", "MultibodyPlant_", MultibodyPlant)
+CoulombFriction_ = scalar_template("reimpl.multibody.plant", "CoulombFriction_", CoulombFriction)

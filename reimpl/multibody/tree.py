@@ -20,41 +20,64 @@ pydrake accepts them and are stored, never used.
 
 from __future__ import annotations
 
+import itertools
 import math
 import numbers
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._template import TemplateClass
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody import kinematics
 from reimpl.multibody._errors import MultibodyPlantError
+from reimpl.multibody._joint_checks import check_joint_parameters
 
 __all__ = [
     "BallRpyJoint",
+    "BallRpyJoint_",
+    "Body",
     "BodyIndex",
+    "Body_",
     "FixedOffsetFrame",
+    "FixedOffsetFrame_",
     "Frame",
     "FrameIndex",
+    "Frame_",
     "Joint",
     "JointIndex",
+    "Joint_",
     "ModelInstanceIndex",
     "PlanarJoint",
+    "PlanarJoint_",
     "PrismaticJoint",
+    "PrismaticJoint_",
     "QuaternionFloatingJoint",
+    "QuaternionFloatingJoint_",
     "RevoluteJoint",
+    "RevoluteJoint_",
     "RigidBody",
     "RigidBodyFrame",
+    "RigidBodyFrame_",
+    "RigidBody_",
     "RotationalInertia",
+    "RotationalInertia_",
     "RpyFloatingJoint",
+    "RpyFloatingJoint_",
     "ScopedName",
     "ScrewJoint",
+    "ScrewJoint_",
     "SpatialInertia",
+    "SpatialInertia_",
     "UnitInertia",
+    "UnitInertia_",
     "UniversalJoint",
+    "UniversalJoint_",
     "WeldJoint",
+    "WeldJoint_",
     "default_model_instance",
     "world_frame_index",
     "world_index",
@@ -65,6 +88,9 @@ _OWNER = "reimpl.multibody.tree"
 
 #: The value of a default-constructed (invalid) index, as pydrake prints it.
 _INVALID_INDEX = -1234567
+#: The index of an element not (yet) added to a plant (measured: ``RigidBody('x').index()``
+#: is ``BodyIndex(-1)`` on pydrake 1.51.1 and 1.58.0).
+_UNADDED_INDEX = -1
 
 # ----------------------------------------------------------------- Indices
 
@@ -349,7 +375,7 @@ class _Element:
 
     def _init_element(self, name: str, model_instance: ModelInstanceIndex) -> None:
         self._plant = None
-        self._index = _INVALID_INDEX
+        self._index = _UNADDED_INDEX
         self._name = str(name)
         self._model_instance = ModelInstanceIndex(int(model_instance))
 
@@ -454,6 +480,56 @@ class RigidBody(_Element):
         joint = self._inboard_joint()
         return joint is not None and joint.kTypeName == "quaternion_floating"
 
+    # ------------------------------------------------- floating base body
+    # Where a floating base body's joint keeps its state; pydrake 1.51.1's errors
+    # (measured): RuntimeError before Finalize, SystemExit for another body.
+    def _floating_joint(self, method: str, line: int) -> Joint:
+        plant = self.GetParentPlant()
+        if not plant.is_finalized():
+            raise MultibodyPlantError(
+                f"From '{method}'. The model to which this rigid body belongs must be "
+                "finalized. See MultibodyPlant::Finalize()."
+            )
+        joint = self._inboard_joint()
+        if joint is None or not joint.is_ephemeral():
+            raise _rigid_body_demand(line, method, "is_floating_base_body()")
+        return joint
+
+    def floating_positions_start(self) -> int:
+        return self._floating_joint("floating_positions_start", 342).position_start()
+
+    def floating_velocities_start_in_v(self) -> int:
+        return self._floating_joint("floating_velocities_start_in_v", 355).velocity_start()
+
+    def floating_position_suffix(self, position_index_in_body: int) -> str:
+        joint = self._floating_joint("floating_position_suffix", 368)
+        if not 0 <= position_index_in_body < joint.num_positions():
+            raise _rigid_body_demand(
+                370,
+                "floating_position_suffix",
+                "0 <= position_index_in_body && position_index_in_body < 7",
+            )
+        return joint.position_suffix(position_index_in_body)
+
+    def floating_velocity_suffix(self, velocity_index_in_body: int) -> str:
+        joint = self._floating_joint("floating_velocity_suffix", 385)
+        if not 0 <= velocity_index_in_body < joint.num_velocities():
+            raise _rigid_body_demand(
+                386,
+                "floating_velocity_suffix",
+                "0 <= velocity_index_in_body && velocity_index_in_body < 6",
+            )
+        return joint.velocity_suffix(velocity_index_in_body)
+
+
+def _rigid_body_demand(line: int, method: str, condition: str) -> SystemExit:
+    """pydrake 1.51.1's SystemExit for a failed condition in rigid_body.h (measured)."""
+    return SystemExit(
+        "Failure at bazel-out/k8-opt/bin/external/drake+/multibody/tree/_virtual_includes/"
+        f"multibody_tree_core/drake/multibody/tree/rigid_body.h:{line} in {method}(): "
+        f"condition '{condition}' failed."
+    )
+
 
 class Frame(_Element):
     """A frame fixed to a body."""
@@ -496,6 +572,28 @@ class Frame(_Element):
         """X_MF, this frame's pose in ``frame_M``."""
         X_MF: RigidTransform = self.GetParentPlant().CalcRelativeTransform(context, frame_M, self)
         return X_MF
+
+    # The rotations: the rotation part of the poses above.
+    def GetFixedRotationMatrixInBodyFrame(self) -> RotationMatrix:
+        """R_BF."""
+        return self.GetFixedPoseInBodyFrame().rotation()
+
+    def GetFixedRotationMatrixInBody(self, R_FQ: RotationMatrix) -> RotationMatrix:
+        """R_BQ = R_BF · R_FQ."""
+        return self.GetFixedRotationMatrixInBodyFrame() @ R_FQ
+
+    def CalcRotationMatrixInBodyFrame(self, context: Any) -> RotationMatrix:
+        return self.CalcPoseInBodyFrame(context).rotation()
+
+    def CalcOffsetRotationMatrixInBody(self, context: Any, R_FQ: RotationMatrix) -> RotationMatrix:
+        return self.GetFixedRotationMatrixInBody(R_FQ)
+
+    def CalcRotationMatrixInWorld(self, context: Any) -> RotationMatrix:
+        return self.CalcPoseInWorld(context).rotation()
+
+    def CalcRotationMatrix(self, context: Any, frame_M: Frame) -> RotationMatrix:
+        """R_MF."""
+        return self.CalcPose(context, frame_M).rotation()
 
 
 class RigidBodyFrame(Frame):
@@ -564,6 +662,40 @@ class FixedOffsetFrame(Frame):
         return self._parent.GetFixedPoseInBodyFrame() @ self._X_PF
 
 
+# -------------------------------------------------------- Scalar templates
+# ``RigidBody_[float] is RigidBody`` and so on, for every class pydrake binds as a
+# scalar template (measured on pydrake 1.51.1). Bound lazily, so that this block
+# may stand before the joint classes it names. ``Body`` and ``Body_`` are
+# pydrake's other names for ``RigidBody`` and ``RigidBody_``.
+
+
+def _template(name: str, cls: Callable[[], type]) -> TemplateClass:
+    template = TemplateClass(_OWNER, name)
+    template.add_lazy(lambda: template.add_instantiation(float, cls()))
+    return template
+
+
+BallRpyJoint_ = _template("BallRpyJoint_", lambda: BallRpyJoint)
+FixedOffsetFrame_ = _template("FixedOffsetFrame_", lambda: FixedOffsetFrame)
+Frame_ = _template("Frame_", lambda: Frame)
+Joint_ = _template("Joint_", lambda: Joint)
+PlanarJoint_ = _template("PlanarJoint_", lambda: PlanarJoint)
+PrismaticJoint_ = _template("PrismaticJoint_", lambda: PrismaticJoint)
+QuaternionFloatingJoint_ = _template("QuaternionFloatingJoint_", lambda: QuaternionFloatingJoint)
+RevoluteJoint_ = _template("RevoluteJoint_", lambda: RevoluteJoint)
+RigidBodyFrame_ = _template("RigidBodyFrame_", lambda: RigidBodyFrame)
+RigidBody_ = _template("RigidBody_", lambda: RigidBody)
+RotationalInertia_ = _template("RotationalInertia_", lambda: RotationalInertia)
+RpyFloatingJoint_ = _template("RpyFloatingJoint_", lambda: RpyFloatingJoint)
+ScrewJoint_ = _template("ScrewJoint_", lambda: ScrewJoint)
+SpatialInertia_ = _template("SpatialInertia_", lambda: SpatialInertia)
+UnitInertia_ = _template("UnitInertia_", lambda: UnitInertia)
+UniversalJoint_ = _template("UniversalJoint_", lambda: UniversalJoint)
+WeldJoint_ = _template("WeldJoint_", lambda: WeldJoint)
+Body = RigidBody
+Body_ = RigidBody_
+
+
 # ---------------------------------------------------------------- Joints
 
 
@@ -572,6 +704,29 @@ def _no_mobilizer() -> SystemExit:
     return SystemExit(
         "Failure at bazel-out/k8-opt/bin/external/drake+/multibody/tree/_virtual_includes/"
         "multibody_tree_core/drake/multibody/tree/joint.h:970 in get_mobilizer_downcast(): "
+        "condition 'has_mobilizer()' failed."
+    )
+
+
+#: Where pydrake 1.51.1's installed joint.h is compiled from (as its messages print it).
+_INSTALLED_TREE = (
+    "bazel-out/k8-opt/bin/external/drake+/tools/install/libdrake/_virtual_includes/"
+    "drake_shared_library/drake/multibody/tree/"
+)
+
+
+def _no_mobilizer_in(method: str, line: int) -> SystemExit:
+    """pydrake 1.51.1's SystemExit for a joint.h accessor used before Finalize (measured)."""
+    return SystemExit(
+        f"Failure at {_INSTALLED_TREE}joint.h:{line} in {method}(): "
+        "condition 'has_mobilizer()' failed."
+    )
+
+
+def _no_mobilizer_in_cc(method: str, line: int) -> SystemExit:
+    """pydrake 1.51.1's SystemExit for a joint.cc accessor used before Finalize (measured)."""
+    return SystemExit(
+        f"Failure at external/drake+/multibody/tree/joint.cc:{line} in {method}(): "
         "condition 'has_mobilizer()' failed."
     )
 
@@ -608,6 +763,10 @@ class Joint(_Element):
     _zero_positions: ClassVar[tuple[float, ...]] = ()
     #: GetPositionNames' suffix of each position.
     _position_suffixes: ClassVar[tuple[str, ...]] = ()
+    #: GetVelocityNames' suffix of each velocity.
+    _velocity_suffixes: ClassVar[tuple[str, ...]] = ()
+    #: (can_rotate, can_translate), as the joint's mobilizer reports them.
+    _motion: ClassVar[tuple[bool, bool]] = (False, False)
     _frame_on_parent: Frame
     _frame_on_child: Frame
     _ephemeral: bool
@@ -633,6 +792,7 @@ class Joint(_Element):
         def make(name: str, **bound: Any) -> None:
             parent = bound.pop(cls._parent_param)
             child = bound.pop(cls._child_param)
+            check_joint_parameters(cls.kTypeName, bound)
             self._init_element(name, child.model_instance())
             self._frame_on_parent = parent
             self._frame_on_child = child
@@ -686,7 +846,58 @@ class Joint(_Element):
         return self._starts[1]
 
     def position_suffix(self, arg0: int) -> str:
+        if self._starts is None:
+            raise _no_mobilizer_in("position_suffix", 264)
         return self._position_suffixes[arg0]
+
+    def velocity_suffix(self, arg0: int) -> str:
+        if self._starts is None:
+            raise _no_mobilizer_in("velocity_suffix", 275)
+        return self._velocity_suffixes[arg0]
+
+    def can_rotate(self) -> bool:
+        if self._starts is None:
+            raise _no_mobilizer_in_cc("can_rotate", 11)
+        return self._motion[0]
+
+    def can_translate(self) -> bool:
+        if self._starts is None:
+            raise _no_mobilizer_in_cc("can_translate", 17)
+        return self._motion[1]
+
+    # ------------------------------------------------ limits and damping
+    # Stored as given (after the constructor's checks), never used.
+    def position_lower_limits(self) -> npt.NDArray[np.float64]:
+        return np.full(
+            self.num_positions(), float(self._parameters.get("pos_lower_limit", -math.inf))
+        )
+
+    def position_upper_limits(self) -> npt.NDArray[np.float64]:
+        return np.full(
+            self.num_positions(), float(self._parameters.get("pos_upper_limit", math.inf))
+        )
+
+    def velocity_lower_limits(self) -> npt.NDArray[np.float64]:
+        return np.full(self.num_velocities(), -math.inf)
+
+    def velocity_upper_limits(self) -> npt.NDArray[np.float64]:
+        return np.full(self.num_velocities(), math.inf)
+
+    def acceleration_lower_limits(self) -> npt.NDArray[np.float64]:
+        return np.full(self.num_velocities(), -math.inf)
+
+    def acceleration_upper_limits(self) -> npt.NDArray[np.float64]:
+        return np.full(self.num_velocities(), math.inf)
+
+    def default_damping_vector(self) -> npt.NDArray[np.float64]:
+        """One damping per velocity: the constructor's ``damping`` for each, or a
+        planar joint's three, or a floating joint's angular ×3 then translational ×3."""
+        p = self._parameters
+        if "angular_damping" in p:
+            return np.array([p["angular_damping"]] * 3 + [p["translational_damping"]] * 3, float)
+        if self.kTypeName == "planar":
+            return _vector(p["damping"])
+        return np.full(self.num_velocities(), float(p.get("damping", 0.0)))
 
     def default_positions(self) -> npt.NDArray[np.float64]:
         return self._default_q.copy()
@@ -728,12 +939,48 @@ def _unit(axis: Any) -> npt.NDArray[np.float64]:
     return vector / float(np.linalg.norm(vector))
 
 
-class RevoluteJoint(Joint):
+class _OneDofLimits:
+    """The scalar accessors of a one-dof joint's limits and damping (revolute, prismatic).
+
+    A mixin before Joint: velocity and acceleration limits are always ±∞ in reimpl.
+    """
+
+    if TYPE_CHECKING:  # Provided by Joint.
+
+        def position_lower_limits(self) -> npt.NDArray[np.float64]: ...
+        def position_upper_limits(self) -> npt.NDArray[np.float64]: ...
+        def default_damping_vector(self) -> npt.NDArray[np.float64]: ...
+
+    def position_lower_limit(self) -> float:
+        return float(self.position_lower_limits()[0])
+
+    def position_upper_limit(self) -> float:
+        return float(self.position_upper_limits()[0])
+
+    def velocity_lower_limit(self) -> float:
+        return -math.inf
+
+    def velocity_upper_limit(self) -> float:
+        return math.inf
+
+    def acceleration_lower_limit(self) -> float:
+        return -math.inf
+
+    def acceleration_upper_limit(self) -> float:
+        return math.inf
+
+    def default_damping(self) -> float:
+        return float(self.default_damping_vector()[0])
+
+
+class RevoluteJoint(_OneDofLimits, Joint):
     """q = [θ]: X_FM = (R_a(θ), 0) about the unit axis a."""
 
     kTypeName = "revolute"
     _dofs = (1, 1)
     _position_suffixes = ("q",)
+    _velocity_suffixes = ("w",)
+    _motion = (True, False)
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
@@ -758,12 +1005,14 @@ class RevoluteJoint(Joint):
         self._set_default(0, [angle])
 
 
-class PrismaticJoint(Joint):
+class PrismaticJoint(_OneDofLimits, Joint):
     """q = [x]: X_FM = (I, x·a) along the unit axis a."""
 
     kTypeName = "prismatic"
     _dofs = (1, 1)
     _position_suffixes = ("x",)
+    _velocity_suffixes = ("v",)
+    _motion = (False, True)
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
@@ -811,6 +1060,11 @@ class BallRpyJoint(Joint):
     kTypeName = "ball_rpy"
     _dofs = (3, 3)
     _position_suffixes = ("qx", "qy", "qz")
+    _velocity_suffixes = ("wx", "wy", "wz")
+    _motion = (True, False)
+
+    def default_damping(self) -> float:
+        return float(self.default_damping_vector()[0])
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
@@ -835,6 +1089,11 @@ class UniversalJoint(Joint):
     kTypeName = "universal"
     _dofs = (2, 2)
     _position_suffixes = ("qx", "qy")
+    _velocity_suffixes = ("wx", "wy")
+    _motion = (True, False)
+
+    def default_damping(self) -> float:
+        return float(self.default_damping_vector()[0])
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
@@ -859,6 +1118,11 @@ class PlanarJoint(Joint):
     kTypeName = "planar"
     _dofs = (3, 3)
     _position_suffixes = ("x", "y", "qz")
+    _velocity_suffixes = ("vx", "vy", "wz")
+    _motion = (True, True)
+
+    def default_damping(self) -> npt.NDArray[np.float64]:
+        return self.default_damping_vector()
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
@@ -904,9 +1168,12 @@ class _FloatingPose:
     _dofs: ClassVar[tuple[int, int]] = (6, 6)
     #: Where the translation starts in q_J.
     _translation_start: ClassVar[int] = 3
+    _velocity_suffixes: ClassVar[tuple[str, ...]] = ("wx", "wy", "wz", "vx", "vy", "vz")
+    _motion: ClassVar[tuple[bool, bool]] = (True, True)
 
     if TYPE_CHECKING:  # Provided by Joint.
         _default_q: npt.NDArray[np.float64]
+        _parameters: dict[str, Any]
 
         def _q(self, context: Any) -> npt.NDArray[np.float64]: ...
         def _set_q(self, context: Any, first: int, values: npt.ArrayLike) -> Any: ...
@@ -918,6 +1185,12 @@ class _FloatingPose:
 
     def _rotation_q(self, R: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         raise NotImplementedError
+
+    def default_angular_damping(self) -> float:
+        return float(self._parameters["angular_damping"])
+
+    def default_translational_damping(self) -> float:
+        return float(self._parameters["translational_damping"])
 
     def get_translation(self, context: Any) -> npt.NDArray[np.float64]:
         return self._q(context)[self._translation_start :].copy()
@@ -999,6 +1272,11 @@ class ScrewJoint(Joint):
     kTypeName = "screw"
     _dofs = (1, 1)
     _position_suffixes = ("q",)
+    _velocity_suffixes = ("w",)
+    _motion = (True, True)
+
+    def default_damping(self) -> float:
+        return float(self.default_damping_vector()[0])
 
     @classmethod
     def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
@@ -1039,3 +1317,123 @@ class ScrewJoint(Joint):
 
     def set_default_translation(self, z: float) -> None:
         self._set_default(0, [self._rotation_of(z)])
+
+
+# ------------------------------------------------------------- curvilinear
+# Neither class is bound in pydrake 1.51.1 (nor 1.58.0): a parsed curvilinear
+# joint is seen there as a plain Joint whose type_name() is "curvilinear".
+# They are reimpl's stand-ins for the C++ classes the URDF parser builds.
+
+#: Where pydrake 1.51.1 reports PiecewiseTrajectory's DRAKE_DEMAND (SystemExit, measured).
+_PIECEWISE_TRAJECTORY_DEMAND = (
+    "Failure at external/drake+/common/trajectories/piecewise_trajectory.cc:19 in "
+    "PiecewiseTrajectory(): condition 'breaks_[i] - breaks_[i - 1] >= kEpsilonTime' failed."
+)
+#: RotationMatrix's internal tolerance for orthonormality: 128 ε.
+_ORTHONORMALITY_TOLERANCE = 128 * np.finfo(float).eps
+
+
+class PiecewiseConstantCurvatureTrajectory:
+    """A planar curve of line segments and circular arcs, by arc length s (C++ only).
+
+    ``breaks`` are the arc lengths where pieces start (``breaks[0] = 0``), the
+    piece from breaks[i] to breaks[i+1] turning at ``turning_rates[i]`` (1/m,
+    0 for a line). At s = 0 the curve's frame M has x along the unit initial
+    tangent t, z along the unit plane normal n and y = n × t. Checks, in
+    Drake's order: each piece at least ε long (DRAKE_DEMAND: SystemExit),
+    then ``The norm of the initial tangent is zero.``, ``The norm of the
+    plane's normal is zero.``, and t · n within 128 ε of 0.
+    """
+
+    def __init__(
+        self,
+        breaks: Any,
+        turning_rates: Any,
+        initial_curve_tangent: Any,
+        plane_normal: Any,
+        *,
+        initial_position: Any,
+        is_periodic: bool,
+    ) -> None:
+        self._breaks = [float(b) for b in breaks]
+        self._rates = [float(r) for r in turning_rates]
+        if any(b - a < np.finfo(float).eps for a, b in itertools.pairwise(self._breaks)):
+            raise SystemExit(_PIECEWISE_TRAJECTORY_DEMAND)
+        if len(self._rates) != len(self._breaks) - 1:
+            raise MultibodyPlantError(
+                "The number of turning rates must be equal to the number of segments."
+            )
+        if self._breaks[0] != 0:
+            raise MultibodyPlantError(
+                "The first break must be 0, as the breaks are in arclength units."
+            )
+        t, n = _vector(initial_curve_tangent), _vector(plane_normal)
+        if np.linalg.norm(t) == 0:
+            raise MultibodyPlantError("The norm of the initial tangent is zero.")
+        if np.linalg.norm(n) == 0:
+            raise MultibodyPlantError("The norm of the plane's normal is zero.")
+        if abs(float(t @ n)) > _ORTHONORMALITY_TOLERANCE:
+            raise MultibodyPlantError(
+                "The initial curve's tangent vector must be perpendicular to the plane's normal."
+            )
+        y = np.cross(n, t)
+        R0 = np.column_stack([t / np.linalg.norm(t), y / np.linalg.norm(y), n / np.linalg.norm(n)])
+        pose: kinematics.Pose = (R0, _vector(initial_position))
+        self._break_poses = [pose]
+        for i, rate in enumerate(self._rates):
+            step = self._in_piece(rate, self._breaks[i + 1] - self._breaks[i])
+            pose = kinematics.compose(pose, step)
+            self._break_poses.append(pose)
+        self._periodic = bool(is_periodic)
+
+    def length(self) -> float:
+        return self._breaks[-1]
+
+    def is_periodic(self) -> bool:
+        return self._periodic
+
+    @staticmethod
+    def _in_piece(rate: float, ds: float) -> kinematics.Pose:
+        """X_MiM: ds along a piece turning at ``rate``, from the piece's start frame Mi."""
+        theta = ds * rate
+        R = kinematics.rotation_about(np.array([0.0, 0.0, 1.0]), theta)
+        if rate == 0:
+            return R, np.array([ds, 0.0, 0.0])
+        return R, np.array([math.sin(theta) / rate, (1 - math.cos(theta)) / rate, 0.0])
+
+    def calc_pose(self, s: float) -> kinematics.Pose:
+        """X_AM(s); a periodic curve wraps s into [0, length), an open one extends its ends."""
+        if self._periodic:
+            s = s - self.length() * math.floor(s / self.length())
+        clamped = min(max(s, 0.0), self.length())
+        piece = min(
+            max(i for i, b in enumerate(self._breaks) if b <= clamped), len(self._rates) - 1
+        )
+        step = self._in_piece(self._rates[piece], s - self._breaks[piece])
+        return kinematics.compose(self._break_poses[piece], step)
+
+
+class CurvilinearJoint(Joint):
+    """q = [s]: X_FM is the curve's pose at arc length s (``curvilinear_path``).
+
+    Limits: (-∞, ∞) for a periodic curve, else [0, length]. Negative damping
+    is ``CurvilinearJoint joint damping must be nonnegative.``
+    """
+
+    kTypeName = "curvilinear"
+    _dofs = (1, 1)
+    _position_suffixes = ("q",)
+
+    @classmethod
+    def _overloads(cls) -> tuple[tuple[Param, ...], ...]:
+        path = Param("curvilinear_path", instance_of(PiecewiseConstantCurvatureTrajectory))
+        return ((path, _real("damping", 0.0)),)
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        if self._parameters["damping"] < 0:
+            raise MultibodyPlantError("CurvilinearJoint joint damping must be nonnegative.")
+
+    def _X_FM(self, s: float) -> kinematics.Pose:
+        path: PiecewiseConstantCurvatureTrajectory = self._parameters["curvilinear_path"]
+        return path.calc_pose(s)

@@ -2,7 +2,8 @@
 
 Usage::
 
-    python scenarios/real_models/vendor.py /path/to/drake-checkout [--commit SHA]
+    python scenarios/real_models/vendor.py /path/to/drake-checkout [--commit SHA] \
+        [--models /path/to/RobotLocomotion-models --models-commit SHA]
 
 Copies, keeping Drake's paths:
 
@@ -12,18 +13,29 @@ Copies, keeping Drake's paths:
   ``multibody/parsing/test/`` (the parser tests' packages, meshes and includes);
 * Drake's root ``package.xml`` (the package ``drake``) and ``LICENSE.TXT``.
 
-A data file is anything but source code and build files (see ``_CODE``). The copy is
-deterministic: run it again on the same commit and ``git diff`` shows nothing.
+A data file is anything but source code and build files (see ``_CODE``).
+
+With ``--models``, a checkout of RobotLocomotion/models (Drake's ``drake_models``
+package, at the commit the Drake release pins) is vendored into ``drake_models/``:
+its ``package.xml``, every model file, every licence file, and every file a model
+file names by URI (``package://drake_models/...`` or a relative path; not what a
+named glTF file names in turn: Drake reads a mesh file's contents at parse time
+only for collision geometry, whose meshes here are ``.obj`` and ``.vtk``).
+
+The copy is deterministic: run it again on the same commits and ``git diff``
+shows nothing.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import re
 import shutil
 import sys
 from pathlib import Path
 
-__all__ = ["data_files", "model_files", "vendor"]
+__all__ = ["data_files", "model_files", "models_files", "vendor"]
 
 MODEL_SUFFIXES = (".urdf", ".sdf", ".dmd.yaml")
 #: Suffixes that are code or build files, never model data.
@@ -68,10 +80,76 @@ def data_files(root: Path) -> list[Path]:
     return sorted(chosen)
 
 
-def vendor(root: Path, target: Path, commit: str | None) -> int:
+#: A URI in a model file: ``package://drake_models/x`` or a file name in an attribute or
+#: element (``filename="x"``, ``<uri>x</uri>``).
+_URI = re.compile(r'(?:filename="|<uri>|file: *"?)([^"<\s]+)')
+_PACKAGE = "package://drake_models/"
+_LICENCE = re.compile(r"^(LICEN[CS]E|COPYING)", re.IGNORECASE)
+
+
+def models_files(root: Path) -> list[Path]:
+    """What to vendor of RobotLocomotion/models (see the module doc), relative, sorted."""
+    every = _walk(root)
+    chosen = {Path("package.xml")} | {p for p in every if _LICENCE.match(p.name)}
+    for model in (p for p in every if p.name.endswith(MODEL_SUFFIXES)):
+        chosen.add(model)
+        text = (root / model).read_text(encoding="utf-8", errors="replace")
+        for named in _URI.findall(text):
+            if named.startswith(_PACKAGE):
+                candidate = Path(named.removeprefix(_PACKAGE))
+            elif "://" not in named:
+                candidate = Path(os_normpath(model.parent / named))
+            else:
+                continue
+            if (root / candidate).is_file():
+                chosen.add(candidate)
+    chosen |= {buffer for gltf in _collision_gltf(root, every) for buffer in _buffers(root, gltf)}
+    return sorted(chosen)
+
+
+_COLLISION = re.compile(r"<collision\b.*?</collision>", re.DOTALL)
+
+
+def _collision_gltf(root: Path, every: list[Path]) -> set[Path]:
+    """The glTF files that a model file names inside a ``<collision>`` element."""
+    found = set()
+    for model in (p for p in every if p.name.endswith((".urdf", ".sdf"))):
+        text = (root / model).read_text(encoding="utf-8", errors="replace")
+        for block in _COLLISION.findall(text):
+            for named in _URI.findall(block):
+                if named.startswith(_PACKAGE) and named.endswith(".gltf"):
+                    found.add(Path(named.removeprefix(_PACKAGE)))
+                elif named.endswith(".gltf") and "://" not in named:
+                    found.add(Path(os_normpath(model.parent / named)))
+    return found
+
+
+def _buffers(root: Path, gltf: Path) -> list[Path]:
+    """The binary buffers a glTF file names (not its images: a mesh's shape is in its buffers)."""
+    try:
+        data = json.loads((root / gltf).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+    uris = [b.get("uri", "") for b in data.get("buffers", []) if isinstance(b, dict)]
+    found = [Path(os_normpath(gltf.parent / uri)) for uri in uris if uri and ":" not in uri]
+    return [p for p in found if (root / p).is_file()]
+
+
+def os_normpath(path: Path) -> str:
+    """``a/b/../c`` as ``a/c`` (the path need not exist)."""
+    parts: list[str] = []
+    for part in path.parts:
+        if part == "..":
+            if parts:
+                parts.pop()
+        elif part != ".":
+            parts.append(part)
+    return "/".join(parts)
+
+
+def _copy(root: Path, files: list[Path], target: Path, commit: str | None) -> int:
     if target.exists():
         shutil.rmtree(target)
-    files = data_files(root)
     for relative in files:
         destination = target / relative
         destination.parent.mkdir(parents=True, exist_ok=True)
@@ -81,17 +159,28 @@ def vendor(root: Path, target: Path, commit: str | None) -> int:
     return len(files)
 
 
+def vendor(root: Path, target: Path, commit: str | None) -> int:
+    return _copy(root, data_files(root), target, commit)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("checkout", type=Path, help="a Drake checkout (RobotLocomotion/drake)")
     parser.add_argument("--commit", help="the checkout's commit, recorded in drake/COMMIT")
     parser.add_argument("--target", type=Path, default=HERE / "drake")
+    parser.add_argument("--models", type=Path, help="a checkout of RobotLocomotion/models")
+    parser.add_argument("--models-commit", help="its commit, recorded in drake_models/COMMIT")
     args = parser.parse_args(argv)
     if not (args.checkout / "multibody" / "parsing").is_dir():
         print(f"error: {args.checkout} is not a Drake checkout", file=sys.stderr)
         return 2
     count = vendor(args.checkout.resolve(), args.target, args.commit)
     print(f"vendored {count} files into {args.target}")
+    if args.models is not None:
+        target = args.target.parent / "drake_models"
+        models = args.models.resolve()
+        count = _copy(models, models_files(models), target, args.models_commit)
+        print(f"vendored {count} files into {target}")
     return 0
 
 

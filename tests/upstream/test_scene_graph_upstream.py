@@ -201,6 +201,34 @@ class TestSceneGraphApi:
             inspector.GetPoseInFrame(geometry_id=sphere1), drake.math.RigidTransform_[float]
         )
 
+    def test_inspector_parent_frame(
+        self, drake: ModuleType, api: Any, setup: dict[str, Any]
+    ) -> None:
+        """Upstream's ``GetParentFrame(frame_id=global_frame) == world_frame_id()``.
+
+        Bound since pydrake 1.52 (upstream's test at v1.56+ asserts it); pydrake
+        1.51.1 has no GetParentFrame. reimpl has it, as 1.58.0 does.
+        """
+        g = drake.geometry
+        inspector = setup["scene_graph"].model_inspector()
+        frame = setup["frame"]
+        if api.name == "pydrake" and api.version == "1.51.1":
+            assert not hasattr(inspector, "GetParentFrame")
+            return
+        assert inspector.GetParentFrame(frame_id=frame) == g.SceneGraph.world_frame_id()
+        (child,) = [f for f in inspector.FramesForSource(source_id=setup["source"]) if f != frame]
+        assert inspector.GetParentFrame(frame_id=child) == frame
+        world = g.SceneGraph.world_frame_id()
+        assert inspector.GetParentFrame(frame_id=world) == world
+        unknown = g.FrameId.get_new_id()
+        with pytest.raises(RuntimeError) as info:
+            inspector.GetParentFrame(frame_id=unknown)
+        assert str(info.value) == (
+            f"No frame name available for invalid frame id: {unknown.get_value()}"
+        )
+        with pytest.raises(TypeError):
+            inspector.GetParentFrame(frame_id=setup["sphere1"])
+
     def test_roles_assign_and_remove_on_model_and_context(
         self, drake: ModuleType, setup: dict[str, Any]
     ) -> None:

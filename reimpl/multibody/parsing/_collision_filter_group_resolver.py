@@ -36,8 +36,9 @@ from typing import Any
 
 from reimpl.geometry import GeometrySet
 from reimpl.multibody.parsing import _scoped_name as scoped
-from reimpl.multibody.parsing._collision_filter_groups import CollisionFilterGroups
+from reimpl.multibody.parsing._collision_filter_groups import NameGroups
 from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._instanced_name import InstancedName, instanced, order
 
 __all__ = ["CollisionFilterGroupResolver"]
 
@@ -66,6 +67,7 @@ class CollisionFilterGroupResolver:
         scope: str,
     ) -> None:
         """Declares group ``scope::group_name``; names are relative to ``scope``."""
+        self._check_scope(scope)
         name = scoped.join(scope, group_name)
         if scoped.is_scoped(group_name):
             raise diagnostics.error(f"group name '{name}' cannot be a scoped name", line)
@@ -78,6 +80,18 @@ class CollisionFilterGroupResolver:
             bodies[body_name] = self._find_body(diagnostics, line, body_name)
         self._bodies[name] = bodies
         self._member_groups[name] = {scoped.join(scope, g) for g in member_group_names}
+
+    def _check_scope(self, scope: str) -> None:
+        """A group's model instance must be one this parse made (Drake's DRAKE_DEMAND;
+        only model directives can name another, by ``model_namespace``)."""
+        plant = self._plant
+        outside = scope and plant.HasModelInstanceNamed(scope)
+        if outside and int(plant.GetModelInstanceByName(scope)) < self._first_new_instance:
+            raise SystemExit(
+                "Failure at external/drake+/multibody/parsing/"
+                "detail_collision_filter_group_resolver.cc:39 in AddGroup(): "
+                "condition '*model_instance >= minimum_model_instance_index_' failed."
+            )
 
     def add_pair(self, group_a: str, group_b: str, scope: str) -> None:
         """Declares that the two groups (relative to ``scope``) do not collide."""
@@ -108,8 +122,9 @@ class CollisionFilterGroupResolver:
                 stack.append(member_group)
         return dict(sorted(bodies.items()))
 
-    def resolve(self) -> CollisionFilterGroups:
-        """Checks every group name, applies the pairs, and reports what was declared.
+    def resolve(self) -> NameGroups[InstancedName]:
+        """Checks every group name, applies the pairs, and reports what was declared,
+        held by model instance index (see _instanced_name).
 
         N.B. Pairs are applied one by one in sorted order, so the pairs sorted
         before one naming an unknown group are applied when it raises (measured).
@@ -125,12 +140,12 @@ class CollisionFilterGroupResolver:
                 (a, self._geometry_set(members[a].values())),
                 (b, self._geometry_set(members[b].values())),
             )
-        report = CollisionFilterGroups()
+        report: NameGroups[str] = NameGroups(str)
         for group, bodies in members.items():
-            report.AddGroup(group, set(bodies))
-        for pair in sorted(self._pairs):
-            report.AddExclusionPair(pair)
-        return report
+            report.add_group(group, set(bodies))
+        for pair in self._pairs:
+            report.add_pair(*pair)
+        return report.convert(lambda name: instanced(self._plant, name), order)
 
     def _check_group(self, diagnostics: Diagnostics, name: str) -> None:
         if name not in self._bodies:

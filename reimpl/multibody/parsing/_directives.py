@@ -1,326 +1,332 @@
-"""Model directives (``.dmd.yaml``), read with PyYAML (Drake 1.51.1, measured).
+"""Running model directives into a plant (Drake's detail_dmd_parser.cc, 1.51.1).
 
-A document is ``{directives: [directive, ...]}``; each directive has exactly
-one key. Reading happens in three steps, as in Drake:
+Directives run in order, in a *namespace*: the Parser's model-name prefix at
+the top, ``ns::model_namespace`` inside ``add_directives``. A name a directive
+writes is read in the namespace, ``join(ns, name)``, except ``world`` which is
+always the world frame. A frame name ``a::b::f`` is frame ``f`` of model
+instance ``a::b`` (GetModelInstanceByName's error if there is none); an
+unscoped ``f`` is searched plant-wide (GetFrameByName's errors).
 
-1. the YAML is matched against ``_FIELDS``; an unknown key gives yaml-cpp's
-   message (``<string>:2:14: YAML node of type Mapping (with size 3 and keys
-   {file, foo, name}) key 'foo' did not match any visited value entry for
-   <root> while accepting ...``);
-2. every directive is checked (``IsValid``); a failure is logged and ends the
-   program (SystemExit, as pydrake's DRAKE_DEMAND does);
-3. the directives run in order, names read in the current namespace
-   ``prefix::model_namespace`` (``ns`` below):
+===========================  ====================================================
+ directive                    effect
+===========================  ====================================================
+ add_model                    the single model of ``file`` (a URL, never
+                              relative) as instance ``join(ns, name)``; then its
+                              ``default_joint_positions`` and
+                              ``default_free_body_pose``
+ add_model_instance           an empty instance ``join(ns, name)`` (auto-renamed
+                              if the Parser auto-renames); not returned
+ add_frame                    FixedOffsetFrame at ``X_PF`` from ``X_PF.base_frame``,
+                              in instance ``join(ns, a)`` when the name is
+                              ``a::f``, else in the base frame's instance
+ add_weld                     WeldFrames(parent, child, ``X_PC``); the *child* is
+                              looked up first (its errors come first, as GCC
+                              evaluates Drake's arguments right to left); the
+                              child must be in an instance this document added
+                              (else SystemExit, ``condition 'found' failed``)
+ add_collision_filter_group   with a SceneGraph only: a group read in instance
+                              ``ns`` if ``ns`` is not empty, else in
+                              ``model_namespace`` if given, else at global scope
+ add_directives               ``file``'s directives in ``join(ns,
+                              model_namespace)``, which must be an existing
+                              model instance
+===========================  ====================================================
 
-   =============================  ==================================================
-   ``add_model``                  instance ``ns::name`` from ``file`` (``package://``)
-   ``add_model_instance``         an empty instance ``ns::name`` (not returned)
-   ``add_frame``                  FixedOffsetFrame ``name`` on ``X_PF.base_frame``
-   ``add_weld``                   WeldFrames(``parent``, ``child``, ``X_PC``)
-   ``add_collision_filter_group`` a group in instance ``ns::model_namespace`` (or
-                                  at global scope), skipped without a SceneGraph
-   ``add_directives``             ``file``'s directives in ``ns::model_namespace``
-   =============================  ==================================================
-
-The groups of a directives file and of all it adds form one parse. Errors
-about them carry no source (``error: body with name 'a::zz' not found``).
+Errors from URIs, groups and default poses carry no source (``error: ...``).
+Each ``add_model`` yields a ``ModelInstanceInfo`` (see _model_directives);
+the welds fill in the parent and child frame names and ``X_PC``.
 """
 
 from __future__ import annotations
 
-import logging
-import math
 import os
 from dataclasses import dataclass, field
 from typing import Any
 
-import yaml
+import numpy as np
 
-from reimpl.math import RigidTransform, RollPitchYaw
+from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
-from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
-from reimpl.multibody.parsing._package_map import UriError, resolve_uri
-from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
-from reimpl.multibody.tree import FixedOffsetFrame
-
-__all__ = ["read_directives"]
-
-_LOG = logging.getLogger("drake")
-_NAMESPACE = "drake::multibody::parsing::"
-_VECTOR = (
-    f"std::vector<{_NAMESPACE}ModelDirective,std::allocator<{_NAMESPACE}ModelDirective>> directives"
+from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._directive_structs import (
+    AddCollisionFilterGroup,
+    AddDirectives,
+    AddFrame,
+    AddModel,
+    AddModelInstance,
+    AddWeld,
+    ModelDirectives,
 )
+from reimpl.multibody.parsing._directive_yaml import load_directives
+from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
+from reimpl.multibody.parsing._resolve_uri import UriError, resolve_uri
+from reimpl.multibody.tree import FixedOffsetFrame, QuaternionFloatingJoint
 
-#: directive -> (Drake's struct, its fields)
-_FIELDS: dict[str, tuple[str, frozenset[str]]] = {
-    "add_model": (
-        "AddModel",
-        frozenset({"name", "file", "default_free_body_pose", "default_joint_positions"}),
-    ),
-    "add_model_instance": ("AddModelInstance", frozenset({"name"})),
-    "add_frame": ("AddFrame", frozenset({"name", "X_PF"})),
-    "add_weld": ("AddWeld", frozenset({"parent", "child", "X_PC"})),
-    "add_collision_filter_group": (
-        "AddCollisionFilterGroup",
-        frozenset(
-            {
-                "name",
-                "model_namespace",
-                "members",
-                "member_groups",
-                "ignored_collision_filter_groups",
-            }
-        ),
-    ),
-    "add_directives": ("AddDirectives", frozenset({"file", "model_namespace"})),
-}
+__all__ = [
+    "ModelInstanceInfo",
+    "load_model_directives",
+    "process_directives",
+    "read_directives",
+    "scoped_frame",
+    "scoped_frame_maybe",
+]
 
-#: directive -> the fields that must be non-empty (Drake's IsValid)
-_REQUIRED: dict[str, tuple[str, ...]] = {
-    "add_model": ("name", "file"),
-    "add_model_instance": ("name",),
-    "add_frame": ("name",),
-    "add_weld": ("parent", "child"),
-    "add_collision_filter_group": ("name",),
-    "add_directives": ("file",),
-}
-_KINDS = {
-    yaml.ScalarNode: "Scalar",
-    yaml.SequenceNode: "Sequence",
-    yaml.MappingNode: "Mapping",
-}
+_DMD_FAILURE = "Failure at external/drake+/multibody/parsing/detail_dmd_parser.cc:{line} in "
 
 
-class _Schema:
-    """Checks the YAML nodes against _FIELDS with yaml-cpp's messages."""
+class ModelInstanceInfo:
+    """What one ``add_model`` added, and where a weld attached it.
 
-    def __init__(self, label: str) -> None:
-        self.label = label
+    N.B. As in pydrake, it cannot be constructed from Python and its fields are
+    read-only.
+    """
 
-    def _where(self, node: yaml.Node) -> str:
-        return f"{self.label}:{node.start_mark.line + 1}:{node.start_mark.column + 1}"
-
-    @staticmethod
-    def _mapping(node: yaml.MappingNode) -> str:
-        keys = ", ".join(sorted(str(k.value) for k, _ in node.value))
-        return f"YAML node of type Mapping (with size {len(node.value)} and keys {{{keys}}})"
-
-    def _unknown_key(self, node: yaml.MappingNode, allowed: frozenset[str], chain: str) -> None:
-        for key, _ in node.value:
-            if key.value not in allowed:
-                raise ModelParseError(
-                    f"{self._where(node)}: {self._mapping(node)} key '{key.value}' did not match "
-                    f"any visited value entry for <root>{chain}."
-                )
-
-    def check(self, root: yaml.Node | None) -> list[tuple[str, dict[str, Any]]]:
-        if not isinstance(root, yaml.MappingNode):
-            kind = _KINDS.get(type(root), "Scalar")
-            raise ModelParseError(
-                f"{self.label}: invalid document: the top level element should be a Mapping "
-                f"(not a {kind})"
-            )
-        self._unknown_key(root, frozenset({"directives"}), "")
-        top = self._mapping(root)
-        directives: list[tuple[str, dict[str, Any]]] = []
-        for _, sequence in root.value:
-            if not isinstance(sequence, yaml.SequenceNode):
-                kind = "Null" if sequence.tag.endswith(":null") else _KINDS[type(sequence)]
-                raise ModelParseError(
-                    f"{self._where(root)}: {top} has non-Sequence ({kind}) entry for {_VECTOR}."
-                )
-            for i, node in enumerate(sequence.value):
-                directives.append(self._directive(node, i, top))
-        return directives
-
-    def _directive(self, node: yaml.Node, i: int, top: str) -> tuple[str, dict[str, Any]]:
-        chain = (
-            f" while accepting  (with size 1 and keys {{directives[{i}]}}) while visiting "
-            f"{_NAMESPACE}ModelDirective directives[{i}] while accepting {top} while visiting "
-            f"{_VECTOR}"
-        )
-        assert isinstance(node, yaml.MappingNode)
-        self._unknown_key(node, frozenset(_FIELDS), chain)
-        values = {key.value: value for key, value in node.value}
-        for name, value in values.items():
-            struct, fields = _FIELDS[name]
-            if isinstance(value, yaml.MappingNode):
-                self._unknown_key(
-                    value,
-                    fields,
-                    f" while accepting {self._mapping(node)} while visiting "
-                    f"std::optional<{_NAMESPACE}{struct}> {name}{chain}",
-                )
-        if len(values) != 1:
-            _demand_failed(
-                "directive: Specify one of `add_model`, `add_model_instance`, `add_frame`, "
-                "`add_collision_filter_group`, or `add_directives`"
-            )
-        ((name, value),) = values.items()
-        return name, _python(value) or {}
-
-
-def _python(node: yaml.Node) -> Any:
-    """The node as plain Python values (tags such as ``!Rpy`` are read as their mapping)."""
-    if isinstance(node, yaml.MappingNode):
-        return {key.value: _python(value) for key, value in node.value}
-    if isinstance(node, yaml.SequenceNode):
-        return [_python(item) for item in node.value]
-    return None if node.tag.endswith(":null") else node.value
-
-
-def _demand_failed(message: str) -> None:
-    _LOG.error(message)
-    raise SystemExit(
-        "Failure at external/drake+/multibody/parsing/detail_dmd_parser.cc:332 in "
-        "LoadModelDirectives(): condition 'directives.IsValid()' failed."
+    X_PC: Any
+    child_frame_name: str
+    model_instance: Any
+    model_name: str
+    model_path: str
+    parent_frame_name: str
+    __slots__ = (
+        "X_PC",
+        "child_frame_name",
+        "model_instance",
+        "model_name",
+        "model_path",
+        "parent_frame_name",
     )
 
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        raise TypeError("reimpl.multibody.parsing.ModelInstanceInfo: No constructor defined!")
 
-def _validate(name: str, directive: dict[str, Any]) -> None:
-    for required in _REQUIRED[name]:
-        if not directive.get(required):
-            _demand_failed(f"{name}: `{required}` must be non-empty")
-    if name == "add_collision_filter_group" and not (
-        directive.get("members") or directive.get("member_groups")
-    ):
-        _demand_failed(f"{name}: at least one of `members` or `member_groups` must be non-empty")
+    @classmethod
+    def _make(cls, model_instance: Any, model_name: str, model_path: str) -> ModelInstanceInfo:
+        info = cls.__new__(cls)
+        for name, value in (
+            ("model_instance", model_instance),
+            ("model_name", model_name),
+            ("model_path", model_path),
+            ("parent_frame_name", ""),
+            ("child_frame_name", ""),
+            ("X_PC", RigidTransform()),
+        ):
+            object.__setattr__(info, name, value)
+        return info
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(f"property of '{type(self).__name__}' object has no setter")
 
 
-def _transform(value: dict[str, Any] | None) -> RigidTransform:
-    """``{translation: [x, y, z], rotation: !Rpy {deg: [r, p, y]}}``."""
-    if not value:
-        return RigidTransform()
-    translation = [float(v) for v in value.get("translation") or (0, 0, 0)]
-    rotation = value.get("rotation") or {}
-    if "deg" in rotation:
-        rpy = [math.radians(float(v)) for v in rotation["deg"]]
-    else:
-        rpy = [float(v) for v in rotation.get("rad", (0, 0, 0))]
-    return RigidTransform(RollPitchYaw(rpy), translation)
+def scoped_frame(plant: Any, full_name: str) -> Any:
+    """Drake's ``GetScopedFrameByName``: ``world``, ``instance::frame`` or ``frame``."""
+    if full_name == "world":
+        return plant.world_frame()
+    namespace, element = scoped.split(full_name)
+    if namespace:
+        return plant.GetFrameByName(element, plant.GetModelInstanceByName(namespace))
+    return plant.GetFrameByName(element)
+
+
+def scoped_frame_maybe(plant: Any, full_name: str) -> Any:
+    """Drake's ``GetScopedFrameByNameMaybe``: the frame, or None."""
+    if full_name == "world":
+        return plant.world_frame()
+    namespace, element = scoped.split(full_name)
+    if namespace:
+        if plant.HasModelInstanceNamed(namespace):
+            instance = plant.GetModelInstanceByName(namespace)
+            if plant.HasFrameNamed(element, instance):
+                return plant.GetFrameByName(element, instance)
+    elif plant.HasFrameNamed(element):
+        return plant.GetFrameByName(element)
+    return None
+
+
+def dmd_join(namespace: str, name: str) -> str:
+    """Drake's ``DmdScopedNameJoin``: ``world`` stays ``world``."""
+    return name if name == "world" else scoped.join(namespace, name)
+
+
+def load_model_directives(path: str) -> ModelDirectives:
+    """Drake's ``LoadModelDirectives`` of a file: read, then checked (SystemExit)."""
+    if not os.path.exists(path):
+        raise RuntimeError(f"No such file {path} during LoadModelDirectives")
+    with open(path, encoding="utf-8") as stream:
+        return checked(load_directives(stream.read(), path))
+
+
+def checked(directives: ModelDirectives) -> ModelDirectives:
+    """``directives``, which must be valid (Drake's DRAKE_THROW_UNLESS(IsValid()))."""
+    if not directives._is_valid():
+        raise SystemExit(
+            _DMD_FAILURE.format(line=332) + "LoadModelDirectives(): "
+            "condition 'directives.IsValid()' failed."
+        )
+    return directives
 
 
 @dataclass
 class _Run:
-    """One directives document being run in namespace ``namespace``."""
+    """One ``ParseModelDirectives`` call: the context and the models it added."""
 
     context: ParseContext
-    prefix: str
-    namespace: str
-    root_dir: str | None
-    #: the instances each add_model made (welded children must be among them)
-    added: list[Any] = field(default_factory=list)
+    added: list[ModelInstanceInfo] = field(default_factory=list)
 
     @property
     def plant(self) -> Any:
         return self.context.plant
 
-    def scoped(self, name: str) -> str:
-        return scoped.join(self.prefix, self.namespace, name)
+    @property
+    def diagnostics(self) -> Diagnostics:
+        return Diagnostics(None, self.context.strict)
 
     def resolve(self, uri: str) -> str:
         try:
-            return resolve_uri(self.context.package_map, uri, self.root_dir)
+            return resolve_uri(self.context.package_map, uri, None, warn=self.diagnostics.warning)
         except UriError as exc:
-            raise Diagnostics(None).error(str(exc)) from None
+            raise self.diagnostics.error(str(exc)) from None
 
-    def frame(self, name: str) -> Any:
-        if name == "world":
-            return self.plant.world_frame()
-        namespace, element = scoped.split(self.scoped(name))
-        if not namespace:
-            return self.plant.GetFrameByName(element)
-        return self.plant.GetFrameByName(element, self.plant.GetModelInstanceByName(namespace))
+    def frame(self, namespace: str, name: str) -> Any:
+        return scoped_frame(self.plant, dmd_join(namespace, name))
 
-    def run(self, directives: list[tuple[str, dict[str, Any]]]) -> list[Any]:
-        instances: list[Any] = []
-        for name, directive in directives:
-            instances += getattr(self, name)(directive)
-        return instances
+    def run(self, directives: ModelDirectives, namespace: str) -> None:
+        for directive in directives.directives:
+            ((kind, struct),) = directive._set_fields()[:1] or (("", None),)
+            if struct is not None:
+                getattr(self, kind)(struct, namespace)
 
     # ----------------------------------------------------------- directives
-    def add_model(self, d: dict[str, Any]) -> list[Any]:
-        path = self.resolve(d["file"])
-        scope, name = scoped.split(self.scoped(d["name"]))
-        instances = self.context.read_file(self.context, path, name, scope)
-        self.added += instances[:1]
-        return instances
-
-    def add_model_instance(self, d: dict[str, Any]) -> list[Any]:
-        self.plant.AddModelInstance(self.scoped(d["name"]))
-        return []
-
-    def add_frame(self, d: dict[str, Any]) -> list[Any]:
-        X_PF = d.get("X_PF") or {}
-        base = self.frame(X_PF.get("base_frame", "world"))
-        namespace, element = scoped.split(self.scoped(d["name"]))
-        instance = (
-            self.plant.GetModelInstanceByName(namespace) if namespace else base.model_instance()
-        )
-        self.plant.AddFrame(FixedOffsetFrame(element, base, _transform(X_PF), instance))
-        return []
-
-    def add_weld(self, d: dict[str, Any]) -> list[Any]:
-        parent, child = self.frame(d["parent"]), self.frame(d["child"])
-        self.plant.WeldFrames(parent, child, _transform(d.get("X_PC")))
-        if child.model_instance() not in self.added:
-            raise SystemExit(
-                "Failure at external/drake+/multibody/parsing/detail_dmd_parser.cc:46 in "
-                "AddWeld(): condition 'found' failed."
+    def add_model(self, model: AddModel, namespace: str) -> None:
+        path = self.resolve(model.file)
+        if path.lower().endswith(".dmd.yaml"):
+            raise self.diagnostics.error(
+                f"'{os.path.abspath(path)}' is a model directives data source; it is always "
+                "an error to pass a model directives source to a single-model parser method. "
+                "Use AddModels() instead."
             )
-        return []
+        # N.B. The readers take a name without "::": "a::m" in ns is m in scope ns::a.
+        scope, name = scoped.split(scoped.join(namespace, model.name))
+        instances = self.context.read_file(self.context, path, name, scope)
+        instance = instances[0]
+        for joint_name, positions in model.default_joint_positions.items():
+            self._default_positions(self.plant.GetJointByName(joint_name, instance), positions)
+        for child_name, pose in model.default_free_body_pose.items():
+            base = pose.base_frame if pose.base_frame is not None else "world"
+            parent = self.plant.world_frame() if base == "world" else self.frame(namespace, base)
+            self._default_pose(instance, parent, child_name, pose.GetDeterministicValue())
+        info = ModelInstanceInfo._make(instance, scoped.join(namespace, model.name), path)
+        self.added.append(info)
 
-    def add_collision_filter_group(self, d: dict[str, Any]) -> list[Any]:
-        if not self.context.has_scene_graph():
-            return []
-        scope = scoped.join(self.prefix, self.namespace, d.get("model_namespace") or "")
+    def _default_positions(self, joint: Any, positions: Any) -> None:
+        """Joint::set_default_positions, with Drake's message for a wrong size."""
+        if len(positions) != joint.num_positions():
+            instance = self.plant.GetModelInstanceName(joint.model_instance())
+            name = scoped.join(instance, joint.name())
+            raise RuntimeError(
+                f"set_default_positions: The number of positions in the input "
+                f"({len(positions)}) does not match the number of positions of the joint "
+                f"'{name}' ({joint.num_positions()})."
+            )
+        joint.set_default_positions(positions)
+
+    def _default_pose(self, instance: Any, parent: Any, child_name: str, X_PC: Any) -> None:
+        """Poses body ``child_name`` (the instance's only body if empty) at X_PC."""
+        plant = self.plant
+        if child_name:
+            child = plant.GetFrameByName(child_name, instance)
+        else:
+            bodies = plant.GetBodyIndices(instance)
+            if len(bodies) != 1:
+                raise self.diagnostics.error(
+                    f"Model instance '{plant.GetModelInstanceName(instance)}' cannot use an "
+                    "empty frame name for its default_free_body_pose in add_model because it "
+                    f"has {len(bodies)} (not 1) bodies."
+                )
+            child = plant.get_body(bodies[0]).body_frame()
+        identity = np.array_equal(child.GetFixedPoseInBodyFrame().GetAsMatrix4(), np.eye(4))
+        if parent is plant.world_frame() and identity:
+            plant.SetDefaultFloatingBaseBodyPose(child.body(), X_PC)
+            return
+        joint_name = child.body().name()
+        while plant.HasJointNamed(joint_name, instance):
+            joint_name = "_" + joint_name
+        joint = plant.AddJoint(QuaternionFloatingJoint(joint_name, parent, child))
+        joint._set_default_pose(X_PC)  # N.B. Drake's Joint::SetDefaultPose.
+
+    def add_model_instance(self, instance: AddModelInstance, namespace: str) -> None:
+        self.context.add_model_instance(scoped.join(namespace, instance.name))
+
+    def add_frame(self, frame: AddFrame, namespace: str) -> None:
+        base_frame = frame.X_PF.base_frame
+        if not base_frame:
+            raise RuntimeError("add_frame directive with empty base frame is ambiguous")
+        frame_namespace, element = scoped.split(frame.name)
+        instance = None
+        if frame_namespace:
+            instance = self.plant.GetModelInstanceByName(scoped.join(namespace, frame_namespace))
+        base = self.frame(namespace, base_frame)
+        X_PF = frame.X_PF.GetDeterministicValue()
+        if instance is None:
+            instance = base.model_instance()
+        self.plant.AddFrame(FixedOffsetFrame(element, base, X_PF, instance))
+
+    def add_weld(self, weld: AddWeld, namespace: str) -> None:
+        X_PC = weld.X_PC.GetDeterministicValue() if weld.X_PC is not None else RigidTransform()
+        # N.B. Drake's arguments are evaluated right to left: the child first.
+        child = self.frame(namespace, weld.child)
+        parent = self.frame(namespace, weld.parent)
+        self.plant.WeldFrames(parent, child, X_PC)
+        infos = [i for i in self.added if i.model_instance == child.model_instance()]
+        for info in infos:
+            object.__setattr__(info, "parent_frame_name", parent.name())
+            object.__setattr__(info, "child_frame_name", child.name())
+            object.__setattr__(info, "X_PC", X_PC)
+        if not infos:
+            raise SystemExit(_DMD_FAILURE.format(line=46) + "AddWeld(): condition 'found' failed.")
+
+    def add_collision_filter_group(self, group: AddCollisionFilterGroup, namespace: str) -> None:
+        if not self.plant.geometry_source_is_registered():
+            return
+        scope = namespace or group.model_namespace or ""
         if scope:
-            self.plant.GetModelInstanceByName(scope)
+            scope = self.plant.GetModelInstanceName(self.plant.GetModelInstanceByName(scope))
         resolver = self.context.resolver
         resolver.add_group(
-            Diagnostics(None),
+            self.diagnostics,
             None,
-            group_name=d["name"],
-            body_names=set(d.get("members") or ()),
-            member_group_names=set(d.get("member_groups") or ()),
+            group_name=group.name,
+            body_names=set(group.members),
+            member_group_names=set(group.member_groups),
             scope=scope,
         )
-        for other in sorted(set(d.get("ignored_collision_filter_groups") or ())):
-            resolver.add_pair(d["name"], other, scope)
-        return []
+        for other in group.ignored_collision_filter_groups:
+            resolver.add_pair(group.name, other, scope)
 
-    def add_directives(self, d: dict[str, Any]) -> list[Any]:
-        namespace = self.namespace
-        if d.get("model_namespace"):
-            namespace = scoped.join(namespace, d["model_namespace"])
-            if not self.plant.HasModelInstanceNamed(scoped.join(self.prefix, namespace)):
-                raise RuntimeError(
-                    f"Namespace '{d['model_namespace']}' does not exist as model instance"
-                )
-        path = self.resolve(d["file"])
-        with open(path, encoding="utf-8") as stream:
-            text = stream.read()
-        nested = _Run(self.context, self.prefix, namespace, os.path.dirname(path), self.added)
-        return nested.run(_load(text, path))
+    def add_directives(self, sub: AddDirectives, namespace: str) -> None:
+        inner = scoped.join(namespace, sub.model_namespace or "")
+        if inner and not self.plant.HasModelInstanceNamed(inner):
+            raise RuntimeError(f"Namespace '{inner}' does not exist as model instance")
+        path = self.resolve(sub.file)
+        self.run(load_model_directives(path), inner)
 
 
-def _load(text: str, label: str) -> list[tuple[str, dict[str, Any]]]:
-    try:
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
-    except yaml.MarkedYAMLError as exc:
-        mark = exc.problem_mark
-        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown"
-        raise ModelParseError(f"yaml-cpp: error at {where}: {exc.problem}") from None
-    directives = _Schema(label).check(root)
-    for name, directive in directives:
-        _validate(name, directive)
-    return directives
+def process_directives(
+    context: ParseContext, directives: ModelDirectives, namespace: str
+) -> list[ModelInstanceInfo]:
+    """Runs ``directives`` in ``namespace``; the models that ``add_model``s added."""
+    run = _Run(context)
+    run.run(directives, namespace)
+    return run.added
 
 
 def read_directives(
     context: ParseContext, source: ModelSource, model_name: str | None, parent_scope: str
 ) -> list[Any]:
-    """Runs the directives in ``source``; returns the model instances they add."""
-    del model_name  # N.B. A directives file names its own models.
-    directives = _load(source.text, source.path or "<string>")
-    return _Run(context, parent_scope, "", source.root_dir).run(directives)
+    """The Parser's reader of a ``.dmd.yaml`` file or text: the added instances."""
+    del model_name  # N.B. A directives document names its own models.
+    if source.path is not None:
+        directives = load_model_directives(source.path)
+    else:
+        directives = checked(load_directives(source.text, "<string>"))
+    infos = process_directives(context, directives, parent_scope)
+    return [info.model_instance for info in infos]

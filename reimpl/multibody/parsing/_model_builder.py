@@ -1,12 +1,13 @@
 """Adding what a model file declares to a MultibodyPlant, with Drake's names.
 
-Shared by the URDF and SDFormat readers, which turn elements into the small
-specs below; this module decides names and plant calls:
+Used by the SDFormat reader, which turns elements into the small specs below
+(the URDF reader follows Drake's URDF code path in its own ``_urdf_*``
+modules); this module decides names and plant calls:
 
 * Geometry is registered only when the plant has a SceneGraph, collision
   geometry with the proximity role, visual geometry with illustration and
   perception (pydrake 1.51.1 measured; SceneGraph scopes the names ``m::x``).
-* A geometry without a name (URDF allows it) is named after its shape
+* A geometry without a name is named after its shape
   (``Sphere``, ``Box``, ``Cylinder``, ``Capsule``, ``Ellipsoid``, ``Mesh``).
   Within one link and role a taken name gets the first free suffix ``_1``,
   ``_2``, ...; an explicit name that is renamed is warned about (measured:

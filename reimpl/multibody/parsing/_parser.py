@@ -2,25 +2,50 @@
 
 Each ``AddModels*`` call is one parse with its own collision filter group
 resolver, resolved (filters applied) when the call's models are all added;
-``GetCollisionFilterGroups()`` accumulates the reports of successful calls.
-A failed call raises RuntimeError with Drake's message and leaves what it had
-added in the plant, as Drake does (measured on pydrake 1.51.1).
+``GetCollisionFilterGroups()`` accumulates every parse's groups by model
+instance index (see _instanced_name). A failed call raises with Drake's
+message and leaves what it had added in the plant, as Drake does.
+
+The order of the checks is Drake 1.51.1's (parser.cc, measured on pydrake):
+
+1. the file type, from the name's suffix, case-insensitively (``.urdf``,
+   ``.sdf``, ``.xml``, ``.dmd.yaml``, ``.obj``; model text is named
+   ``<literal-string>.<file_type>``): ``error: The file '...' is not a
+   recognized type. ...``;
+2. a finalized plant registered with a SceneGraph: SystemExit (Drake's
+   ``GetMutableSceneGraphPreFinalize`` DRAKE_DEMAND), even for an empty parse;
+3. the reader: a finalized plant is the reader's DRAKE_THROW_UNLESS
+   (SystemExit), then a missing file is the reader's own message, naming the
+   file by its absolute path (``/cwd/a.urdf:0: error: ...``, ``error: Error
+   finding file [/cwd/a.sdf].``); a ``.dmd.yaml`` keeps the name as given.
+
+N.B. Known divergence: reimpl reads URDF, SDFormat and model directives only.
+An existing MuJoCo ``.xml`` or ``.obj`` file, or such model text, is an error
+saying so; a missing one gives Drake's message.
 """
 
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl.geometry import SceneGraph
+from reimpl.multibody.parsing._binding import binds, is_path, is_str
 from reimpl.multibody.parsing._collision_filter_group_resolver import (
     CollisionFilterGroupResolver,
 )
-from reimpl.multibody.parsing._collision_filter_groups import CollisionFilterGroups
-from reimpl.multibody.parsing._diagnostics import ModelParseError, literal_string_name
-from reimpl.multibody.parsing._directives import read_directives
-from reimpl.multibody.parsing._package_map import PackageMap, resolve_uri
+from reimpl.multibody.parsing._collision_filter_groups import CollisionFilterGroups, NameGroups
+from reimpl.multibody.parsing._diagnostics import (
+    Diagnostics,
+    ModelParseError,
+    literal_string_name,
+)
+from reimpl.multibody.parsing._directives import process_directives, read_directives
+from reimpl.multibody.parsing._instanced_name import InstancedName, order, spelled
+from reimpl.multibody.parsing._package_map import PackageMap, UriError, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext, Reader
 from reimpl.multibody.parsing._sdf import read_sdf
 from reimpl.multibody.parsing._urdf import read_urdf
@@ -30,21 +55,69 @@ from reimpl.systems.framework import DiagramBuilder
 __all__ = ["Parser"]
 
 _OWNER = "reimpl.multibody.parsing.Parser"
+_PARSING = "external/drake+/multibody/parsing"
+_PLANT_H = (
+    "bazel-out/k8-opt/bin/external/drake+/multibody/plant/_virtual_includes/"
+    "multibody_plant_core/drake/multibody/plant/multibody_plant.h"
+)
 
-#: file type (a file name's suffix, without the dot) -> reader
-_READERS: dict[str, Reader] = {"urdf": read_urdf, "sdf": read_sdf, "dmd.yaml": read_directives}
 
-#: file type -> Drake's message for a file that is not there
-_MISSING_FILE = {
-    "urdf": "{path}:0: error: Failed to parse XML file: XML_ERROR_FILE_NOT_FOUND",
-    "sdf": "error: Error finding file [{path}].",
-    "dmd.yaml": "No such file {path} during LoadModelDirectives",
+def _failure(where: str, line: int, function: str, condition: str) -> SystemExit:
+    return SystemExit(f"Failure at {where}:{line} in {function}(): condition '{condition}' failed.")
+
+
+def _unsupported(kind: str) -> Reader:
+    def read(context: ParseContext, source: ModelSource, name: str | None, scope: str) -> Any:
+        where = source.path or literal_string_name(source.file_type)
+        raise ModelParseError(f"error: reimpl does not read {kind} models ('{where}')")
+
+    return read
+
+
+@dataclass(frozen=True)
+class _FileType:
+    """How Drake reads one kind of model file."""
+
+    reader: Reader
+    #: the message for a file that is not there (or is a folder: ``{error}``)
+    missing: str
+    #: (function, line) of the reader's DRAKE_THROW_UNLESS(!is_finalized())
+    finalized: tuple[str, str, int] | None
+    #: the message for model text of this type, where Drake refuses it
+    text_error: str | None = None
+
+
+_FINALIZED_URDF = ("detail_urdf_parser.cc", "AddOrMergeModelFromUrdf", 1457)
+_FINALIZED_SDF = ("detail_sdf_parser.cc", "AddModelsFromSdf", 2954)
+
+#: file type (a name's suffix) -> how it is read, in Drake's SelectParser order
+_FILE_TYPES: dict[str, _FileType] = {
+    "urdf": _FileType(
+        read_urdf, "{absolute}:0: error: Failed to parse XML file: {error}", _FINALIZED_URDF
+    ),
+    "sdf": _FileType(read_sdf, "error: Error finding file [{absolute}].", _FINALIZED_SDF),
+    "xml": _FileType(
+        _unsupported("MuJoCo XML"),
+        "{absolute}:0: error: Failed to parse XML file {path}:\n{error}",
+        None,
+    ),
+    "dmd.yaml": _FileType(read_directives, "No such file {path} during LoadModelDirectives", None),
+    "obj": _FileType(
+        _unsupported("OBJ"),
+        "error: Cannot open file '{absolute}'",
+        None,
+        text_error=(
+            "Parser does not yet support adding models using in-memory OBJ data. The OBJ "
+            "data must be referenced as a file."
+        ),
+    ),
 }
 
 
 def _file_type(name: str) -> str:
+    """Drake's SelectParser: the type whose suffix ``name`` ends with (any case)."""
     lowered = name.lower()
-    for file_type in _READERS:
+    for file_type in _FILE_TYPES:
         if lowered.endswith(f".{file_type}"):
             return file_type
     raise ModelParseError(
@@ -53,16 +126,56 @@ def _file_type(name: str) -> str:
     )
 
 
+def _absolute(path: str) -> str:
+    """``std::filesystem::absolute``: the working folder prefixed, nothing normalized."""
+    return path if os.path.isabs(path) else os.path.join(os.getcwd(), path)
+
+
+def _check_reader(context: ParseContext, file_type: str) -> None:
+    """The reader's own DRAKE_THROW_UNLESS(!plant->is_finalized())."""
+    finalized = _FILE_TYPES[file_type].finalized
+    if finalized is not None and context.plant.is_finalized():
+        file, function, line = finalized
+        condition = "!plant->is_finalized()"
+        if file == "detail_sdf_parser.cc":
+            condition = "!workspace.plant->is_finalized()"
+        raise _failure(f"{_PARSING}/{file}", line, function, condition)
+
+
 def _read_file(context: ParseContext, path: str, model_name: str | None, scope: str) -> list[Any]:
     """Adds the models of the file at ``path`` (its type from its name)."""
     file_type = _file_type(path)
+    kind = _FILE_TYPES[file_type]
+    _check_reader(context, file_type)
+    if os.path.isdir(path) and file_type == "dmd.yaml":
+        raise RuntimeError("basic_filebuf::underflow error reading the file: Is a directory")
+    if os.path.isdir(path) and file_type == "sdf":
+        raise ModelParseError(
+            f"error: Could not find model.config or manifest.xml in [/{_absolute(path)}]"
+        )
     if not os.path.isfile(path):
-        raise ModelParseError(_MISSING_FILE[file_type].format(path=path))
+        error = "XML_ERROR_FILE_READ_ERROR" if os.path.isdir(path) else "XML_ERROR_FILE_NOT_FOUND"
+        raise ModelParseError(kind.missing.format(path=path, absolute=_absolute(path), error=error))
     with open(path, encoding="utf-8") as stream:
         text = stream.read()
     label = "/" + os.path.abspath(path) if file_type == "sdf" else None
     source = ModelSource(text, file_type, path, label)
-    return _READERS[file_type](context, source, model_name, scope)
+    return kind.reader(context, source, model_name, scope)
+
+
+def _is_plant(value: object) -> bool:
+    return value is None or isinstance(value, MultibodyPlant)
+
+
+def _is_scene_graph(value: object) -> bool:
+    return value is None or isinstance(value, SceneGraph)
+
+
+_is_plant.__name__ = "reimpl.multibody.plant.MultibodyPlant"
+_is_scene_graph.__name__ = "reimpl.geometry.SceneGraph"
+
+#: Drake's type names, for "Cannot cast ..." (the "plant" subsystem is not a plant)
+_CPP_TYPES = {SceneGraph: "drake::geometry::SceneGraph<double>"}
 
 
 class Parser:
@@ -73,20 +186,20 @@ class Parser:
         self._package_map = PackageMap()
         self._auto_renaming = False
         self._strict = False
-        self._groups = CollisionFilterGroups()
-        plant = Param("plant", instance_of(MultibodyPlant))
-        scene_graph = Param("scene_graph", instance_of(SceneGraph), None)
-        prefix = Param("model_name_prefix", instance_of(str))
+        self._groups: NameGroups[InstancedName] = NameGroups(order)
+        plant = Param("plant", _is_plant)
+        scene_graph = Param("scene_graph", _is_scene_graph, None)
+        prefix = Param("model_name_prefix", is_str)
         dispatch(
             _OWNER,
             "__init__",
             (
                 Overload((plant, scene_graph, Param(prefix.name, prefix.check, "")), self._init),
-                Overload((plant, prefix), self._init),
+                Overload((Param("plant", _is_plant), prefix), self._init),
                 Overload(
                     (
                         Param("builder", instance_of(DiagramBuilder)),
-                        Param("plant", instance_of(MultibodyPlant), None),
+                        Param("plant", _is_plant, None),
                         scene_graph,
                         Param(prefix.name, prefix.check, ""),
                     ),
@@ -98,8 +211,13 @@ class Parser:
         )
 
     def _init(
-        self, plant: MultibodyPlant, model_name_prefix: str, scene_graph: SceneGraph | None = None
+        self,
+        plant: MultibodyPlant | None,
+        model_name_prefix: str,
+        scene_graph: SceneGraph | None = None,
     ) -> None:
+        if plant is None:
+            raise _failure(f"{_PARSING}/parser.cc", 80, "Parser", "plant_ != nullptr")
         if scene_graph is not None and not plant.geometry_source_is_registered():
             plant.RegisterAsSourceForSceneGraph(scene_graph)
         self._plant = plant
@@ -114,26 +232,43 @@ class Parser:
     ) -> None:
         systems = builder.GetSystems()
         if plant is None:
-            named = [s for s in systems if s.get_name() == "plant"]
-            if not named or not isinstance(named[0], MultibodyPlant):
-                names = ", ".join(s.get_name() for s in systems)
-                raise RuntimeError(
-                    "DiagramBuilder does not contain a subsystem named plant. Valid subsystems "
-                    f"are {names}."
-                )
-            plant = named[0]
-        elif not any(s is plant for s in systems):
+            plant = self._plant_named_plant(systems)
+        if not any(s is plant for s in systems):
             raise RuntimeError("The provided plant must be one of the systems in the builder")
+        if scene_graph is not None and not any(s is scene_graph for s in systems):
+            raise RuntimeError("The provided scene_graph must be one of the systems in the builder")
         self._builder = builder
         self._init(plant, model_name_prefix, scene_graph)
+
+    @staticmethod
+    def _plant_named_plant(systems: list[Any]) -> MultibodyPlant:
+        """Drake's ``GetMutableDowncastSubsystemByName<MultibodyPlant>("plant")``."""
+        named = [s for s in systems if s.get_name() == "plant"]
+        if not named:
+            names = ", ".join(s.get_name() for s in systems)
+            raise RuntimeError(
+                f"DiagramBuilder does not contain a subsystem named plant. Valid subsystems "
+                f"are {names}."
+            )
+        if not isinstance(named[0], MultibodyPlant):
+            cpp = _CPP_TYPES.get(type(named[0]), f"drake::systems::{type(named[0]).__name__}")
+            raise RuntimeError(
+                f"Cannot cast a drake::systems::System<double>* pointing to an object of type "
+                f"{cpp} to drake::multibody::MultibodyPlant<double>*."
+            )
+        return named[0]
 
     # ---------------------------------------------------------- accessors
     def plant(self) -> MultibodyPlant:
         return self._plant
 
     def scene_graph(self) -> SceneGraph | None:
-        # N.B. pydrake returns the SceneGraph the plant is registered with.
-        scene_graph: SceneGraph | None = getattr(self._plant, "_scene_graph", None)
+        """The SceneGraph the plant is registered with (None if it is not)."""
+        if not self._plant.geometry_source_is_registered():
+            return None
+        if self._plant.is_finalized():
+            raise _failure(f"{_PARSING}/parser.cc", 104, "scene_graph", "!plant_->is_finalized()")
+        scene_graph: SceneGraph = self._plant._registered_scene_graph("scene_graph")[0]
         return scene_graph
 
     def builder(self) -> DiagramBuilder | None:
@@ -142,82 +277,93 @@ class Parser:
     def package_map(self) -> PackageMap:
         return self._package_map
 
+    @binds(_OWNER, Param("value", lambda value: True))
     def SetAutoRenaming(self, value: bool) -> None:
-        """With auto-renaming, a taken model name gets the first free ``_1``, ``_2``, ..."""
+        """With auto-renaming, a taken model name gets the first free ``_1``, ``_2``, ...
+        (``value`` is read as a bool, as pybind11 reads it)."""
         self._auto_renaming = bool(value)
 
     def GetAutoRenaming(self) -> bool:
         return self._auto_renaming
 
+    @binds(_OWNER)
     def SetStrictParsing(self) -> None:
         """Makes every warning an error."""
         self._strict = True
 
     def GetCollisionFilterGroups(self) -> CollisionFilterGroups:
-        """The groups and pairs of every successful parse so far (a copy)."""
-        copy = CollisionFilterGroups()
-        for name, members in self._groups.groups().items():
-            copy.AddGroup(name, members)
-        for pair in self._groups.exclusion_pairs():
-            copy.AddExclusionPair(pair)
-        return copy
+        """The groups and pairs of every parse so far, named with the model
+        instances' current names (see _instanced_name)."""
+        plant = self._plant
+        return CollisionFilterGroups._from(
+            self._groups.convert(lambda name: spelled(plant, name), str)
+        )
 
     # ------------------------------------------------------------ parsing
     def AddModels(self, *args: Any, **kwargs: Any) -> list[Any]:
-        """``AddModels(file_name)``, ``(url=)`` or ``(file_contents=, file_type=)``."""
-        return dispatch(  # type: ignore[no-any-return]
-            _OWNER,
-            "AddModels",
-            (
-                Overload((Param("file_name", _is_path),), self._add_file),
-                Overload((Param("url", instance_of(str)),), self.AddModelsFromUrl),
+        """``AddModels(file_name)``, or keywords only: ``(url=)``,
+        ``(file_contents=, file_type=)``."""
+        by_name = Overload((Param("file_name", is_path),), self._add_file)
+        overloads: tuple[Overload, ...] = (by_name,)
+        if not args:
+            overloads += (
+                Overload((Param("url", is_str),), self.AddModelsFromUrl),
                 Overload(
-                    (
-                        Param("file_contents", instance_of(str)),
-                        Param("file_type", instance_of(str)),
-                    ),
+                    (Param("file_contents", is_str), Param("file_type", is_str)),
                     self.AddModelsFromString,
                 ),
-            ),
-            args,
-            kwargs,
-        )
+            )
+        return dispatch(_OWNER, "AddModels", overloads, args, kwargs)  # type: ignore[no-any-return]
 
+    @binds(_OWNER, Param("url", is_str))
     def AddModelsFromUrl(self, url: str) -> list[Any]:
+        """The models of the file ``url`` names (``package://``, ``model://``, ``file://``)."""
         try:
-            path = resolve_uri(self._package_map, url, root_dir=None)
-        except RuntimeError as exc:
+            path = resolve_uri(self._package_map, url, None, warn=self._warn)
+        except UriError as exc:
             raise ModelParseError(f"error: {exc}") from None
         return self._add_file(path)
 
+    @binds(_OWNER, Param("file_contents", is_str), Param("file_type", is_str))
     def AddModelsFromString(self, file_contents: str, file_type: str) -> list[Any]:
-        normalized = file_type.lower().removeprefix(".")
-        if normalized not in _READERS:
-            _file_type(literal_string_name(file_type))
-        source = ModelSource(file_contents, normalized)
-        return self._parse(lambda c: _READERS[normalized](c, source, None, self._prefix))
+        """The models of ``file_contents``, a model of type ``file_type`` (``urdf``, ...)."""
+        kind = _file_type(literal_string_name(file_type))
+        source = ModelSource(file_contents, kind)
+
+        def read(context: ParseContext) -> list[Any]:
+            text_error = _FILE_TYPES[kind].text_error
+            if text_error is not None:
+                raise RuntimeError(text_error)
+            _check_reader(context, kind)
+            return _FILE_TYPES[kind].reader(context, source, None, self._prefix)
+
+        return self._parse(read)
+
+    def _warn(self, message: str) -> None:
+        Diagnostics(None, self._strict).warning(message)
 
     def _add_file(self, file_name: str | os.PathLike[str]) -> list[Any]:
         path = os.fspath(file_name)
-        return self._parse(lambda c: _read_file(c, path, None, self._prefix))
+        _file_type(path)
+        return self._parse(lambda context: _read_file(context, path, None, self._prefix))
 
-    def _parse(self, read: Any) -> list[Any]:
+    def _process_directives(self, directives: Any) -> list[Any]:
+        """ProcessModelDirectives: one parse of ``directives`` at global scope."""
+        return self._parse(lambda context: process_directives(context, directives, ""))
+
+    def _parse(self, read: Callable[[ParseContext], list[Any]]) -> list[Any]:
+        """One composite parse: ``read``'s models, then the groups resolved and kept."""
+        plant = self._plant
+        if plant.geometry_source_is_registered() and plant.is_finalized():
+            raise _failure(_PLANT_H, 5839, "GetMutableSceneGraphPreFinalize", "!is_finalized()")
         context = ParseContext(
-            plant=self._plant,
+            plant=plant,
             package_map=self._package_map,
-            resolver=CollisionFilterGroupResolver(self._plant),
+            resolver=CollisionFilterGroupResolver(plant),
             auto_renaming=self._auto_renaming,
             strict=self._strict,
             read_file=_read_file,
         )
-        instances: list[Any] = read(context)
-        report = context.resolver.resolve()
-        for name, members in sorted(report.groups().items()):
-            self._groups.AddGroup(name, members)
-        for pair in report.exclusion_pairs():
-            self._groups.AddExclusionPair(pair)
+        instances = read(context)
+        self._groups.merge(context.resolver.resolve())
         return instances
-
-
-def _is_path(value: object) -> bool:
-    return isinstance(value, str | os.PathLike)

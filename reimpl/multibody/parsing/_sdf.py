@@ -48,6 +48,7 @@ from typing import Any
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
+from reimpl.multibody.parsing._group_tags import GroupSyntax, read_group
 from reimpl.multibody.parsing._package_map import UriError, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
 from reimpl.multibody.parsing._sdf_deformable import refuse_deformable
@@ -406,42 +407,38 @@ class _Builder:
         self.plant.AddFrame(FixedOffsetFrame(frame.name, parent, X_PF))
 
     # --------------------------------------------------------------- groups
-    def _texts(self, group: XmlElement, tag: str) -> set[str]:
-        values = set()
-        for child in children(group, tag):
-            value = (child.text or "").strip()
-            if not value:
-                raise self.diagnostics.error(f"The tag <{tag}> is missing a required string value.")
-            values.add(value)
-        return values
-
-    def _add_group(self, group: XmlElement, model: XmlElement, scope: str) -> None:
-        # N.B. Drake's order (CollectCollisionFilterGroup): ignore, name, members, member
-        # groups, the group, then its ignored groups (measured: an empty ignored group is
-        # reported after "has no members").
-        if _bool(group.get("ignore", "false")):
-            return
+    def _group_name(self, group: XmlElement) -> str:
         name = group.get("name")
         if name is None:
             raise self.diagnostics.error(
                 f'The tag <{_GROUP}> is missing the required attribute "name"'
             )
-        if not name:
-            return
-        members = self._texts(group, "drake:member")
-        member_groups = self._texts(group, "drake:member_group")
-        resolver = self.context.resolver
-        resolver.add_group(
+        return name
+
+    def _group_value(self, element: XmlElement, _: str) -> str:
+        value = (element.text or "").strip()
+        if not value:
+            raise self.diagnostics.error(
+                f"The tag <{element.tag}> is missing a required string value."
+            )
+        return value
+
+    def _add_group(self, group: XmlElement, model: XmlElement, scope: str) -> None:
+        """One group, read in Drake's order (see _group_tags); ``ignore`` is an
+        SDFormat bool."""
+        syntax = GroupSyntax(
+            is_ignored=lambda element: _bool(element.get("ignore", "false")),
+            name=self._group_name,
+            value=self._group_value,
+        )
+        read_group(
+            group,
+            syntax,
+            self.context.resolver,
             self.diagnostics,
-            model.line,
-            group_name=name,
-            body_names=members,
-            member_group_names=member_groups,
+            line=model.line,
             scope=scope,
         )
-        ignored = self._texts(group, "drake:ignored_collision_filter_group")
-        for other in sorted(ignored):
-            resolver.add_pair(name, other, scope)
 
 
 def _bool(text: str) -> bool:

@@ -1,0 +1,134 @@
+"""``python -m conformance models``: your own model files, parsed by every backend and compared.
+
+Each PATH is a model file (``.urdf``, ``.sdf``, ``.dmd.yaml``) or a folder
+searched for them; a folder's packages (every ``package.xml`` below it) are
+added to each parse's package map, and a file's are those of the nearest
+folder above it that holds a ``package.xml`` (else its own folder). Every
+file is a case (``corpus.model_files``): parse, Finalize, then what the plant
+holds by scoped name (models, bodies, frames, joints, geometries with shape
+and roles), and the candidate pairs after each step; files that may declare
+collision filter groups also compare the parser's group report.
+
+A file that every backend rejects with the same message agrees: the answer
+is the error. A backend that breaks on one file (raises from an observation,
+times out) is reported there, and the other files still run. Exit codes are
+``run``'s: 0 every file agrees, 1 a backend disagrees with the reference, 2
+bad input or a backend that broke.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import TextIO
+
+from conformance.backends.loader import BackendLoadError
+from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.cli.options import add_backend_options, refuse
+from conformance.cli.run import PROG, load_backends, run_cases
+from conformance.corpus.loader import PACKAGE_MANIFEST, Case, ScenarioError
+from conformance.corpus.model_files import MODEL_SUFFIXES, find_model_files, model_scenario
+from conformance.run.outputs import unwritable, write_or_fall_back
+from conformance.run.report import RunReport, write_json, write_junit
+from conformance.run.runner import choose_reference
+
+__all__ = ["add_models_parser", "model_file_cases", "models_command"]
+
+
+def add_models_parser(commands: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    models = commands.add_parser(
+        "models",
+        help="parse your model files on every backend and compare what each gives",
+        description=__doc__.split("\n\n")[1] if __doc__ else None,
+    )
+    models.add_argument(
+        "paths", nargs="+", type=Path, metavar="PATH", help="model files or folders of them"
+    )
+    models.add_argument(
+        "--backend",
+        action="append",
+        dest="backends",
+        metavar="SPEC",
+        help="reimpl, pydrake, drake==X.Y.Z or package.module:attribute "
+        "(repeatable; default: reimpl and pydrake)",
+    )
+    models.add_argument(
+        "--reference",
+        metavar="NAME",
+        help="the backend others are judged against (default: pydrake if given, else the first)",
+    )
+    models.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
+    models.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
+    add_backend_options(
+        models,
+        strict="report known divergences as failures, not xfail",
+        timeout="is a timeout",
+        quiet="no per-file progress lines",
+    )
+
+
+def _package_root(file: Path) -> Path:
+    """The nearest folder above ``file`` holding a package manifest, else its own folder."""
+    for folder in file.parents:
+        if (folder / PACKAGE_MANIFEST).is_file():
+            return folder
+    return file.parent
+
+
+def model_file_cases(paths: list[Path]) -> list[Case]:
+    """The cases of the model files at ``paths`` (files, or folders searched for them)."""
+    cases: list[Case] = []
+    for given in paths:
+        path = given.resolve()
+        if path.is_dir():
+            folder, files = path, find_model_files(path)
+            if not files:
+                raise ScenarioError(
+                    str(given), f"no model files ({', '.join(MODEL_SUFFIXES)}) below this folder"
+                )
+        elif path.is_file() and path.name.lower().endswith(MODEL_SUFFIXES):
+            folder = _package_root(path)
+            files = [path.relative_to(folder)]
+        elif path.exists():
+            raise ScenarioError(str(given), f"not a model file ({', '.join(MODEL_SUFFIXES)})")
+        else:
+            raise ScenarioError(str(given), "no such file or folder")
+        scenario = model_scenario(folder, files, description=f"the model files below {folder}")
+        cases += scenario.cases
+    return cases
+
+
+def models_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
+    """Runs ``models``; returns the exit code (see ``conformance.cli.exit_codes``)."""
+    problems = [
+        f"--{option} {path}: {problem}"
+        for option, path in (("json", args.json), ("junit", args.junit))
+        if path is not None and (problem := unwritable(path)) is not None
+    ]
+    if refuse(problems, err):
+        return EXIT_USAGE
+    try:
+        backends = load_backends(
+            args.backends, python=args.python, step_timeout=args.step_timeout or None
+        )
+        reference = choose_reference(backends, args.reference).name
+        cases = model_file_cases(args.paths)
+    except (BackendLoadError, ScenarioError, ValueError) as exc:
+        err.write(f"error: {exc}\n")
+        return EXIT_USAGE
+    report = RunReport(
+        backends, specs=list(args.backends or ("reimpl", "pydrake")), reference=reference
+    )
+    code = run_cases(args, cases, report, err, bad_models_are_input_errors=False, keep_going=True)
+    report.print_failures(out, prog=PROG)
+    out.write("\n")
+    report.print_xfails(out)
+    report.print_skips(out)
+    report.print_summary(out)
+    if args.junit:
+        write_or_fall_back(args.junit, lambda path: write_junit(report, path), err)
+    if args.json:
+        write_or_fall_back(args.json, lambda path: write_json(report, path), err)
+    if code == EXIT_OK and report.failed:
+        code = EXIT_FAILURE
+    return code

@@ -1,0 +1,125 @@
+"""Cases for model files that nobody wrote for this harness: a case per file.
+
+A model file (``*.urdf``, ``*.sdf``, ``*.dmd.yaml``) below a folder is the case
+``<path below the folder>``:
+
+1. ``add_models`` with ``folder`` and ``path``: a new Parser whose package map
+   holds the folder's packages (``PopulateFromFolder``), then
+   ``AddModels(file_name=)``;
+2. ``finalize``;
+3. ``model_inventory``: the model instances, bodies, frames, joints and
+   geometries (shape, roles) by scoped name;
+
+and C is observed after each step, so the candidate pairs are compared pair
+by pair too. A file that may declare collision filter groups (its text names
+``collision_filter_group``, or it includes other files) also gets the case
+``<path> (filter groups)``: ``add_models``, then ``collision_filter_groups``
+(Drake ≥ 1.31, so that older releases still run the first case).
+
+No case expects anything unless ``expected_errors`` says a step fails: two
+backends are compared with each other, the reference being the oracle. A
+corpus of such cases (``scenarios/real_models``) records the errors pydrake
+gives, so that every backend must give them too.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from conformance.corpus.loader import ScenarioFile, scenario_from_data
+
+__all__ = [
+    "GROUPS_SUFFIX",
+    "MODEL_SUFFIXES",
+    "find_model_files",
+    "model_cases",
+    "model_scenario",
+]
+
+MODEL_SUFFIXES = (".urdf", ".sdf", ".dmd.yaml")
+#: Folders that hold build outputs or version control, never a user's models.
+_SKIPPED_FOLDERS = frozenset({".git", "bazel-bin", "bazel-out", "bazel-testlogs", "__pycache__"})
+#: The description suffix of a file's filter-group case.
+GROUPS_SUFFIX = " (filter groups)"
+#: Text that makes a file's filter-group case worth running.
+_GROUP_HINTS = ("collision_filter_group", "<include")
+
+#: The ops of a file's case, then those of its filter-group case.
+_STEPS: tuple[tuple[str, ...], ...] = (
+    ("add_models", "finalize", "model_inventory"),
+    ("add_models", "collision_filter_groups"),
+)
+
+
+def find_model_files(folder: Path) -> list[Path]:
+    """The model files below ``folder``, relative to it, in sorted order."""
+    found = []
+    for parent, folders, names in os.walk(folder):
+        folders[:] = sorted(f for f in folders if f not in _SKIPPED_FOLDERS)
+        found += [
+            Path(parent, name).relative_to(folder)
+            for name in names
+            if name.lower().endswith(MODEL_SUFFIXES)
+        ]
+    return sorted(found)
+
+
+def _may_declare_groups(path: Path) -> bool:
+    try:
+        text = path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return True
+    return any(hint in text for hint in _GROUP_HINTS)
+
+
+def model_cases(
+    folder: Path,
+    files: Iterable[Path],
+    *,
+    folder_arg: str | None = None,
+    expected_errors: Mapping[str, Mapping[int, Mapping[str, str]]] | None = None,
+) -> list[dict[str, Any]]:
+    """The raw cases (scenario data) of ``files``, relative paths below ``folder``.
+
+    ``folder_arg`` is what the steps write as ``folder`` (default: ``folder``
+    itself; a corpus file writes it relative to itself). ``expected_errors``
+    maps a case's description to {step number: {"kind", "message"}}.
+    """
+    expected_errors = expected_errors or {}
+    cases = []
+    for relative in files:
+        path = relative.as_posix()
+        descriptions = [path]
+        if _may_declare_groups(folder / relative):
+            descriptions.append(path + GROUPS_SUFFIX)
+        for description, ops in zip(descriptions, _STEPS, strict=False):
+            steps: list[dict[str, Any]] = []
+            for number, op in enumerate(ops, 1):
+                step: dict[str, Any] = {"op": op}
+                if op == "add_models":
+                    step.update(folder=folder_arg or str(folder), path=path)
+                error = expected_errors.get(description, {}).get(number)
+                if error is not None:
+                    step["expect"] = {"error": dict(error)}
+                steps.append(step)
+            cases.append({"description": description, "steps": steps})
+    return cases
+
+
+def model_scenario(
+    folder: Path,
+    files: Sequence[Path],
+    *,
+    description: str,
+) -> ScenarioFile:
+    """The loaded scenario of ``files`` below ``folder``, named after the folder: its cases
+    are ``<folder name> > <path>``."""
+    data = {
+        "description": description,
+        "features": ["multibody", "parsing"],
+        "cases": model_cases(folder, files),
+    }
+    return scenario_from_data(data, folder.parent / f"{folder.name}.json", root=folder.parent)
