@@ -5,7 +5,7 @@
 # unchanged on pydrake and on reimpl through the public Parser API. Dynamics-only checks
 # (inertias, actuators, springs, mimic, constraints, hydroelastic values, pose values beyond
 # what decides a name or a body) are left out, and so are the MuJoCo includes
-# (top_merge_include*.sdf) and curvilinear joints, which reimpl does not read. Expected values
+# (top_merge_include*.sdf), which reimpl does not read. Expected values
 # are upstream's, re-measured on pydrake 1.51.1 and 1.58.0 (both give the same answers here).
 #
 # Drake's license (BSD 3-Clause), which covers the upstream test this file is ported from:
@@ -483,13 +483,10 @@ def test_a_drake_joint_joins_frames_of_a_nested_model(drake: ModuleType) -> None
 def test_joint_parsing_test_names_its_joints_and_their_types(
     drake: ModuleType, drake_models: Path
 ) -> None:
-    """Upstream JointParsingTest, up to its curvilinear joints (not in reimpl's subset):
-    which joints the file makes, of which type, and where their frames are."""
-    text = (drake_models / _SDF_TEST / "joint_parsing_test.sdf").read_text()
-    cut = text.index('<drake:joint name="curvilinear_joint_periodic"')
-    end = text.index("</drake:joint>", text.index("curvilinear_joint_aperiodic")) + 14
+    """Upstream JointParsingTest: which joints the file makes, of which type, where."""
     parse = _Parse(drake)
-    assert parse.string(text[:cut] + text[end:]) == ["joint_parsing_test", "joint_parsing_test2"]
+    path = drake_models / _SDF_TEST / "joint_parsing_test.sdf"
+    assert parse.file(path) == ["joint_parsing_test", "joint_parsing_test2"]
     first, second = "joint_parsing_test", "joint_parsing_test2"
     assert [(name, kind, instance) for name, kind, _, _, instance in parse.joints()] == [
         ("revolute_joint", "revolute", first),
@@ -500,8 +497,53 @@ def test_joint_parsing_test_names_its_joints_and_their_types(
         ("continuous_joint", "revolute", first),
         ("screw_joint", "screw", first),
         ("planar_joint", "planar", first),
+        ("curvilinear_joint_periodic", "curvilinear", first),
+        ("curvilinear_joint_aperiodic", "curvilinear", first),
         ("planar_joint", "planar", second),
     ]
+
+
+_CURVILINEAR = (
+    "<model name='test'><link name='a'/><link name='b'/><drake:joint "
+    'name="curvilinear_joint" type="curvilinear"><drake:parent>a</drake:parent>'
+    "<drake:child>b</drake:child>{}</drake:joint></model>"
+)
+_CURVILINEAR_ERRORS = {
+    "non_boolean_is_periodic": (
+        "<drake:is_periodic>TRUE</drake:is_periodic><drake:curves><drake:line_segment>"
+        "<drake:length>1.0</drake:length></drake:line_segment></drake:curves>",
+        "<drake:is_periodic>: boolean node contains non-boolean value 'TRUE'.",
+    ),
+    "no_curves": ("", "<drake:joint>: Unable to find the <drake:curves> child node."),
+    "segment_without_length": (
+        "<drake:curves><drake:line_segment>\n</drake:line_segment></drake:curves>",
+        "<drake:line_segment>: Unable to find the <drake:length> child tag.",
+    ),
+    "negative_damping": (
+        "<drake:damping>-1</drake:damping><drake:curves><drake:line_segment><drake:length>1.0"
+        "</drake:length></drake:line_segment></drake:curves>",
+        "ERROR: <drake:joint> 'curvilinear_joint' has negative value for 'damping' attribute: "
+        "-1.000000",
+    ),
+    "negative_radius": (
+        "<drake:curves><drake:circular_arc><drake:radius>-2.0</drake:radius><drake:angle>1.57"
+        "</drake:angle></drake:circular_arc></drake:curves>",
+        "<drake:circular_arc>: A drake:circular_arc node has a 0 or negative drake:radius.",
+    ),
+    "unknown_curve": (
+        "<drake:curves><drake:circular_arc><drake:radius>2.0</drake:radius><drake:angle>1.57"
+        "</drake:angle></drake:circular_arc><drake:cirQQQcular_arc/></drake:curves>",
+        "<drake:joint>: drake:curves node contains an invalid child node <drake:cirQQQcular_arc>.",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(_CURVILINEAR_ERRORS))
+def test_curvilinear_joint_errors(drake: ModuleType, case: str) -> None:
+    """Upstream CurvilinearJointErrors0..6 (no line: <drake:joint> is not SDFormat's)."""
+    curves, message = _CURVILINEAR_ERRORS[case]
+    text = _sdf(_CURVILINEAR.format(curves))
+    assert _error(drake, text) == f"<literal-string>.sdf: error: {message}"
 
 
 @pytest.mark.parametrize("kind", ["gearbox", "revolute2"])

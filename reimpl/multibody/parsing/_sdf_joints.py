@@ -25,7 +25,8 @@ order (each an error at the ``<joint>``'s line):
 An axis is the unit ``<xyz>`` in J (or in its ``expressed_in`` frame E:
 R_JE·xyz, as libsdformat computes it). ``<drake:joint type="planar">`` joins
 two frames named by ``<drake:parent>`` and ``<drake:child>`` (scoped names
-reach into nested models); reimpl has no curvilinear joint (ModelParseError).
+reach into nested models); ``type="curvilinear"`` follows ``<drake:curves>``
+(``<drake:line_segment>``s and ``<drake:circular_arc>``s).
 """
 
 from __future__ import annotations
@@ -38,7 +39,6 @@ import numpy as np
 
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody.parsing import _scoped_name as scoped
-from reimpl.multibody.parsing._diagnostics import ModelParseError
 from reimpl.multibody.parsing._sdf_dom import Joint
 from reimpl.multibody.parsing._sdf_graph import Graphs
 from reimpl.multibody.parsing._sdf_include import text_of
@@ -48,7 +48,9 @@ from reimpl.multibody.parsing._sdf_scope import Reporter, Scope
 from reimpl.multibody.parsing._xml import XmlElement, children
 from reimpl.multibody.tree import (
     BallRpyJoint,
+    CurvilinearJoint,
     FixedOffsetFrame,
+    PiecewiseConstantCurvatureTrajectory,
     PlanarJoint,
     PrismaticJoint,
     RevoluteJoint,
@@ -362,15 +364,105 @@ class JointAdder:
             damping = self._vector3(element, "drake:damping")
             self.plant.AddJoint(PlanarJoint(name, parent, child, damping))
         elif joint_type == "curvilinear":
-            raise ModelParseError(
-                f"reimpl does not support curvilinear joints (<drake:joint name='{name}'>)"
-            )
+            self._add_curvilinear(element, name, parent, child)
         else:
             raise self.reporter.error(
                 element,
                 f"ERROR: <drake:joint> '{name}' has unrecognized value for 'type' attribute: "
                 f"{joint_type}",
             )
+
+    def _add_curvilinear(self, element: XmlElement, name: str, parent: Any, child: Any) -> None:
+        """A curvilinear joint along ``<drake:curves>``; optional ``<drake:plane_normal>``
+        and ``<drake:initial_tangent>`` (``<xyz>``), ``<drake:is_periodic>`` (exactly
+        ``true`` or ``false``) and ``<drake:damping>`` (≥ 0)."""
+        normal = self._optional_vector(element, "drake:plane_normal", [0.0, 0.0, 1.0])
+        tangent = self._optional_vector(element, "drake:initial_tangent", [1.0, 0.0, 0.0])
+        periodic = False
+        for node in children(element, "drake:is_periodic")[:1]:
+            value = text_of(node)
+            if value not in ("true", "false"):
+                raise self.reporter.error(
+                    element,
+                    f"<drake:is_periodic>: boolean node contains non-boolean value '{value}'.",
+                )
+            periodic = value == "true"
+        damping = 0.0
+        if children(element, "drake:damping"):
+            damping = self._double(element, element, "drake:damping")
+            if damping < 0:
+                raise self.reporter.error(
+                    element,
+                    f"ERROR: <drake:joint> '{name}' has negative value for 'damping' attribute: "
+                    f"{damping:.6f}",
+                )
+        breaks, rates = self._curves(element)
+        if len(breaks) == 1:
+            # N.B. Drake's SDFormat reader does not check for an empty list; the trajectory's
+            # constructor then fails so (measured on pydrake 1.51.1; URDF checks first).
+            raise RuntimeError("Segment number -1 out of range [0, 0)\n")
+        path = PiecewiseConstantCurvatureTrajectory(
+            breaks, rates, tangent, normal, initial_position=[0.0, 0.0, 0.0], is_periodic=periodic
+        )
+        self.plant.AddJoint(
+            CurvilinearJoint(
+                name=name,
+                frame_on_parent=parent,
+                frame_on_child=child,
+                curvilinear_path=path,
+                damping=damping,
+            )
+        )
+
+    def _optional_vector(self, element: XmlElement, tag: str, default: list[float]) -> Any:
+        found = children(element, tag)
+        return self._vector3(found[0], "xyz") if found else np.array(default)
+
+    def _double(self, element: XmlElement, node: XmlElement, tag: str) -> float:
+        """ParseDouble: ``node``'s ``<tag>`` (missing: an error at ``node``)."""
+        found = children(node, tag)
+        if not found:
+            raise self.reporter.error(node, f"<{node.tag}>: Unable to find the <{tag}> child tag.")
+        return float(text_of(found[0]).split()[0])
+
+    def _curves(self, element: XmlElement) -> tuple[list[float], list[float]]:
+        """ParseDrakeCurves: the breaks (from 0) and turning rates of ``<drake:curves>``."""
+        curves = children(element, "drake:curves")
+        if not curves:
+            raise self.reporter.error(
+                element, f"<{element.tag}>: Unable to find the <drake:curves> child node."
+            )
+        breaks, rates = [0.0], []
+        for curve in curves[0]:
+            assert isinstance(curve, XmlElement)
+            angle = 0.0
+            if curve.tag == "drake:line_segment":
+                length = self._double(element, curve, "drake:length")
+                if length <= 0.0:
+                    raise self.reporter.error(
+                        element,
+                        f"<{curve.tag}>: A drake:line_segment node has a 0 or negative "
+                        "drake:length.",
+                    )
+            elif curve.tag == "drake:circular_arc":
+                radius = self._double(element, curve, "drake:radius")
+                if radius <= 0.0:
+                    raise self.reporter.error(
+                        element,
+                        f"<{curve.tag}>: A drake:circular_arc node has a 0 or negative "
+                        "drake:radius.",
+                    )
+                angle = self._double(element, curve, "drake:angle")
+                length = abs(angle) * radius
+            else:
+                raise self.reporter.error(
+                    element,
+                    f"<{element.tag}>: drake:curves node contains an invalid child node "
+                    f"<{curve.tag}>.",
+                )
+            breaks.append(breaks[-1] + length)
+            rates.append(angle / length if length else float("nan"))
+        return breaks, rates
 
     def _frame(self, element: XmlElement, scope: Scope, tag: str) -> Any:
         """ParseFrame: a frame by name, maybe scoped into a nested model."""
