@@ -30,7 +30,12 @@ Versions before 1.7 are converted first: ``<pose frame=...>`` becomes
 from __future__ import annotations
 
 import logging
+import math
+import re
+import sys
 from collections.abc import Callable
+
+import numpy as np
 
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
 from reimpl.multibody.parsing._sdf_poses import PoseTextError, parse_pose
@@ -42,6 +47,7 @@ __all__ = [
     "check_document",
     "element_text",
     "log_sdformat_error",
+    "material_color",
     "scoped_name_error",
     "sdformat_bool",
     "version_tuple",
@@ -60,6 +66,7 @@ _BOOL_VALUES = {
     ("kinematic", "link"), ("gravity", "link"), ("must_be_base_link", "link"),
     ("enable_wind", "link"),
 }  # fmt: skip
+_COLORS = frozenset({"diffuse", "ambient", "specular", "emissive"})
 _BOOL_ATTRIBUTES = {("pose", "degrees"), ("include", "merge"), ("inertial", "auto")}
 _UNSCOPED_SINCE = (1, 8)
 
@@ -67,6 +74,77 @@ _UNSCOPED_SINCE = (1, 8)
 def sdformat_bool(text: str) -> bool | None:
     """SDFormat's bool: ``true``/``1`` or ``false``/``0``, trimmed, any case; else None."""
     return _BOOLS.get(text.strip().lower())
+
+
+_STOF = re.compile(
+    r"\s*[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan)", re.IGNORECASE
+)
+_FLOAT_MAX = float(np.finfo(np.float32).max)
+
+
+def _stof(token: str) -> float:
+    """std::stof: the longest leading number; ValueError (invalid) or OverflowError."""
+    match = _STOF.match(token)
+    if match is None:
+        raise ValueError(token)
+    value = float(match.group())
+    if abs(value) > _FLOAT_MAX and abs(value) != float("inf"):
+        raise OverflowError(token)
+    return float(np.float32(value))
+
+
+def parse_color(
+    text: str, key: str, *, report_clamp: bool = False
+) -> tuple[tuple[float, float, float, float] | None, str]:
+    """ParseColorUsingStringStream: (color, "") or (None, libsdformat's errors joined as
+    pydrake logs them). 3 or 4 floats each in [0, 1] (NaN allowed: gz::math::Color clamps it
+    to 0, printing so to stderr where ``report_clamp``); alpha 1 by default. No text is the
+    default, "0 0 0 1" (libsdformat reads no value then)."""
+    value = text.strip()
+    if not value:
+        return (0.0, 0.0, 0.0, 1.0), ""
+    if value.lower() in ("true", "false"):
+        value = "1" if value.lower() == "true" else "0"
+    errors = []
+    colors: list[float] = []
+    valid = True
+    for token in value.split():
+        try:
+            c = _stof(token)
+        except ValueError:
+            errors.append(f"Invalid argument. Unable to set value [{token}] for key [{key}].")
+            valid = False
+            break
+        except OverflowError:
+            errors.append(f"Out of range. Unable to set value [{token}] for key [{key}].")
+            valid = False
+            break
+        colors.append(c)
+        if c < 0.0 or c > 1.0:
+            valid = False
+            break
+    if valid and len(colors) == 3:
+        colors.append(1.0)
+    elif len(colors) != 4:
+        valid = False
+    if valid:
+        if any(math.isnan(c) for c in colors):
+            colors = [0.0 if math.isnan(c) else c for c in colors]
+            if report_clamp:
+                print("Color values were clamped", file=sys.stderr)
+        r, g, b, alpha = colors
+        return (r, g, b, alpha), ""
+    errors.append(f"The value <{key}>{value}</{key}> is invalid.")
+    return None, "\nError Code 34: Msg: ".join(errors)
+
+
+def material_color(text: str, key: str) -> tuple[float, float, float, float]:
+    """gz::math::Color of a ``<diffuse>`` (...), held as floats (so 0.1 reads back as
+    0.10000000149011612). ValueError where libsdformat's reading fails."""
+    color, errors = parse_color(text, key)
+    if color is None:
+        raise ValueError(errors)
+    return color
 
 
 def log_sdformat_error(message: str) -> None:
@@ -194,6 +272,11 @@ class _Checker:
                 if exc.attribute is None:
                     log_sdformat_error(str(exc))
                     raise self.error(element.line, path, "Error reading element <pose>") from None
+        elif element.tag in _COLORS and parent_tag == "material":
+            color, errors = parse_color(element.text or "", element.tag, report_clamp=True)
+            if color is None:
+                log_sdformat_error(errors)
+                raise self.error(element.line, path, f"Error reading element <{element.tag}>")
         elif (element.tag, parent_tag) in _BOOL_VALUES and sdformat_bool(
             element.text or ""
         ) is None:

@@ -45,11 +45,12 @@ from reimpl.geometry import (
     IllustrationProperties,
     Mesh,
     PerceptionProperties,
+    Rgba,
     Shape,
     Sphere,
 )
 from reimpl.math import RigidTransform
-from reimpl.multibody.parsing._sdf_document import sdformat_bool
+from reimpl.multibody.parsing._sdf_document import material_color, sdformat_bool
 from reimpl.multibody.parsing._xml import XmlElement, children
 
 __all__ = [
@@ -79,6 +80,8 @@ _VISUAL_ELEMENTS = frozenset({
     "pose", "drake:accepting_renderer",
 })  # fmt: skip
 _MATERIAL_ELEMENTS = frozenset({"ambient", "diffuse", "drake:diffuse_map", "emissive", "specular"})
+#: the material colors Drake keeps, in its order ("phong" group)
+_COLORS = ("diffuse", "ambient", "specular", "emissive")
 
 
 def first(element: XmlElement, tag: str) -> XmlElement | None:
@@ -185,6 +188,23 @@ def _enabled(element: XmlElement | None, error: Raiser) -> bool:
     return value
 
 
+def _add_material(
+    visual: XmlElement,
+    properties: IllustrationProperties | PerceptionProperties,
+    check: Checker,
+    resolve: Callable[[str], str],
+) -> None:
+    """The ``<material>``'s colors and ``<drake:diffuse_map>`` as "phong" properties."""
+    for material in children(visual, "material")[:1]:
+        check(material, _MATERIAL_ELEMENTS)
+        for diffuse_map in children(material, "drake:diffuse_map")[:1]:
+            path = resolve(" ".join((diffuse_map.text or "").split()))
+            properties.AddProperty("phong", "diffuse_map", path)
+        for name in _COLORS:
+            for color in children(material, name)[:1]:
+                properties.AddProperty("phong", name, Rgba(*material_color(color.text or "", name)))
+
+
 def visual_instance(
     visual: XmlElement,
     X_LG: RigidTransform,
@@ -208,10 +228,8 @@ def visual_instance(
     if shape is None:
         return None
     instance = GeometryInstance(X_PG=X_LG.multiply(X_GC), shape=shape, name=visual.get("name", ""))
-    perception = first(visual, "drake:perception_properties")
-    illustration = first(visual, "drake:illustration_properties")
-    gets_perception = _enabled(perception, error)
-    gets_illustration = _enabled(illustration, error)
+    gets_perception = _enabled(first(visual, "drake:perception_properties"), error)
+    gets_illustration = _enabled(first(visual, "drake:illustration_properties"), error)
     if not (gets_perception or gets_illustration):
         if not drake_visual:
             warn(
@@ -221,16 +239,15 @@ def visual_instance(
                 "loaders.",
             )
         return None
-    for material in children(visual, "material")[:1]:
-        check(material, _MATERIAL_ELEMENTS)
-        for diffuse_map in children(material, "drake:diffuse_map")[:1]:
-            resolve(" ".join((diffuse_map.text or "").split()))
+    # The material goes to illustration (copied to perception) or, without it, to perception.
+    properties = IllustrationProperties() if gets_illustration else PerceptionProperties()
+    _add_material(visual, properties, check, resolve)
     if gets_illustration:
-        instance.set_illustration_properties(IllustrationProperties())
-    if gets_perception:
-        instance.set_perception_properties(PerceptionProperties())
+        assert isinstance(properties, IllustrationProperties)
+        instance.set_illustration_properties(properties)
+    perception = PerceptionProperties(properties) if gets_perception else None
     for accepting in children(visual, "drake:accepting_renderer"):
-        if not gets_perception:
+        if perception is None:
             warn(
                 visual,
                 "<drake:accepting_renderer> specified for a <visual> with a disabled perception "
@@ -239,6 +256,11 @@ def visual_instance(
             break
         if not (accepting.text or "").strip():
             raise error(accepting, "<drake:accepting_renderer> tag given without any name")
+    names = {(a.text or "").strip() for a in children(visual, "drake:accepting_renderer")}
+    if perception is not None:
+        if names:
+            perception.AddProperty("renderer", "accepting", names)
+        instance.set_perception_properties(perception)
     return instance
 
 

@@ -132,4 +132,6 @@ def description(tag: str, parent_tag: str | None) -> Description | None:
         return _INERTIAL_POSE
     if tag in ("uri", "name", "static", "placement_frame") and parent_tag == "include":
         return ({}, {})
+    if tag in ("diffuse", "ambient", "specular", "emissive") and parent_tag == "material":
+        return ({}, {})
     return SCHEMA.get(tag)
