@@ -65,8 +65,10 @@ from reimpl.multibody._errors import (
     NotFoundError,
     TopologyError,
 )
+from reimpl.multibody._mobilizer_frames import mobilizer_frames
 from reimpl.multibody.tree import (
     BodyIndex,
+    FixedOffsetFrame,
     Frame,
     FrameIndex,
     Joint,
@@ -1530,6 +1532,7 @@ class MultibodyPlant(LeafSystem):
         for base in bases:
             self._add_floating_joint(self._bodies[base])
         self._lay_out_positions()
+        self._add_mobilizer_frames()
         # N.B. Measured: the plant is finalized before its filters are applied, so
         # an Apply that raises (transient history active) leaves it finalized,
         # unfiltered, and refusing a second Finalize.
@@ -1542,6 +1545,20 @@ class MultibodyPlant(LeafSystem):
                 adjacent=self._adjacent_bodies_collision_filters,
             )
             self._scene_graph.collision_filter_manager().Apply(declaration=declaration)
+
+    def _add_mobilizer_frames(self) -> None:
+        """The ephemeral frames of ``_mobilizer_frames``, in the order the tree is walked."""
+        assert self._forest is not None
+        for mobilizer in self._forest.mobilizers:
+            joint = self._joints[mobilizer.joint]
+            for suffix, base, X in mobilizer_frames(joint, mobilizer.reversed):
+                instance = joint.model_instance()
+                name = f"{joint.name()}_{base.name()}_{suffix}"
+                while self._named(self._frames, name, instance):
+                    name = f"_{name}"
+                frame = FixedOffsetFrame(name, base, X, instance)
+                frame._ephemeral = True
+                self.AddFrame(frame)
 
     def _check_reversible(self, joint: Joint) -> None:
         """Raises Drake's error unless a tree may model ``joint`` from child to parent."""

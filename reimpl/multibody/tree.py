@@ -405,8 +405,11 @@ class _Element:
             self.GetParentPlant().GetModelInstanceName(self._model_instance), self._name
         )
 
+    #: Added by Finalize, not by the user (floating joints, mobilizer frames).
+    _ephemeral: bool = False
+
     def is_ephemeral(self) -> bool:
-        return False
+        return self._ephemeral
 
     def __repr__(self) -> str:
         return (
