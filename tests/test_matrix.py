@@ -99,13 +99,15 @@ def matrix_1_58():  # type: ignore[no-untyped-def]
 
 
 @needs_312
-def test_an_unguarded_1_58_worker_crashes_on_anchored_deactivate_as_the_divergence_expects(
+def test_an_unguarded_1_58_worker_fails_drakes_demand_on_anchored_deactivate_as_expected(
     matrix_1_58,  # type: ignore[no-untyped-def]
 ) -> None:
+    """pydrake raises SystemExit('Failure at ...proximity_engine.cc... ApplyActiveStatusChange')
+    for the failed DRAKE_DEMAND; the worker answers it as an error of kind 'assertion', which
+    differs from reimpl's answer as the divergence says (xfail)."""
     cell = matrix_1_58.cell(ANCHORED, RELEASE)
-    assert cell.outcome is Outcome.CRASH
+    assert cell.outcome is Outcome.XFAIL
     assert cell.expected_by == "deactivate-anchored-aborts"
-    assert "ApplyActiveStatusChange" in cell.detail  # the tail of Drake's stderr
     assert not cell.failing
     assert matrix_1_58.cell(TABLE_1, RELEASE) == Cell(Outcome.PASS)
     assert matrix_1_58.failing == []
@@ -118,9 +120,9 @@ def test_the_report_has_the_documented_shape_and_is_the_same_when_written_twice(
 ) -> None:
     document = matrix_json(matrix_1_58)
     assert document["versions"] == [RELEASE]
-    assert document["cases"] == {TABLE_1: {RELEASE: "pass"}, ANCHORED: {RELEASE: "crash"}}
+    assert document["cases"] == {TABLE_1: {RELEASE: "pass"}, ANCHORED: {RELEASE: "xfail"}}
     assert document["details"][ANCHORED][RELEASE]["expected_by"] == "deactivate-anchored-aborts"
-    assert document["releases"][RELEASE]["counts"]["crash"] == 1
+    assert document["releases"][RELEASE]["counts"]["xfail"] == 1
     first = write_report(matrix_1_58, tmp_path / "a")
     second = write_report(matrix_1_58, tmp_path / "b")
     assert [p.name for p in first] == ["report.json", "report.md", "heatmap.png"]
@@ -131,7 +133,7 @@ def test_the_report_has_the_documented_shape_and_is_the_same_when_written_twice(
 
 
 @needs_312
-def test_matrix_command_writes_the_report_and_exits_zero_when_only_expected_crashes_remain(
+def test_matrix_command_writes_the_report_and_exits_zero_when_only_expected_failures_remain(
     tmp_path: Path,
 ) -> None:
     out, err = io.StringIO(), io.StringIO()
@@ -142,7 +144,7 @@ def test_matrix_command_writes_the_report_and_exits_zero_when_only_expected_cras
     )
     assert code == 0, err.getvalue()
     report = json.loads((tmp_path / "report.json").read_text())
-    assert report["cases"][ANCHORED] == {RELEASE: "crash"}
+    assert report["cases"][ANCHORED] == {RELEASE: "xfail"}
     assert f"drake=={RELEASE} (Python" in err.getvalue()  # progress, per release
 
 

@@ -65,6 +65,7 @@ from typing import NamedTuple, cast
 import numpy as np
 import numpy.typing as npt
 
+from reimpl.common._drake_demand import demand_failure
 from reimpl.geometry._pair_bits import PairBits, mask_of
 from reimpl.geometry.collision_filter_declaration import Pairing, Statement, StatementOp
 from reimpl.geometry.errors import TransientHistoryActiveError
@@ -150,7 +151,7 @@ class _Delta:
     statements: tuple[ResolvedStatement, ...]
 
 
-Resolver = Callable[[GeometrySet], Iterable[GeometryId]]
+Resolver = Callable[[GeometrySet], Sequence[GeometryId]]
 
 
 class CollisionFilter:
@@ -235,10 +236,36 @@ class CollisionFilter:
         return tuple(map(self._slot_of.__getitem__, ids))
 
     def _resolve(self, statement: Statement, resolve: Resolver) -> ResolvedStatement:
-        slots_A = self._slots(resolve(statement.set_A))
-        if statement.op.pairing is Pairing.WITHIN:
-            return ResolvedStatement.of(statement.op, slots_A, None)
-        return ResolvedStatement.of(statement.op, slots_A, self._slots(resolve(statement.set_B)))
+        ids_A = resolve(statement.set_A)
+        ids_B = None if statement.op.pairing is Pairing.WITHIN else resolve(statement.set_B)
+        try:
+            slots_B = None if ids_B is None else self._slots(ids_B)
+            return ResolvedStatement.of(statement.op, self._slots(ids_A), slots_B)
+        except KeyError:  # a proximity geometry this filter never got (GeometryState)
+            return self._unregistered(statement, ids_A, ids_A if ids_B is None else ids_B)
+
+    def _unregistered(
+        self, statement: Statement, ids_A: Sequence[GeometryId], ids_B: Sequence[GeometryId]
+    ) -> ResolvedStatement:
+        """Drake demands that every pair it writes has both ids registered; with no pair to
+        write (one side empty), the statement does nothing."""
+        if ids_A and ids_B:
+            line, function = (
+                (185, "AddFilteredPair")
+                if statement.op.filters
+                else (
+                    197,
+                    "RemoveFilteredPair",
+                )
+            )
+            raise demand_failure(
+                "geometry/proximity/collision_filter.cc",
+                line,
+                function,
+                "filter_state.contains(id_A) && filter_state.contains(id_B)",
+            )
+        empty = None if statement.op.pairing is Pairing.WITHIN else ()
+        return ResolvedStatement.of(statement.op, (), empty)
 
     def _resolve_all(
         self, statements: Sequence[Statement], resolve: Resolver

@@ -13,6 +13,7 @@ __all__ = [
     "DuplicateRoleError",
     "GeometryStateError",
     "TransientHistoryActiveError",
+    "UnenginedGeometryError",
     "UnknownFrameError",
     "UnknownGeometryError",
     "UnknownSourceError",
@@ -50,3 +51,9 @@ class UnqueryableGeometryError(CollisionFilterError):
 
 class DuplicateRoleError(GeometryStateError):
     """Raised when a role is assigned with RoleAssign.kNew to a geometry that has it."""
+
+
+class UnenginedGeometryError(IndexError):
+    """Raised, as Drake's ``std::out_of_range`` from ``unordered_map::at``, when the collision
+    filter is asked about a geometry that has the proximity role but whose proximity engine
+    entry failed (its convex hull could not be made): ``GeometryState.unengined``."""

@@ -26,6 +26,7 @@ from reimpl.geometry.collision_filter_declaration import Statement, StatementOp
 from reimpl.geometry.errors import (
     DuplicateRoleError,
     GeometryStateError,
+    UnenginedGeometryError,
     UnknownFrameError,
     UnknownGeometryError,
     UnknownSourceError,
@@ -44,6 +45,9 @@ from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
 from reimpl.geometry.mesh import _MeshShape
 from reimpl.geometry.shape import Shape
 from reimpl.math import RigidTransform
+
+#: What libstdc++'s ``unordered_map::at`` says of a missing key (pydrake: IndexError).
+_MAP_AT = "_Map_base::at"
 
 __all__ = ["WORLD_FRAME_ID", "GeometryState"]
 
@@ -115,6 +119,8 @@ class GeometryState:
         # Bumped by every change to the frames or the proximity geometries, so a
         # posed proximity engine built from this state knows when it is stale.
         self.revision = 0
+        #: Proximity geometries whose proximity engine entry failed (``unengined``).
+        self.unengined: set[GeometryId] = set()
 
     def clone(self) -> GeometryState:
         """A deep copy, as a context's copy of the model is (filters and history too)."""
@@ -142,6 +148,7 @@ class GeometryState:
         other.collision_filter = self.collision_filter.copy()
         other.ghost_frames = self.ghost_frames
         other.revision = self.revision
+        other.unengined = set(self.unengined)
         return other
 
     # ------------------------------------------------------------- validation
@@ -321,12 +328,15 @@ class GeometryState:
                 f"'{name}' role."
             )
         if role is Role.kProximity and isinstance(geometry.shape, _MeshShape):
-            # N.B. Drake computes the hull after it stored the properties, and a
-            # failure leaves them on a geometry its proximity engine never got
-            # (measured on 1.51.1: the filter queries then raise IndexError
-            # '_Map_base::at' and no context can be made). reimpl raises first,
-            # so the geometry stays registered without the role.
-            geometry.shape._check_proximity()
+            try:
+                geometry.shape._check_proximity()
+            except RuntimeError:
+                # N.B. Drake stores the properties before its proximity engine
+                # computes the hull: the geometry keeps the role, unengined.
+                geometry.properties[role] = type(properties)(properties)
+                self.unengined.add(geometry.id)
+                self.revision += 1
+                raise
         geometry.properties[role] = type(properties)(properties)
         if role is Role.kProximity:
             self.revision += 1
@@ -366,6 +376,8 @@ class GeometryState:
         return sum(self._remove_role(self._geometries[g], role) for g in list(geometries))
 
     def _remove_role(self, geometry: _Geometry, role: Role) -> int:
+        if role is Role.kProximity and geometry.id in self.unengined:
+            raise UnenginedGeometryError(_MAP_AT)
         if geometry.properties.pop(role, None) is None:
             return 0
         if role is Role.kProximity:
@@ -483,7 +495,30 @@ class GeometryState:
         ga, gb = self._geometries.get(a), self._geometries.get(b)
         if ga is None or gb is None or not (ga.has_proximity and gb.has_proximity):
             self._raise_unqueryable(a, b)
+        if a == b:
+            return True
+        if a in self.unengined or b in self.unengined:
+            raise UnenginedGeometryError(_MAP_AT)
         return not self.collision_filter.can_collide_with(a, b)
+
+    def collision_candidates(self) -> set[tuple[GeometryId, GeometryId]]:
+        """C, each pair (a, b) with a.get_value() < b.get_value() (SceneGraphInspector).
+
+        Drake asks the filter about every pair of proximity geometries, so an
+        unengined one raises as soon as there is another."""
+        if self.unengined and sum(g.has_proximity for g in self._geometries.values()) > 1:
+            raise UnenginedGeometryError(_MAP_AT)
+        return self.collision_filter.candidates()
+
+    def check_engined(self) -> None:
+        """Raises as Drake's context creation does for an unengined geometry (it re-applies
+        the default proximity properties to every proximity geometry, by id)."""
+        if self.unengined:
+            first = min(self.unengined, key=lambda g: g.get_value())
+            raise GeometryStateError(
+                f"The proximity engine does not contain a geometry with the id "
+                f"{first.get_value()}; its properties cannot be updated"
+            )
 
     def _raise_unqueryable(self, a: GeometryId, b: GeometryId) -> NoReturn:
         """Drake's message for CollisionFiltered of a non-proximity or unknown geometry."""

@@ -78,7 +78,10 @@ class SceneGraph(LeafSystem):
         return self._model
 
     def _default_state(self) -> GeometryState:
-        """A copy of the cached model, refreshing the cache first if it is dirty."""
+        """A copy of the cached model, refreshing the cache first if it is dirty.
+
+        Raises as Drake does if the model has an unengined geometry (``GeometryState``)."""
+        self._model.check_engined()
         if self._dirty:
             self._cache = self._model.clone()
             self._dirty = False

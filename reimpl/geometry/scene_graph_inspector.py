@@ -58,7 +58,7 @@ class SceneGraphInspector:
     # ---------------------------------------------------------- filtering
     def GetCollisionCandidates(self) -> set[tuple[GeometryId, GeometryId]]:
         """C, each pair as (a, b) with a.get_value() < b.get_value()."""
-        return self._state.collision_filter.candidates()
+        return self._state.collision_candidates()
 
     def CollisionFiltered(self, geometry_id1: GeometryId, geometry_id2: GeometryId) -> bool:
         """True iff the pair is not in C; raises unless both are proximity geometries."""
