@@ -2167,3 +2167,33 @@ def test_an_implausible_inertia_is_a_warning_and_a_strict_error(mb: Modules) -> 
         "The associated principal moments of inertia:\n-1  1  1\n"
         "are invalid since at least one is negative."
     )
+
+
+@pytest.mark.parametrize(
+    ("version", "frame", "error"),
+    [
+        ("1.6", 'frame=""', None),
+        ("1.6", 'frame="l"', '@relative_to="l"'),
+        ("1.9", 'frame=""', '@frame=""'),
+    ],
+)
+def test_sdf_an_empty_pose_frame_before_1_7_is_dropped_where_a_named_one_is_refused(
+    mb: Modules, version: str, frame: str, error: str | None
+) -> None:
+    """Measured on pydrake 1.51.1 (found in Gepetto/example-robot-data's cassie.sdf, SDFormat
+    1.6): the conversion to 1.7 turns ``frame`` into ``relative_to``, which an ``<inertial>``
+    pose does not have, but drops an empty one."""
+    text = (
+        f'<sdf version="{version}"><model name="m"><link name="l"><inertial>'
+        f"<pose {frame}>0 0 1 0 0 0</pose><mass>1</mass></inertial></link></model></sdf>"
+    )
+    if error is None:
+        assert Parsed(mb).add(text, "sdf") == ["m"]
+        return
+    with pytest.raises(RuntimeError) as info:
+        Parsed(mb).add(text, "sdf")
+    attribute = error.split("=")[0].removeprefix("@")
+    assert str(info.value) == (
+        f'<data-string>:1: error: At XML path /sdf/model[@name="m"]/link[@name="l"]/inertial/'
+        f"pose[{error}]: XML Attribute[{attribute}] in element[pose] not defined in SDF.\n"
+    )

@@ -23,7 +23,7 @@ Per element, in this order (the elements and attributes of _sdf_schema):
 
 After the whole document (version 1.8 and later): no name holds ``::``.
 Versions before 1.7 are converted first: ``<pose frame=...>`` becomes
-``relative_to``, and ``<use_parent_model_frame>`` (true by default before
+``relative_to`` (an empty ``frame`` is dropped), and ``<use_parent_model_frame>`` (true by default before
 1.5) becomes ``<xyz expressed_in="__model__">``.
 """
 
@@ -299,7 +299,9 @@ def _convert(root: XmlElement, version: tuple[int, ...]) -> None:
         return
     for pose in root.iter("pose"):
         if "frame" in pose.attrib and "relative_to" not in pose.attrib:
-            pose.set("relative_to", pose.attrib.pop("frame"))
+            frame = pose.attrib.pop("frame")
+            if frame:  # N.B. Measured: an empty frame is dropped (an <inertial> pose takes it).
+                pose.set("relative_to", frame)
     for joint in root.iter("joint"):
         for axis in [*children(joint, "axis"), *children(joint, "axis2")]:
             flags = children(axis, "use_parent_model_frame")
