@@ -127,4 +127,5 @@ def test_register_geometry_takes_a_shape_and_a_pose_and_the_queries_compare_by_t
         "compute_signed_distance_pair_closest_points",
         "x_wg",
         "x_wf",
+        "model_inventory",
     }

@@ -19,7 +19,7 @@ from conformance.backends.environments import DrakeEnvironmentError, find_python
 from conformance.backends.loader import load_backend
 from conformance.backends.subprocess_backend import WorkerBackend
 from conformance.corpus.loader import default_corpus_root, load_corpus
-from conformance.protocol import Command
+from conformance.protocol import Command, ErrorKind
 from conformance.run.runner import Status, run_case
 
 RELEASE = "1.58.0"
@@ -127,25 +127,28 @@ def test_a_worker_killed_between_cases_is_replaced_at_the_next_reset_without_a_c
 
 
 @needs_312
-def test_unguarded_deactivate_of_anchored_geometry_crashes_1_58_with_drakes_message(
+def test_unguarded_deactivate_of_anchored_geometry_is_1_58s_failed_demand_and_the_worker_lives(
     worker: WorkerBackend,
 ) -> None:
-    """Drake 1.55-1.58 end the process on it (known divergence deactivate-anchored-aborts)."""
+    """Drake 1.55-1.58 fail a DRAKE_DEMAND on it (known divergence deactivate-anchored-aborts);
+    pydrake raises SystemExit, which the worker answers as an error of kind 'assertion'."""
     worker.reset()
-    worker.arm_guards(frozenset())  # no guard: let the release crash
+    worker.arm_guards(frozenset())  # no guard: let the release fail its demand
     try:
         register = Command(
             "register_geometry", {"name": "A", "frame": "world", "roles": ["proximity"]}
         )
         assert worker.execute(register).error is None
-        with pytest.raises(BackendCrashError) as crash:
-            call(worker, "execute", Command("deactivate", {"set": {"frames": ["world"]}}),
-                 where="step 2 (deactivate)", returns=object)  # fmt: skip
+        result = worker.execute(Command("deactivate", {"set": {"frames": ["world"]}}))
     finally:
         worker.arm_guards(frozenset({"deactivate-anchored-aborts"}))
-    assert "at step 2 (deactivate): the worker exited with status" in str(crash.value)
-    assert "ApplyActiveStatusChange" in str(crash.value)  # the tail of its stderr
-    worker.reset()  # a new worker, with the guard armed again
+    assert result.error is not None
+    assert result.error.kind is ErrorKind.ASSERTION
+    assert result.error.message == (
+        "Failure at external/drake+/geometry/proximity_engine.cc:# in ApplyActiveStatusChange(): "
+        "condition 'iter != dynamic_objects_.end()' failed."
+    )
+    worker.reset()
     assert worker.execute(register).error is None
 
 
