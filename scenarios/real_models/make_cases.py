@@ -8,13 +8,14 @@ Each model file below ``drake/`` and ``drake_models/`` is a case
 (``conformance.corpus.model_files``): parse, Finalize, the plant's inventory,
 the candidate pairs after each step, and for files that may declare
 collision filter groups, the parser's group report. Every backend is
-compared with the reference step by step; this script only adds what the
-reference cannot say by itself: the steps where Drake raises. It runs every
-case on pydrake (this environment's release) and on each ``--drake`` release
-(in its own environment) and writes each failing step's error as an
-expectation for the releases that gave it (``until`` the older one, ``since``
-the newer one, or for all releases where they agree), so ``run`` knows that
-the file is rejected on purpose, not a broken input.
+compared with the reference step by step; this script adds what a case can
+say by itself, small and stable: the model instances each ``add_models``
+returns, and the steps where Drake raises (so ``run`` knows a file is
+rejected on purpose, not a broken input). It runs every case on pydrake (this
+environment's release) and on each ``--drake`` release (in its own
+environment) and writes each answer as an expectation for the releases that
+gave it (``until`` the older one, ``since`` the newer one, or for all
+releases where they agree).
 
 Output: ``drake_repository.json`` (Drake's own files) and ``robot_models.json``
 (``drake_models``), beside this script. The same inputs give the same files.
@@ -47,47 +48,61 @@ CORPORA: Mapping[str, tuple[str, str]] = {
         "drake_models",
     ),
 }
-#: Errors on a release: case description → {step number: {"kind", "message"}}.
-Errors = dict[str, dict[int, dict[str, str]]]
+#: Answers on a release: case description → {step number: an expectation, ``{"error":
+#: {"kind", "message"}}`` or ``{"returns": [model instances]}``}.
+Answers = dict[str, dict[int, dict[str, Any]]]
 
 
-def _errors(data: dict[str, Any], at: Path, backend: Backend) -> Errors:
-    """The steps where ``backend`` raises, per case of ``data``."""
-    found: Errors = {}
+def _answers(data: dict[str, Any], at: Path, backend: Backend) -> Answers:
+    """The steps where ``backend`` raises, and what each add_models returns, per case."""
+    found: Answers = {}
     scenario = scenario_from_data(data, at)
     for count, case in enumerate(scenario.cases, 1):
         report = run_case(case, [backend])
         trace = report.traces.get(backend.name)
         if trace is None or trace.broken is not None:
             raise RuntimeError(f"{case.qualified_name}: {backend.name} broke: {report.aborted}")
-        for number, result in enumerate(trace.results, 1):
+        for number, (step, result) in enumerate(zip(case.steps, trace.results, strict=True), 1):
             if result.error is not None:
                 error = {"kind": result.error.kind.value, "message": result.error.message}
-                found.setdefault(case.description, {})[number] = error
+                found.setdefault(case.description, {})[number] = {"error": error}
+            elif step.op == "add_models":
+                found.setdefault(case.description, {})[number] = {"returns": result.value}
         if count % 25 == 0:
             print(f"  {backend.name}: {count}/{len(scenario.cases)}", file=sys.stderr)
     return found
 
 
-def _expectations(per_release: Sequence[tuple[str, Errors]]) -> dict[str, Any]:
-    """{description: {step: expect}}: one expectation where all releases agree, else one
-    per release (``until`` the oldest, ``since`` the others; releases are given oldest
-    first)."""
+def _expectations(per_release: Sequence[tuple[str, Answers]]) -> dict[str, Any]:
+    """{description: {step: expect}}: one expectation where all releases agree, else one per
+    run of consecutive releases (oldest first) that agree: the first run ``until`` its last
+    release, the last ``since`` its first, any between both; releases between two runs are
+    not checked (nothing was measured there)."""
     merged: dict[str, dict[int, Any]] = {}
-    keys = {(d, n) for _, errors in per_release for d, steps in errors.items() for n in steps}
+    keys = {(d, n) for _, answers in per_release for d, steps in answers.items() for n in steps}
     for description, number in sorted(keys):
         seen = [
-            (release, errors.get(description, {}).get(number)) for release, errors in per_release
+            (release, answers.get(description, {}).get(number)) for release, answers in per_release
         ]
-        if all(error == seen[0][1] for _, error in seen):
-            merged.setdefault(description, {})[number] = {"error": seen[0][1]}
+        runs: list[tuple[list[str], Any]] = []
+        for release, answer in seen:
+            if runs and runs[-1][1] == answer:
+                runs[-1][0].append(release)
+            else:
+                runs.append(([release], answer))
+        if len(runs) == 1:
+            merged.setdefault(description, {})[number] = runs[0][1]
             continue
         expects = []
-        for index, (release, error) in enumerate(seen):
-            if error is None:
+        for index, (releases, answer) in enumerate(runs):
+            if answer is None:
                 continue
-            bound = "until" if index == 0 else "since"
-            expects.append({bound: release, "error": error})
+            bounds = {}
+            if index > 0:
+                bounds["since"] = releases[0]
+            if index < len(runs) - 1:
+                bounds["until"] = releases[-1]
+            expects.append({**bounds, **answer})
         merged.setdefault(description, {})[number] = expects
     return merged
 
@@ -106,7 +121,7 @@ def _write(name: str, drake_specs: Sequence[str]) -> Path:
     per_release = []
     for backend in backends:
         print(f"{name}: {len(data['cases'])} cases on {backend.name}", file=sys.stderr)
-        per_release.append((backend.version(), _errors(data, HERE / name, backend)))
+        per_release.append((backend.version(), _answers(data, HERE / name, backend)))
     per_release.sort(key=lambda item: tuple(int(p) for p in item[0].split(".")))
     expected = _expectations(per_release)
     cases = model_cases(HERE, files, folder_arg=".")
