@@ -28,10 +28,15 @@ import logging
 import os
 import re
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import Protocol
 
-if TYPE_CHECKING:
-    from reimpl.multibody.parsing._package_map import PackageMap
+
+class PackageMap(Protocol):
+    """What resolution asks of a package map (``_package_map.PackageMap`` has it)."""
+
+    def Contains(self, package_name: str) -> bool: ...
+
+    def _path_and_deprecation(self, package_name: str) -> tuple[str, str | None]: ...
 
 __all__ = ["UriError", "join_path", "lexically_normal", "resolve_uri"]
 

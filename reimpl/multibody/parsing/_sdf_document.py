@@ -23,8 +23,8 @@ Per element, in this order (the elements and attributes of _sdf_schema):
 
 After the whole document (version 1.8 and later): no name holds ``::``.
 Versions before 1.7 are converted first: ``<pose frame=...>`` becomes
-``relative_to`` (an empty ``frame`` is dropped), and ``<use_parent_model_frame>`` (true by default before
-1.5) becomes ``<xyz expressed_in="__model__">``.
+``relative_to`` (an empty ``frame`` is dropped), and ``<use_parent_model_frame>``
+(true by default before 1.5) becomes ``<xyz expressed_in="__model__">``.
 """
 
 from __future__ import annotations
