@@ -38,6 +38,7 @@ class PackageMap(Protocol):
 
     def _path_and_deprecation(self, package_name: str) -> tuple[str, str | None]: ...
 
+
 __all__ = ["UriError", "join_path", "lexically_normal", "resolve_uri"]
 
 _URI = re.compile(r"([a-z0-9+.-]+)://([^/\n\r]*)/+([^\n\r]*)")
