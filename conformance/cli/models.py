@@ -25,11 +25,11 @@ from typing import TextIO
 from conformance.backends.loader import BackendLoadError
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_backend_options, refuse
-from conformance.cli.run import PROG, load_backends, run_cases
+from conformance.cli.run import load_backends, run_cases, write_outputs
 from conformance.corpus.loader import PACKAGE_MANIFEST, Case, ScenarioError
 from conformance.corpus.model_files import MODEL_SUFFIXES, find_model_files, model_scenario
-from conformance.run.outputs import unwritable, write_or_fall_back
-from conformance.run.report import RunReport, write_json, write_junit
+from conformance.run.outputs import unwritable
+from conformance.run.report import RunReport
 from conformance.run.runner import choose_reference
 
 __all__ = ["add_models_parser", "model_file_cases", "models_command"]
@@ -120,15 +120,7 @@ def models_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         backends, specs=list(args.backends or ("reimpl", "pydrake")), reference=reference
     )
     code = run_cases(args, cases, report, err, bad_models_are_input_errors=False, keep_going=True)
-    report.print_failures(out, prog=PROG)
-    out.write("\n")
-    report.print_xfails(out)
-    report.print_skips(out)
-    report.print_summary(out)
-    if args.junit:
-        write_or_fall_back(args.junit, lambda path: write_junit(report, path), err)
-    if args.json:
-        write_or_fall_back(args.json, lambda path: write_json(report, path), err)
+    write_outputs(args, report, out, err)
     if code == EXIT_OK and report.failed:
         code = EXIT_FAILURE
     return code

@@ -33,6 +33,7 @@ __all__ = [
     "run_cases",
     "run_command",
     "select_cases",
+    "write_outputs",
 ]
 
 PROG = "python -m conformance"
@@ -179,15 +180,7 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         input_errors=[str(exc) for exc in input_errors],
     )
     code = run_cases(args, cases, report, err)
-    report.print_failures(out, prog=PROG)
-    out.write("\n")
-    report.print_xfails(out)
-    report.print_skips(out)
-    report.print_summary(out)
-    if args.junit:
-        write_or_fall_back(args.junit, lambda path: write_junit(report, path), err)
-    if args.json:
-        write_or_fall_back(args.json, lambda path: write_json(report, path), err)
+    write_outputs(args, report, out, err)
     if input_errors:
         err.write(f"error: {len(input_errors)} bad scenario file(s) or case(s); see above\n")
         return EXIT_USAGE
@@ -198,6 +191,20 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         err.write("error: no case ran on any backend\n")
         code = EXIT_USAGE
     return code
+
+
+def write_outputs(args: argparse.Namespace, report: RunReport, out: TextIO, err: TextIO) -> None:
+    """The failures, xfails, skips and summary on ``out``; ``--junit`` and ``--json`` files
+    (falling back as ``run.outputs`` says if they cannot be written)."""
+    report.print_failures(out, prog=PROG)
+    out.write("\n")
+    report.print_xfails(out)
+    report.print_skips(out)
+    report.print_summary(out)
+    if args.junit:
+        write_or_fall_back(args.junit, lambda path: write_junit(report, path), err)
+    if args.json:
+        write_or_fall_back(args.json, lambda path: write_json(report, path), err)
 
 
 def run_cases(
