@@ -24,8 +24,9 @@ the case's folder is the package ``pkg``, and each folder of it with a
   frame, ``add_collision_filter_group`` with ``members``,
   ``member_groups``, ``ignored_collision_filter_groups`` and a group
   ``model_namespace``;
-- **XML quirks** (``conformance.fuzz.xml_quirks``): now and then the root
-  XML document bent in a way tinyxml2 accepts.
+- **XML quirks** (``conformance.fuzz.xml_quirks``): one time in three the
+  root XML document bent in ways tinyxml2 accepts (each quirk in about three
+  of four of them).
 
 With ``invalid``, one fault is drawn: a model fault
 (``conformance.fuzz.models.FAULTS``), an XML error, an include of a file
@@ -42,6 +43,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from typing import TypeVar
 
 from hypothesis import strategies as st
 
@@ -55,7 +57,14 @@ from conformance.fuzz.model_data import (
     geometry_names,
 )
 from conformance.fuzz.model_render import MESH_BASE, render
-from conformance.fuzz.models import FAULTS, free_roots, kinematic_trees
+from conformance.fuzz.models import (
+    FAULTS,
+    GROUP_FAULTS,
+    faults_for,
+    free_roots,
+    kinematic_trees,
+    spread,
+)
 from conformance.fuzz.xml_quirks import XML_QUIRKS
 
 __all__ = [
@@ -64,9 +73,11 @@ __all__ = [
     "PACKAGES",
     "SCENE_FORMATS",
     "SWITCHES",
+    "UNOBSERVED_FAULTS",
     "Scene",
     "model_scenes",
     "package_xml",
+    "scene_faults",
 ]
 
 DIRECTIVES = "dmd.yaml"
@@ -78,6 +89,15 @@ MESH_OBJ = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3
 _MESH_STL = "solid t\nendsolid t\n"
 _MESHES = "meshes/"
 _NAMESPACE = "ns"
+T = TypeVar("T")
+
+
+#: Faults a scene does not draw: after a ``.stl`` collision mesh fails (MakeConvexHull),
+#: pydrake 1.51.1's SceneGraph holds the geometry with proximity properties that its
+#: proximity engine lacks, and GetCollisionCandidates raises IndexError('_Map_base::at'),
+#: so the runner cannot observe the state after the step (1.58.0 lists the geometry's
+#: pairs; measured). ``kinematic_trees(invalid=True, faults=("stl_collision",))`` draws it.
+UNOBSERVED_FAULTS = frozenset({"stl_collision"})
 
 
 def package_xml(name: str) -> str:
@@ -154,7 +174,12 @@ class Scene:
     path: str | None
     files: dict[str, str] = field(default_factory=dict)
     instances: tuple[tuple[str, Model, str], ...] = ()
-    valid: bool = True
+    #: The fault drawn (``scene_faults``), or None for a valid scene.
+    fault: str | None = None
+
+    @property
+    def valid(self) -> bool:
+        return self.fault is None
 
     @property
     def top(self) -> str:
@@ -198,7 +223,12 @@ class _Switches:
         return [k for k in JOINT_KINDS if self.on(f"urdf:joint-{k}")]
 
     def faults(self) -> list[str]:
-        return [f for f in FAULTS if self.on(f"fault:{f}")]
+        return [f for f in FAULTS if self.on(f"fault:{f}") and f not in UNOBSERVED_FAULTS]
+
+
+def _spread(draw: st.DrawFn, items: Sequence[T]) -> T:
+    """One of ``items``, about evenly (``models.spread``)."""
+    return draw(spread(items))
 
 
 def _choice(draw: st.DrawFn, on: bool, share: int = 2) -> bool:
@@ -302,11 +332,15 @@ def _xml_scene(
     if sdf:
         least = 1 if fault == "include-missing" else 0
         includes, included = draw(_includes(switches, packages, shapes, least))
+    if fault == "include-missing":  # a name no scene writes: a case's files stay for later steps
+        includes[0] = replace(includes[0], uri=f"{includes[0].uri}_gone")
+        included = included[1:]
+    broken, faults = _model_faults(fault, switches)
     model = draw(
         kinematic_trees(
             formats=(fmt,),
             joint_kinds=switches.kinds(fmt),
-            invalid=fault == "model",
+            invalid=broken,
             max_nested=2 if sdf and switches.on("sdf:nested-model") else 0,
             shapes=shapes,
             max_frames=3 if switches.on(f"{fmt}:frame") else 0,
@@ -314,26 +348,26 @@ def _xml_scene(
             joint_attributes=switches.on(f"{fmt}:limit"),
             includes=includes,
             joints_into_includes=switches.on("sdf:include-joint"),
-            faults=switches.faults(),
+            faults=faults,
         )
     )
     text = render(model, fmt, mesh_base=MESH_BASE)
-    quirks = [
-        q
-        for q in XML_QUIRKS.values()
-        if q.accepted == (fault != "xml") and switches.on(f"xml:{q.name}")
-    ]
-    if quirks and (fault == "xml" or _choice(draw, True, 6)):
-        text = draw(st.sampled_from(quirks)).apply(text)
-    if fault == "include-missing":
-        included = included[1:]  # the first include names a file that is not there
+    if fault is not None and fault.startswith("xml:"):
+        text = XML_QUIRKS[fault.removeprefix("xml:")].apply(text)
+    quirks = [q for q in XML_QUIRKS.values() if q.accepted and switches.on(f"xml:{q.name}")]
+    if fault is None and quirks and _choice(draw, True, 3):
+        # Each quirk in about three of four bent documents (they combine: xml_quirks); a
+        # shrunk one keeps the quirks a finding needs.
+        for quirk in quirks:
+            if draw(st.integers(0, 3)):
+                text = quirk.apply(text)
     files = {path: content for named in included for path, content in named.items()}
     files |= _mesh_files([text, *files.values()])
     path = None
     if _choice(draw, switches.on("parse:file")):
         path = f"{_package(draw, packages)}{model.name}.{fmt}"
         files[path] = text
-    return Scene(fmt, text, path, _with_packages(files), ((model.name, model, fmt),), not fault)
+    return Scene(fmt, text, path, _with_packages(files), ((model.name, model, fmt),), fault)
 
 
 # ------------------------------------------------------------------ directives
@@ -373,7 +407,7 @@ def _directive_models(
     draw: st.DrawFn, options: _Options, prefix: str, count: int, *, fault: bool = False
 ) -> tuple[list[tuple[_Instance, str]], dict[str, str]]:
     """``count`` models in files, each with its URI, and the files (the first with a model
-    fault if ``fault``)."""
+    fault (``FAULTS``) if ``fault``)."""
     switches = options.switches
     formats = [f for f in ("urdf", "sdf") if switches.on(f"format:{f}")] or ["urdf"]
     out, files = [], {}
@@ -504,10 +538,8 @@ def _welds(draw: st.DrawFn, doc: _Directives, frame: tuple[str, str] | None) -> 
 _DMD_FAULTS = ("missing-namespace", "unknown-weld-frame", "model-twice", "unknown-member")
 
 
-def _directives_fault(draw: st.DrawFn, doc: _Directives, switches: _Switches, uri: str) -> None:
-    """One directives fault (``_DMD_FAULTS``) at the end of ``doc``; ``uri`` is d0's file."""
-    faults = [f for f in _DMD_FAULTS if switches.on(f"fault:dmd-{f}")] or ["unknown-member"]
-    fault = draw(st.sampled_from(faults))
+def _directives_fault(doc: _Directives, fault: str, uri: str) -> None:
+    """The directives fault (``_DMD_FAULTS``) at the end of ``doc``; ``uri`` is d0's file."""
     name = doc.instances[0][0]
     if fault == "missing-namespace":
         doc.add("add_directives", file="package://pkg/none.dmd.yaml", model_namespace="nope")
@@ -523,7 +555,7 @@ def _directives_fault(draw: st.DrawFn, doc: _Directives, switches: _Switches, ur
 def _directives_scene(draw: st.DrawFn, options: _Options, fault: str | None) -> Scene:
     switches = options.switches
     models, files = draw(
-        _directive_models(options, "d", draw(st.integers(1, 3)), fault=fault == "model")
+        _directive_models(options, "d", draw(st.integers(1, 3)), fault=fault == "model:any")
     )
     doc = _Directives()
     for instance, uri in models:
@@ -551,18 +583,55 @@ def _directives_scene(draw: st.DrawFn, options: _Options, fault: str | None) -> 
         _welds(draw, doc, frame)
     if switches.on("dmd:add_collision_filter_group"):
         draw(_collision_filter_groups(doc, switches, instances, extra_groups))
-    if fault == "dmd":
-        _directives_fault(draw, doc, switches, models[0][1])
+    if fault is not None and fault.startswith("dmd:"):
+        _directives_fault(doc, fault.removeprefix("dmd:"), models[0][1])
     text = doc.text()
     files |= _mesh_files(list(files.values()))
     root = None
     if _choice(draw, switches.on("parse:file")):
         root = f"{_package(draw, options.packages)}main.dmd.yaml"
         files[root] = text
-    return Scene(DIRECTIVES, text, root, _with_packages(files), tuple(instances), not fault)
+    return Scene(DIRECTIVES, text, root, _with_packages(files), tuple(instances), fault)
 
 
 # ------------------------------------------------------------------ scenes
+def scene_faults(fmt: str, without: frozenset[str] = frozenset()) -> list[str]:
+    """The faults an invalid scene of ``fmt`` may have, in their order (``_faults_of``)."""
+    return _faults_of(fmt, _Switches(without))
+
+
+def _faults_of(fmt: str, switches: _Switches) -> list[str]:
+    """The faults a scene of ``fmt`` may have: ``dmd:<fault>``, ``xml:<quirk>`` (a quirk
+    tinyxml2 rejects), ``include-missing``, or ``model:<fault>`` (``model:group``: one of
+    the group faults; ``model:any``: any model fault)."""
+    if fmt == DIRECTIVES:
+        return ["model:any", *(f"dmd:{f}" for f in _DMD_FAULTS if switches.on(f"fault:dmd-{f}"))]
+    xml = [
+        f"xml:{q.name}"
+        for q in XML_QUIRKS.values()
+        if not q.accepted and switches.on(f"xml:{q.name}")
+    ]
+    faults = [f for f in faults_for(fmt) if f in switches.faults() and f not in GROUP_FAULTS]
+    if any(switches.on(f"fault:{f}") for f in GROUP_FAULTS):
+        faults.insert(0, "group")
+    kinds = [*xml, *(f"model:{f}" for f in faults)]
+    if fmt == "sdf" and switches.on("fault:include-missing"):
+        kinds.append("include-missing")
+    return kinds or ["model:any"]
+
+
+def _model_faults(fault: str | None, switches: _Switches) -> tuple[bool, list[str]]:
+    """Whether a model is drawn broken, and with which faults (``_fault``)."""
+    if fault is None or not fault.startswith("model:"):
+        return False, switches.faults()
+    name = fault.removeprefix("model:")
+    if name == "group":
+        return True, [f for f in GROUP_FAULTS if switches.on(f"fault:{f}")]
+    if name == "any":
+        return True, switches.faults()
+    return True, [name]
+
+
 @st.composite
 def model_scenes(
     draw: st.DrawFn,
@@ -570,24 +639,18 @@ def model_scenes(
     formats: Sequence[str] = SCENE_FORMATS,
     invalid: bool = False,
     without: frozenset[str] = frozenset(),
+    fault_index: int | None = None,
 ) -> Scene:
-    """One scene (see the module doc): valid, or with ``invalid`` one fault."""
+    """One scene (see the module doc): valid, or with ``invalid`` one fault, the
+    ``fault_index``-th (modulo their number) of the format's faults if given, else any."""
     switches = _Switches(without)
     usable = [f for f in formats if switches.on(f"format:{f.split('.')[0]}")]
-    fmt = draw(st.sampled_from(usable or list(formats)))
+    fmt = _spread(draw, usable or list(formats))
     packages = _choice(draw, switches.on("packages"))
     fault = None
     if invalid:
-        kinds = ["model"]
-        if fmt != DIRECTIVES and any(
-            not q.accepted and switches.on(f"xml:{q.name}") for q in XML_QUIRKS.values()
-        ):
-            kinds.append("xml")
-        if fmt == "sdf" and switches.on("fault:include-missing"):
-            kinds.append("include-missing")
-        if fmt == DIRECTIVES:
-            kinds.append("dmd")
-        fault = draw(st.sampled_from(kinds))
+        faults = _faults_of(fmt, switches)
+        fault = _spread(draw, faults) if fault_index is None else faults[fault_index % len(faults)]
     if fmt == DIRECTIVES:
         return draw(_directives_scene(_Options(switches, packages), fault))
     return draw(_xml_scene(fmt, switches, packages, fault))

@@ -9,12 +9,12 @@ text before (measured for URDF and SDFormat, from a string and from a file):
 ======================== ======== ==================================================
 quirk                    accepted what it does
 ======================== ======== ==================================================
+cdata                    yes      a CDATA section inside the root element
+doctype                  yes      a ``<!DOCTYPE>`` before the root element
 dashdash-comment         yes      a comment holding ``--`` before the root element
 blank-before-declaration yes      a blank line, then ``<?xml version="1.0"?>``
-trailing-nul             yes      a NUL character after the document
 bom                      yes      a UTF-8 byte order mark first
-doctype                  yes      a ``<!DOCTYPE>`` before the root element
-cdata                    yes      a CDATA section inside the root element
+trailing-nul             yes      a NUL character after the document
 unclosed-root            no       the root element's end tag cut off
 mismatched-end-tag       no       the root element's end tag misspelt
 trailing-text            no       text after the root element
@@ -22,7 +22,9 @@ processing-instruction   no       ``<?pi?>`` inside the root element
 duplicate-attribute      no       the ``<robot>``'s or first ``<model>``'s ``name`` twice
 ======================== ======== ==================================================
 
-An error's message names tinyxml2's error (``XML_ERROR_PARSING_TEXT``) and,
+The accepted quirks combine (every subset, applied in ``XML_QUIRKS``'s order
+of the accepted ones, parses as the text before: measured). An error's
+message names tinyxml2's error (``XML_ERROR_PARSING_TEXT``) and,
 for SDFormat, the line; in a URDF file read from disk it says ``XML file``,
 from a string ``XML string``.
 """
@@ -87,6 +89,14 @@ def _misspelt(text: str) -> bool:
 XML_QUIRKS: dict[str, XmlQuirk] = {
     quirk.name: quirk
     for quirk in (
+        # The accepted ones, in the order a document takes several (inside out).
+        XmlQuirk(
+            "cdata",
+            True,
+            lambda t: _after_root_start(t, "<![CDATA[ a < b ]]>"),
+            _searcher(r"<!\[CDATA\["),
+        ),
+        XmlQuirk("doctype", True, lambda t: "<!DOCTYPE x>\n" + t, _searcher(r"<!DOCTYPE")),
         XmlQuirk(
             "dashdash-comment",
             True,
@@ -97,17 +107,10 @@ XML_QUIRKS: dict[str, XmlQuirk] = {
             "blank-before-declaration",
             True,
             lambda t: '\n<?xml version="1.0"?>\n' + t,
-            _searcher(r"\A\s+<\?xml\b"),
+            _searcher(r"\A\ufeff?\s+<\?xml\b"),
         ),
-        XmlQuirk("trailing-nul", True, lambda t: t + "\0", _searcher(r"\x00\s*\Z")),
         XmlQuirk("bom", True, lambda t: "\ufeff" + t, _searcher(r"\A\ufeff")),
-        XmlQuirk("doctype", True, lambda t: "<!DOCTYPE x>\n" + t, _searcher(r"<!DOCTYPE")),
-        XmlQuirk(
-            "cdata",
-            True,
-            lambda t: _after_root_start(t, "<![CDATA[ a < b ]]>"),
-            _searcher(r"<!\[CDATA\["),
-        ),
+        XmlQuirk("trailing-nul", True, lambda t: t + "\0", _searcher(r"\x00\s*\Z")),
         XmlQuirk("unclosed-root", False, _cut_root_end, _unclosed),
         XmlQuirk("mismatched-end-tag", False, _misspell_root_end, _misspelt),
         XmlQuirk(
