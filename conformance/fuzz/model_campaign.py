@@ -106,8 +106,11 @@ __all__ = [
     "run_model_case",
 ]
 
-#: The grammar elements ``without`` may leave out: the scenes' and the renaming flow.
-MODEL_SWITCHES: tuple[str, ...] = (*SWITCHES, "rename-then-parse")
+#: The grammar elements of a case, besides its scenes': the renaming flow, a directives
+#: scene parsed again under a prefix, and a directives scene parsed again at all.
+_CASE_SWITCHES = frozenset({"rename-then-parse", "dmd:prefix", "dmd:again"})
+#: The grammar elements ``without`` may leave out: the scenes' and the case's.
+MODEL_SWITCHES: tuple[str, ...] = (*SWITCHES, *sorted(_CASE_SWITCHES))
 #: What a backend needs for ``fuzz --models`` at all.
 MODEL_FEATURES = frozenset({"multibody", "parsing"})
 #: The names of the bodies a case adds, their collision geometries and joints, before the
@@ -171,6 +174,17 @@ class _Plan:
     added: list[tuple[dict[str, Any], str | None, int]]
     applies: list[tuple[Any, bool]]
     reports: list[str] = field(default_factory=list)
+
+
+def _directives_plan(plan: _Plan, without: frozenset[str]) -> _Plan:
+    """The plan for a directives scene: no prefix (it scopes directives in ways of their
+    own), and no parse again under a prefix (``dmd:prefix``) or at all (``dmd:again``)."""
+    plan = replace(plan, prefix=None)
+    if "dmd:prefix" in without and plan.again is not None and "prefix" in plan.again:
+        plan = replace(plan, again=None)
+    if "dmd:again" in without:
+        plan = replace(plan, again=None, rename=None)
+    return plan
 
 
 def _reports(plan: _Plan) -> list[Command]:
@@ -246,10 +260,10 @@ def model_cases(
         draw(st.lists(st.tuples(cs.declaration_templates(), st.booleans()), max_size=max_applies)),
         reports,
     )
-    scene_without = without - {"rename-then-parse"}
+    scene_without = without - _CASE_SWITCHES
     scene = draw(model_scenes(formats=formats, invalid=invalid, without=scene_without))
-    if scene.format == DIRECTIVES:  # a prefix scopes directives in ways of their own
-        plan = replace(plan, prefix=None)
+    if scene.format == DIRECTIVES:
+        plan = _directives_plan(plan, without)
     # An invalid example parses more broken scenes, with the next faults of their table:
     # the faults are many, the invalid examples few.
     extra: list[Scene] = []

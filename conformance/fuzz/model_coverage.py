@@ -200,6 +200,7 @@ _BY_SWITCH: Mapping[str, tuple[str, ...]] = {
     "urdf:mesh": ("urdf:mesh", "urdf:mesh-scale-1", "urdf:mesh-scale-3"),
     "urdf:joint-drake_planar": ("urdf:drake:joint-planar",),
     "rename-then-parse": ("rename", "rename-then-parse", "rename-reuse-parser"),
+    "reversed-joints": ("urdf:joint-world-child",),
     "fault:two_value_scale": ("parse-error:mesh-scale",),
     "fault:frame_cycle": ("parse-error:frame-cycle",),
     "fault:negative_damping": ("parse-error:damping",),

@@ -139,6 +139,9 @@ SWITCHES: tuple[str, ...] = (
     "sdf:frame-attached_to-nested",
     "urdf:limit",
     "sdf:limit",
+    "urdf:mesh-scale-1",
+    "reversed-joints",
+    "dmd:nested-model",
     "dmd:add_model_instance",
     "dmd:add_directives",
     "dmd:model_namespace",
@@ -349,6 +352,8 @@ def _xml_scene(
             includes=includes,
             joints_into_includes=switches.on("sdf:include-joint"),
             faults=faults,
+            one_value_scale=switches.on("urdf:mesh-scale-1"),
+            reversed_joints=switches.on("reversed-joints"),
         )
     )
     text = render(model, fmt, mesh_base=MESH_BASE)
@@ -420,9 +425,11 @@ def _directive_models(
                 max_groups=2,
                 joint_kinds=switches.kinds(fmt),
                 shapes=switches.shapes(fmt),
-                max_nested=1 if fmt == "sdf" and switches.on("sdf:nested-model") else 0,
+                max_nested=1 if fmt == "sdf" and switches.on("dmd:nested-model") else 0,
                 invalid=fault and k == 0,
                 faults=switches.faults(),
+                one_value_scale=switches.on("urdf:mesh-scale-1"),
+                reversed_joints=switches.on("reversed-joints"),
                 # A URDF joint from the world adds a frame '<joint>_parent' to the world's
                 # model instance: two models' joints must differ in name (measured).
                 prefix=f"{prefix}{k}",

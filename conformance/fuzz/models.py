@@ -234,9 +234,14 @@ class _Root(enum.Enum):
     CHILD_WORLD = "child_world"  # a joint from it to the world (URDF, reversible kinds)
 
 
-def _geometry(shapes: Sequence[str], formats: Sequence[str]) -> st.SearchStrategy[Geometry]:
-    """One geometry; a mesh gets a scale every format reads, and a visual one may name .stl."""
+def _geometry(
+    shapes: Sequence[str], formats: Sequence[str], one_value_scale: bool = True
+) -> st.SearchStrategy[Geometry]:
+    """One geometry; a mesh gets a scale every format reads (one value only if
+    ``one_value_scale``), and a visual one may name .stl."""
     scales = [s for s in _SCALES["urdf"] if all(s in _SCALES[fmt] for fmt in formats)]
+    if not one_value_scale:
+        scales = [s for s in scales if s is None or " " in s]
 
     def mesh(geometry: Geometry) -> st.SearchStrategy[Geometry]:
         if geometry.shape in _VISUAL_ONLY:
@@ -261,9 +266,13 @@ def _geometry(shapes: Sequence[str], formats: Sequence[str]) -> st.SearchStrateg
 
 @st.composite
 def _geometries(
-    draw: st.DrawFn, max_geometries: int, shapes: Sequence[str], formats: Sequence[str]
+    draw: st.DrawFn,
+    max_geometries: int,
+    shapes: Sequence[str],
+    formats: Sequence[str],
+    one_value_scale: bool = True,
 ) -> tuple[Geometry, ...]:
-    drawn = draw(st.lists(_geometry(shapes, formats), max_size=max_geometries))
+    drawn = draw(st.lists(_geometry(shapes, formats, one_value_scale), max_size=max_geometries))
     seen: set[tuple[bool, str]] = set()
     out = []
     for geometry in drawn:  # names unique per body and element kind
@@ -419,7 +428,8 @@ def _body_of(frame: str, frames: Sequence[Frame], bodies: Sequence[str]) -> str 
 def _through_frames(
     joints: Sequence[Joint], frames: Sequence[Frame], bodies: Sequence[str], picks: Sequence[int]
 ) -> list[Joint]:
-    """SDFormat: joints whose parent or child is, by ``picks``, a frame on that body."""
+    """SDFormat: joints whose parent or child is, by ``picks``, a frame on that body (each
+    joint one of them, where a frame is on it)."""
     on: dict[str, list[str]] = {}
     for frame in frames:
         body = _body_of(frame.name, frames, bodies)
@@ -428,10 +438,10 @@ def _through_frames(
     out = []
     for joint, pick in zip(joints, [*picks, *[0] * len(joints)], strict=False):
         parent, child = joint.parent, joint.child
-        if pick % 3 == 1 and parent in on:
-            parent = on[parent][pick // 3 % len(on[parent])]
-        elif pick % 3 == 2 and child in on:
-            child = on[child][pick // 3 % len(on[child])]
+        if pick % 2 == 0 and parent in on:
+            parent = on[parent][pick // 2 % len(on[parent])]
+        elif child in on:
+            child = on[child][pick // 2 % len(on[child])]
         out.append(replace(joint, parent=parent, child=child))
     return out
 
@@ -699,6 +709,8 @@ def kinematic_trees(
     prefix: str = "",
     frames_into_children: bool = True,
     joints_into_includes: bool = True,
+    one_value_scale: bool = True,
+    reversed_joints: bool = True,
 ) -> Model:
     """A random tree that renders in every format of ``formats`` (see the module doc).
 
@@ -710,9 +722,11 @@ def kinematic_trees(
     is merged into another. ``invalid`` breaks one rule on purpose (one of
     ``faults``). ``frames_into_children`` lets frames attach to nested and
     included models and their bodies, ``joints_into_includes`` lets joints
-    hold an included model's first body. Each body is one list element, and everything shrinks
-    towards free roots, so a shrunk model keeps only the bodies and joints a
-    finding needs.
+    hold an included model's first body, ``one_value_scale`` lets a URDF mesh
+    be scaled by one value, ``reversed_joints`` lets a joint's child be the
+    world or an earlier body (Finalize reverses it). Each body is one list
+    element, and everything shrinks towards free roots, so a shrunk model
+    keeps only the bodies and joints a finding needs.
     """
     if min_bodies < 1:
         raise ValueError("a model needs a body (SDFormat: 'A model must have at least one link')")
@@ -721,7 +735,7 @@ def kinematic_trees(
     kinds = _kinds_for(formats, joint_kinds)
     shape_kinds = _shapes_for(formats, shapes)
     sdf = "sdf" in formats
-    reversible = [k for k in kinds if JOINT_KINDS[k].reversible]
+    reversible = [k for k in kinds if JOINT_KINDS[k].reversible] if reversed_joints else []
     roots = [_Root.FREE]
     if attach_to_world:
         roots.append(_Root.PARENT_WORLD)
@@ -780,7 +794,7 @@ def kinematic_trees(
     specs: list[_BodySpec] = draw(
         st.lists(
             st.tuples(
-                _geometries(max_geometries, shape_kinds, formats),
+                _geometries(max_geometries, shape_kinds, formats, one_value_scale),
                 st.integers(0, max_bodies),
                 spread(range(len(kinds))),
                 st.integers(0, 4).map(lambda x: x == 4),  # reversed, 1 in 5
@@ -794,6 +808,8 @@ def kinematic_trees(
     )
     bodies = tuple(Body(f"{prefix}l{i}", spec[0]) for i, spec in enumerate(specs))
     body_names = [b.name for b in bodies]
+    if not reversed_joints:
+        specs = [(*spec[:3], False, *spec[4:]) for spec in specs]  # type: ignore[misc]
     joints = _joints(specs, body_names, kinds, formats, prefix)
     children = [*((f"{n.name}::", n) for n in nested), *((i.scope, i.model) for i in includes)]
     picks = [(p, k) for _, p, k in nested_specs] + include_picks
