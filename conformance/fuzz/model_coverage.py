@@ -91,7 +91,11 @@ ERROR_CATEGORIES: tuple[tuple[str, re.Pattern[str]], ...] = tuple(
         ("model-name-clash", r"already contains a model instance named"),
         ("element-name-clash", r"already contains a (?:frame|joint|body) named"),
         ("unknown-model-instance", r"There is no model instance named"),
-        ("group", r"collision filter group|has no members|already been defined|outside the"),
+        (
+            "group",
+            r"collision filter group|has no members|already been defined|outside the|"
+            r"cannot be a scoped name",
+        ),
         (
             "unknown-name",
             r"Could not find link|body with name|frame with name|specified invalid|"
@@ -448,11 +452,13 @@ _DOCUMENT_FEATURES = {"urdf": _urdf_features, "sdf": _sdf_features, "dmd.yaml": 
 _URI = re.compile(r"(?:package|model)://([\w.-]+)/")
 
 
-def _package_features(files: Mapping[str, str]) -> Iterator[str]:
+def _package_features(files: Mapping[str, str], root: str) -> Iterator[str]:
+    """``packages>=2`` and ``package-across`` (``root``: a document parsed from a string, in
+    the package ``pkg`` as far as this goes)."""
     packages = {p.split("/", 1)[0] for p in files if p.endswith("/package.xml")} & set(PACKAGES)
     if len(packages) >= 2:
         yield "packages>=2"
-    for path, text in files.items():
+    for path, text in [*files.items(), ("", root)]:
         folder = path.split("/", 1)[0] if "/" in path else ""
         home = folder if folder in packages else "pkg"
         if any(name != home for name in _URI.findall(text)):
@@ -485,7 +491,7 @@ def _parse_features(args: Mapping[str, Any]) -> Iterator[str]:
         read = _DOCUMENT_FEATURES.get(document_format)
         if read is not None:
             yield from read(text)
-    yield from _package_features(files)
+    yield from _package_features(files, "" if "path" in args else root)
 
 
 def case_features(commands: Sequence[Command], results: Sequence[Result]) -> set[str]:

@@ -100,6 +100,10 @@ T = TypeVar("T")
 UNOBSERVED_FAULTS = frozenset({"stl_collision"})
 
 
+#: The model faults that draw a frame.
+_FRAME_FAULTS = frozenset({"frame_on_unknown_link", "frame_cycle", "world_frame"})
+
+
 def package_xml(name: str) -> str:
     """A minimal ROS ``package.xml`` (format 2) naming the package."""
     return (
@@ -225,8 +229,17 @@ class _Switches:
             return None
         return [k for k in JOINT_KINDS if self.on(f"urdf:joint-{k}")]
 
-    def faults(self) -> list[str]:
-        return [f for f in FAULTS if self.on(f"fault:{f}") and f not in UNOBSERVED_FAULTS]
+    def faults(self, fmt: str) -> list[str]:
+        """The model faults drawn for ``fmt``: not those of elements left out (a frame
+        fault without ``<fmt>:frame``)."""
+        frames = self.on(f"{fmt}:frame")
+        return [
+            f
+            for f in FAULTS
+            if self.on(f"fault:{f}")
+            and f not in UNOBSERVED_FAULTS
+            and (frames or f not in _FRAME_FAULTS)
+        ]
 
 
 def _spread(draw: st.DrawFn, items: Sequence[T]) -> T:
@@ -338,7 +351,7 @@ def _xml_scene(
     if fault == "include-missing":  # a name no scene writes: a case's files stay for later steps
         includes[0] = replace(includes[0], uri=f"{includes[0].uri}_gone")
         included = included[1:]
-    broken, faults = _model_faults(fault, switches)
+    broken, faults = _model_faults(fault, switches, fmt)
     model = draw(
         kinematic_trees(
             formats=(fmt,),
@@ -427,7 +440,7 @@ def _directive_models(
                 shapes=switches.shapes(fmt),
                 max_nested=1 if fmt == "sdf" and switches.on("dmd:nested-model") else 0,
                 invalid=fault and k == 0,
-                faults=switches.faults(),
+                faults=switches.faults(fmt),
                 one_value_scale=switches.on("urdf:mesh-scale-1"),
                 reversed_joints=switches.on("reversed-joints"),
                 # A URDF joint from the world adds a frame '<joint>_parent' to the world's
@@ -618,7 +631,8 @@ def _faults_of(fmt: str, switches: _Switches) -> list[str]:
         for q in XML_QUIRKS.values()
         if not q.accepted and switches.on(f"xml:{q.name}")
     ]
-    faults = [f for f in faults_for(fmt) if f in switches.faults() and f not in GROUP_FAULTS]
+    drawn = switches.faults(fmt)
+    faults = [f for f in faults_for(fmt) if f in drawn and f not in GROUP_FAULTS]
     if any(switches.on(f"fault:{f}") for f in GROUP_FAULTS):
         faults.insert(0, "group")
     kinds = [*xml, *(f"model:{f}" for f in faults)]
@@ -627,15 +641,15 @@ def _faults_of(fmt: str, switches: _Switches) -> list[str]:
     return kinds or ["model:any"]
 
 
-def _model_faults(fault: str | None, switches: _Switches) -> tuple[bool, list[str]]:
-    """Whether a model is drawn broken, and with which faults (``_fault``)."""
+def _model_faults(fault: str | None, switches: _Switches, fmt: str) -> tuple[bool, list[str]]:
+    """Whether a model is drawn broken, and with which faults (``_faults_of``)."""
     if fault is None or not fault.startswith("model:"):
-        return False, switches.faults()
+        return False, switches.faults(fmt)
     name = fault.removeprefix("model:")
     if name == "group":
         return True, [f for f in GROUP_FAULTS if switches.on(f"fault:{f}")]
     if name == "any":
-        return True, switches.faults()
+        return True, switches.faults(fmt)
     return True, [name]
 
 

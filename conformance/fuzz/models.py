@@ -809,7 +809,7 @@ def kinematic_trees(
     bodies = tuple(Body(f"{prefix}l{i}", spec[0]) for i, spec in enumerate(specs))
     body_names = [b.name for b in bodies]
     if not reversed_joints:
-        specs = [(*spec[:3], False, *spec[4:]) for spec in specs]  # type: ignore[misc]
+        specs = [(*spec[:3], False, *spec[4:]) for spec in specs]
     joints = _joints(specs, body_names, kinds, formats, prefix)
     children = [*((f"{n.name}::", n) for n in nested), *((i.scope, i.model) for i in includes)]
     picks = [(p, k) for _, p, k in nested_specs] + include_picks
