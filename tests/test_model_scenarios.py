@@ -102,6 +102,8 @@ def test_the_model_ops_are_rows_of_the_grammar_with_domain_model() -> None:
     assert [c.op for c in MODEL_COMMANDS] == [
         "add_models",
         "collision_filter_groups",
+        "model_inventory",
+        "rename_model_instance",
         "add_rigid_body",
         "add_joint",
         "weld_frames",
@@ -127,7 +129,7 @@ def test_the_schema_has_a_rule_for_each_model_op_and_their_feature_tags() -> Non
         }
     add_models = rules["add_models"]
     assert add_models["oneOf"] == [{"required": ["text"]}, {"required": ["path"]}]
-    assert add_models["dependentRequired"] == {"text": ["format"]}
+    assert add_models["dependentRequired"] == {"text": ["format"], "folder": ["path"]}
     assert rules["add_joint"]["required"] == ["name", "type", "parent", "child"]
     assert set(schema["$defs"]["features"]["items"]["enum"]) >= MODEL_FEATURES
 
