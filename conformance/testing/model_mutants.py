@@ -394,84 +394,136 @@ MODEL_MUTANTS: dict[str, ModelMutant] = {
             "filter its two bodies (Drake filters every joint type but the quaternion one).",
             "tree",
             _rpy_floating_as_quaternion,
+            witness="A body B0 with a sphere, an RpyFloatingJoint J0 from the world, Finalize: "
+            "pydrake 1.51.1's inventory lists 'DefaultModelInstance::J0 (rpy_floating)' (the "
+            "mutant: quaternion_floating), and filters B0 against the world.",
         ),
         ModelMutant(
             "include_name_ignored",
             "An SDFormat include's <name> is not read, so the included model keeps its own name.",
             "parsing",
             _reading(_without_include_names),
+            witness='SDFormat <model name="m"><link '
+            'name="l0"/><include><uri>package://pkg/i0.sdf</uri><name>r0</name></include></model>, '
+            "i0.sdf a model i0 of one link: pydrake 1.51.1 returns ['m', 'm::r0'] (the mutant "
+            "['m', 'm::i0']).",
         ),
         ModelMutant(
             "merge_include_not_merged",
             'An SDFormat <include merge="true"> is read as a plain include (a nested model).',
             "parsing",
             _reading(_without_merge),
+            witness='SDFormat <model name="m"><link name="l0"/><include '
+            'merge="true"><uri>package://pkg/i0.sdf</uri></include></model>: pydrake 1.51.1 '
+            "returns ['m'] (the mutant ['m', 'm::i0']).",
         ),
         ModelMutant(
             "frame_attached_to_ignored",
             "An SDFormat frame's attached_to is not read, so the frame is on the model frame.",
             "parsing",
             _reading(_without_attached_to),
+            witness="SDFormat model m with links l0-l3, frames f0 and f1 on l0, "
+            "f2 on l3, a revolute "
+            "j0 from the world to f2, Finalize: pydrake 1.51.1's inventory has j0 holding l3 "
+            "and floats l0, l1, l2 ('m::l0 (quaternion_floating)'; the mutant floats l3).",
         ),
         ModelMutant(
             "drake_capsule_dropped",
             "A <drake:capsule> geometry is dropped without an error, in URDF and SDFormat.",
             "parsing",
             _reading(_without_drake_capsules),
+            witness='URDF <link name="l0"><collision><geometry><drake:capsule radius="0.1" '
+            'length="0.2"/></geometry></collision></link>: pydrake 1.51.1\'s inventory lists '
+            "'m::l0/m::Capsule: Capsule [proximity]' (the mutant no geometry).",
         ),
         ModelMutant(
             "declare_convex_ignored",
             "A mesh's <drake:declare_convex/> is not read, so the geometry is a Mesh.",
             "parsing",
             _reading(_without_declare_convex),
+            witness="URDF <mesh "
+            'filename="package://pkg/meshes/mesh.obj"><drake:declare_convex/></mesh> '
+            "collision: pydrake 1.51.1's inventory lists 'm::l0/m::Convex: Convex "
+            "[proximity]' (the mutant a Mesh).",
         ),
         ModelMutant(
             "one_value_scale_rejected",
             'A URDF mesh scale of one value (scale="2") is refused as pydrake refuses two.',
             "parsing",
             _reading(_one_value_scale_rejected),
+            witness='URDF <mesh filename="package://pkg/meshes/mesh.obj" scale="2"/> collision: '
+            "pydrake 1.51.1 returns ['m'] (the mutant: ValueError 'Expected 3 values for "
+            "attribute scale got 2').",
         ),
         ModelMutant(
             "directives_model_namespace_ignored",
             "A directives model_namespace is not read, in add_directives and in groups.",
             "parsing",
             _reading(_without_model_namespaces),
+            witness="Directives adding d0, d1, d2 and add_collision_filter_group G0 with "
+            "model_namespace: d0 and members: [d0l0]: pydrake 1.51.1 returns ['d0', 'd1', "
+            "'d2'] (the mutant: \"error: body with name 'd0l0' not found\").",
         ),
         ModelMutant(
             "member_groups_ignored",
             "An add_collision_filter_group's member_groups are not read.",
             "parsing",
             _reading(_without_member_groups),
+            witness="Directives adding d0, d1, d2 and add_collision_filter_group "
+            "G0 with members: [] "
+            "and member_groups: [G0]: pydrake 1.51.1 returns ['d0', 'd1', 'd2'] (a group "
+            "whose one member group is itself is valid); the mutant fails "
+            "LoadModelDirectives' 'directives.IsValid()' DRAKE_DEMAND.",
         ),
         ModelMutant(
             "malformed_xml_accepted",
             "A URDF or SDFormat document whose root element is not closed is read as closed.",
             "parsing",
             _reading(_closing_root),
+            witness='URDF text \'<robot name="m" ...>\\n  <link name="l0" />\\n\\n\' '
+            "without </robot>: "
+            "pydrake 1.51.1 raises '<literal-string>.urdf:1: error: Failed to parse XML "
+            "string: XML_ERROR_PARSING' (the mutant returns ['m']).",
         ),
         ModelMutant(
             "auto_renaming_ignored",
             "Parser.SetAutoRenaming does nothing, so a second parse of a model clashes.",
             "parsing",
             _renaming_ignored,
+            witness='URDF <robot name="m"><link name="l0"/></robot> parsed twice, the second time '
+            "with SetAutoRenaming(True): pydrake 1.51.1 returns ['m_1'] (the mutant: \"This "
+            "model already contains a model instance named 'm'...\").",
         ),
         ModelMutant(
             "renamed_model_report_stale",
             "The group report keeps a renamed model's old name (Drake issue #21316 fixed it).",
             "parsing",
             _stale_report,
+            witness="URDF r with group g = {a, b}, RenameModelInstance(r, "
+            "'r_first'), then the same "
+            "Parser's report: pydrake 1.51.1 reports {'r_first::g': ['r_first::a', "
+            "'r_first::b']} (tests/test_model_scenes.py). The campaign's witness waits for "
+            "reimpl's #21316 fix: today it meets reimpl's own divergence first.",
         ),
         ModelMutant(
             "package_lookup_wrong_package",
             "PopulateFromFolder gives every package found the folder of the first one.",
             "parsing",
             _wrong_packages,
+            witness="Directives adding d0 from package://pa/d0.urdf and d1 from "
+            "package://pb/d1.urdf, "
+            "pa/ and pb/ each with a package.xml: pydrake 1.51.1 returns ['d0', 'd1'] (the "
+            "mutant: \"error: URI 'package://pb/d1.urdf' resolved to 'pa/d1.urdf' which does "
+            'not exist.").',
         ),
         ModelMutant(
             "add_weld_unfiltered",
             "The bodies WeldFrames joins (model directives' add_weld) are not filtered.",
             "plant",
             _welds_unfiltered,
+            witness="An anchored sphere w0, directives adding d0 (link d0l0 with a sphere) and "
+            "add_weld world to d0::d0l0, Finalize: pydrake 1.51.1 has no candidate pairs (the "
+            "mutant: d0::d0l0/Sphere with w0).",
         ),
     )
 }
