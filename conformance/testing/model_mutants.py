@@ -18,8 +18,8 @@ second directives file) are read as they are.
 
 Each mutant's ``witness`` is the shortest input found at seed 1 (``fuzz
 --models --seed 1 --max-examples 300 --backend
-conformance.testing.model_mutants:<name>``, with ``REIMPL_GAPS`` of
-``tests/test_fuzz_mutants.py`` left out while reimpl lacks them) and
+conformance.testing.model_mutants:<name>``, with ``--without`` the
+``REIMPL_GAPS`` the mutant does not need, while reimpl lacks them) and
 pydrake 1.51.1's exact answer on it.
 
 Use one as a backend spec, ``conformance.testing.model_mutants:<name>``, e.g.
