@@ -124,6 +124,10 @@ def _model_proof(name: str) -> Any:
 
 
 @pytest.mark.fuzz
+@pytest.mark.skipif(
+    PYDRAKE.version() != "1.51.1",
+    reason="reimpl answers as 1.51.1; against another release the campaign finds its changes",
+)
 @pytest.mark.parametrize("name", [_model_proof(name) for name in sorted(MODEL_MUTANT_NEEDS)])
 def test_fuzz_models_catches_the_model_mutant_within_300_examples_and_the_file_replays(
     name: str, tmp_path: Path, record_property: Callable[[str, object], None]

@@ -319,8 +319,16 @@ def run(*argv: str) -> int:
 
 #: ``--without``: what reimpl lacks today (conformance.testing.model_mutants.REIMPL_GAPS).
 WITHOUT = ("--without", ",".join(sorted(REIMPL_GAPS)))
+#: reimpl answers as Drake 1.51.1 does. Against another release a campaign finds the
+#: release's changes first: on 1.58.0 a URDF joint without <origin> adds no
+#: '<joint>_parent' frame, which 1.51.1 adds (both measured; model_inventory shows it).
+SAME_RELEASE = pytest.mark.skipif(
+    PYDRAKE.version() != load_backend("reimpl").version(),
+    reason="reimpl answers as 1.51.1; the campaign would find the release's changes",
+)
 
 
+@SAME_RELEASE
 def test_fuzz_models_of_reimpl_against_pydrake_exits_0_and_writes_nothing(tmp_path: Path) -> None:
     out_dir = tmp_path / "r"
     code, out, err = fuzz("--seed", "3", "--max-examples", "50", "--out", str(out_dir), *WITHOUT)
@@ -337,6 +345,7 @@ MUTANT = "conformance.testing.model_mutants:rpy_floating_unfiltered"
 SEED_2 = ("--seed", "2", "--max-examples", "300")
 
 
+@SAME_RELEASE
 def test_fuzz_models_catches_the_rpy_floating_mutant_with_a_shrunk_file_that_replays(
     tmp_path: Path,
 ) -> None:
@@ -365,6 +374,7 @@ def test_fuzz_models_catches_the_rpy_floating_mutant_with_a_shrunk_file_that_rep
     assert run(str(path), "--backend", "reimpl", "--backend", "pydrake") == EXIT_OK
 
 
+@SAME_RELEASE
 def test_the_same_seed_gives_the_same_model_finding(tmp_path: Path) -> None:
     found = []
     for attempt in ("a", "b"):

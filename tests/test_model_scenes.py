@@ -117,8 +117,11 @@ def test_each_fault_of_a_format_is_refused_with_its_error_category(fmt: str, fau
         category = error_category(result.error.message)
         if fault.startswith("xml:"):
             assert category == "xml"
-        elif name == "group":  # a member no model has is an unknown name
-            assert category in ("group", "unknown-name"), result.error.message
+        elif name == "group":
+            # A member no model has is an unknown name. A group defined twice in SDFormat
+            # is a group error on 1.51.1 ("group 'm::g0' has already been defined") and
+            # SDFormat's "Non-unique name[g0] detected 2 times" on 1.58.0 (both measured).
+            assert category in ("group", "unknown-name", "element-name-clash"), result.error
         elif name in expected:
             assert category == expected[name], result.error.message
         else:  # model:any, a directives file whose first model has some fault

@@ -89,7 +89,7 @@ ERROR_CATEGORIES: tuple[tuple[str, re.Pattern[str]], ...] = tuple(
         ("frame-cycle", r"cycle detected"),
         ("namespace", r"Namespace '.*' does not exist"),
         ("model-name-clash", r"already contains a model instance named"),
-        ("element-name-clash", r"already contains a (?:frame|joint|body) named"),
+        ("element-name-clash", r"already contains a (?:frame|joint|body) named|Non-unique name"),
         ("unknown-model-instance", r"There is no model instance named"),
         (
             "group",
