@@ -104,6 +104,7 @@ def test_the_model_ops_are_rows_of_the_grammar_with_domain_model() -> None:
         "add_models",
         "collision_filter_groups",
         "model_inventory",
+        "rename_model_instance",
         "add_rigid_body",
         "add_joint",
         "weld_frames",

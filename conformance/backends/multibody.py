@@ -19,9 +19,20 @@ role), and never joins C.
 
 Files. ``add_models`` writes ``files`` to the case's temporary folder, which
 every Parser of the case knows as the package ``pkg``
-(``package://pkg/rel/path.urdf``); ``path`` is a file in it. The folder's
-path is cut out of error messages, so they read ``rel/path.urdf:3: error:
-...`` on every machine.
+(``package://pkg/rel/path.urdf``); ``path`` is a file in it. A folder of
+them that holds a ``package.xml`` is a package of its own name as well
+(``package://pa/...``, ``model://pa/...``): every Parser of the case then
+calls ``PopulateFromFolder(path=)`` on the case's folder. The folder's path
+is cut out of error messages, so they read ``rel/path.urdf:3: error: ...``
+on every machine.
+
+Renaming. ``rename_model_instance`` calls ``RenameModelInstance``; then the
+renamed model's bodies are also ``<new name>::<body>`` and its geometries
+are named again from their current names (``m2::l1/Sphere``, where Drake
+renamed the geometry ``m2::Sphere``), so a later parse may reuse the old
+names. A geometry whose name is taken gets ``#2``, ``#3``... (Drake issue
+#21316 is about a Parser reused after a rename: ``add_models`` with
+``reuse_parser``).
 """
 
 from __future__ import annotations
@@ -137,6 +148,8 @@ class MultibodyCommands:
         self.plant: Any = None
         self.bodies: dict[str, Any] = {}
         self.parser: Any = None
+        #: The geometry names ``_name_plant_geometries`` gave (not the case's own).
+        self._plant_named: set[str] = set()
         cleanup = getattr(self, "_cleanup", None)
         if cleanup is not None:
             cleanup()
@@ -225,10 +238,23 @@ class MultibodyCommands:
             scoped = self._scoped(body)
             model = scoped[: -len(body.name())]
             drake_name = inspector.GetName(geometry_id=geometry_id)
-            name = f"{scoped}{_GEOMETRY}{drake_name.removeprefix(model)}"
-            if name not in self.geometries:
-                self.geometries[name] = geometry_id
-                self.names_by_value[geometry_id.get_value()] = name
+            name = base = f"{scoped}{_GEOMETRY}{drake_name.removeprefix(model)}"
+            clash = 1
+            while name in self.geometries:  # e.g. a parse reusing a renamed model's old name
+                clash += 1
+                name = f"{base}#{clash}"
+            self.geometries[name] = geometry_id
+            self.names_by_value[geometry_id.get_value()] = name
+            self._plant_named.add(name)
+
+    def _rename_plant_geometries(self) -> None:
+        """Names every plant body's frame and plant proximity geometry again, by the model
+        instances' current names (after ``rename_model_instance``); the frames keep their
+        old names too."""
+        for name in self._plant_named:
+            self.names_by_value.pop(self.geometries.pop(name).get_value(), None)
+        self._plant_named.clear()
+        self._name_plant_geometries()
 
     def _local(self, exc: Exception, *folders: Path) -> Exception:
         """``exc`` with the case's folder (and ``folders``) cut out of its message."""
@@ -245,20 +271,31 @@ class MultibodyCommands:
         packages of the map (Drake's defaults ``drake``, ``drake_models``) that the folder
         also provides, so that its own copy is the one found."""
         package_map = parser.package_map()
+        if not hasattr(package_map, "PopulateFromFolder"):
+            raise _missing(self.api, "PackageMap.PopulateFromFolder")
         for name in package_names(folder):
             if package_map.Contains(package_name=name):
                 package_map.Remove(package_name=name)
         package_map.PopulateFromFolder(path=str(folder))
 
     # ------------------------------------------------------------ commands
-    def add_models(self, args: Mapping[str, Any]) -> list[str]:
+    def _parser(self, args: Mapping[str, Any]) -> Any:
+        """A new Parser of the plant (with the prefix), or with ``reuse_parser`` the last one."""
         parsing = self._module("parsing")
         plant = self._plant()
+        if args.get("reuse_parser"):
+            if "prefix" in args:
+                raise ValueError("add_models: reuse_parser takes no prefix (the Parser exists)")
+            if self.parser is None:
+                raise UnknownNameError("parser", "(reuse_parser needs an earlier add_models)")
+            return self.parser
         if "prefix" in args:
-            parser = parsing.Parser(plant=plant, model_name_prefix=args["prefix"])
-        else:
-            parser = parsing.Parser(plant=plant)
-        self.parser = parser
+            return parsing.Parser(plant=plant, model_name_prefix=args["prefix"])
+        return parsing.Parser(plant=plant)
+
+    def add_models(self, args: Mapping[str, Any]) -> list[str]:
+        plant = self._plant()
+        parser = self.parser = self._parser(args)
         if "auto_renaming" in args:
             if not hasattr(parser, "SetAutoRenaming"):  # Drake < 1.15
                 raise _missing(self.api, "Parser.SetAutoRenaming")
@@ -270,9 +307,12 @@ class MultibodyCommands:
                 target = folder / relative
                 target.parent.mkdir(parents=True, exist_ok=True)
                 target.write_text(text, encoding="utf-8")
-            parser.package_map().Add(package_name=PACKAGE, package_path=str(folder))
+        if self._folder is not None and not parser.package_map().Contains(package_name=PACKAGE):
+            parser.package_map().Add(package_name=PACKAGE, package_path=str(self._folder))
         models_folder = Path(args["folder"]) if "folder" in args else None
         try:
+            if self._folder is not None and package_names(self._folder):
+                self._add_packages(parser, self._folder)
             if models_folder is not None:
                 self._add_packages(parser, models_folder)
                 models = parser.AddModels(file_name=str(models_folder / args["path"]))
@@ -348,6 +388,15 @@ class MultibodyCommands:
             ),
             "geometries": sorted(geometries),
         }
+
+    def rename_model_instance(self, args: Mapping[str, Any]) -> None:
+        plant = self._plant()
+        if not hasattr(plant, "RenameModelInstance"):  # Drake < 1.20
+            raise _missing(self.api, "MultibodyPlant.RenameModelInstance")
+        plant.RenameModelInstance(
+            model_instance=plant.GetModelInstanceByName(name=args["model"]), name=args["name"]
+        )
+        self._rename_plant_geometries()
 
     def add_rigid_body(self, args: Mapping[str, Any]) -> None:
         tree = self._module("tree")

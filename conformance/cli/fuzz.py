@@ -13,7 +13,10 @@ runner to confirm that ``run`` reproduces it.
 ``--models`` runs a ``ModelCampaign`` (``conformance.fuzz.model_campaign``):
 each example is a random model case run by the corpus runner, not a lockstep
 command sequence; everything else (seeds, budgets, findings, exit codes) is
-the same.
+the same. ``--without ELEMENT,...`` leaves grammar elements out of its draws
+(``conformance.fuzz.model_scenes.SWITCHES``, and ``rename-then-parse``), and
+its ``--coverage`` table counts the model grammar features the drawn files
+and the reference's answers reached (``conformance.fuzz.model_coverage``).
 
 ``--poses`` runs the lockstep machine on posed scenes
 (``PosedLockstepMachine``): random shapes and poses, near-touching offsets,
@@ -57,7 +60,8 @@ from conformance.fuzz.lockstep import (
     PosedLockstepMachine,
     interrupt_requested,
 )
-from conformance.fuzz.model_campaign import ModelCampaign
+from conformance.fuzz.model_campaign import MODEL_SWITCHES, ModelCampaign
+from conformance.fuzz.model_coverage import expected_model_features
 from conformance.fuzz.operations import issued_ops
 from conformance.fuzz.regression import (
     drake_release,
@@ -65,6 +69,7 @@ from conformance.fuzz.regression import (
     write_regression,
     write_reproducer,
 )
+from conformance.grammar import GRAMMAR
 from conformance.protocol import Backend, backend_id
 from conformance.run.outputs import unwritable, unwritable_dir, write_or_fall_back
 from conformance.run.runner import run_case
@@ -330,27 +335,32 @@ def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
         out.write(f"fuzz: known divergence {divergence} met in {examples} example(s), set aside\n")
 
 
+def _without(args: argparse.Namespace) -> frozenset[str]:
+    """``--without``: the model grammar elements to leave out."""
+    value = getattr(args, "without", "") or ""
+    return frozenset(part.strip() for part in value.split(",") if part.strip())
+
+
 def _expected(args: argparse.Namespace, pair: tuple[Backend, Backend]) -> list[str] | None:
-    """The coverage table's features for this campaign (None: ``--models`` tracks none)."""
-    if args.models:
-        return None
-    machine = PosedLockstepMachine if _posed(args) else LockstepMachine
+    """The coverage table's features for this campaign."""
     shared = pair[0].features() & pair[1].features()
+    if args.models:
+        reported = GRAMMAR["collision_filter_groups"].feature in shared
+        return expected_model_features(_without(args), groups_report=reported)
+    machine = PosedLockstepMachine if _posed(args) else LockstepMachine
     return campaign_features(issued_ops(machine.OPERATIONS), shared)
 
 
 def _coverage(result: CampaignResult, expected: list[str] | None, out: TextIO) -> None:
-    """``--coverage``: the table of state-space features reached, gaps last."""
-    if expected is None:
-        out.write("coverage: not tracked for --models (each example is one model case)\n")
-    else:
+    """``--coverage``: the table of features reached, gaps last."""
+    if expected is not None:
         out.write(result.stats.coverage.table(expected) + "\n")
 
 
 def _stats_json(
     result: CampaignResult, expected: list[str] | None, args: argparse.Namespace
 ) -> dict[str, object]:
-    """``--json``: the run's numbers, its findings and (unless ``--models``) its coverage."""
+    """``--json``: the run's numbers, its findings and its coverage."""
     stats = result.stats
     return {
         "seed": args.seed,
@@ -432,6 +442,7 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     problems = _output_problems(args, json_path)
     if args.models and _posed(args):
         problems.append("--models and --poses are two different campaigns: choose one")
+    problems += _without_problems(args)
     if refuse(problems, err):
         return EXIT_USAGE
     try:
@@ -462,7 +473,9 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         shrink_time=_shrink_time(args),
         on_best=findings.on_best,
     )
-    if not args.models:
+    if isinstance(campaign, ModelCampaign):
+        campaign.without = _without(args)
+    else:
         campaign.machine_base = PosedLockstepMachine if _posed(args) else LockstepMachine
     err.write(
         f"fuzz{_mode(args)}: {backend.name} {backend.version()} against "
@@ -496,6 +509,19 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         text = json.dumps(_stats_json(result, expected, args), indent=1) + "\n"
         _write_statistics(json_path, text, err)
     return _exit_code(result, findings.written, err)
+
+
+def _without_problems(args: argparse.Namespace) -> list[str]:
+    """Why ``--without`` cannot be used: without ``--models``, or naming no element."""
+    without = _without(args)
+    if not without:
+        return []
+    if not args.models:
+        return ["--without leaves out model grammar elements: it needs --models"]
+    unknown = sorted(without - set(MODEL_SWITCHES))
+    if unknown:
+        return [f"--without: unknown model grammar element(s) {', '.join(unknown)}"]
+    return []
 
 
 def _output_problems(args: argparse.Namespace, json_path: Path | None) -> list[str]:

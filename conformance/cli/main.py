@@ -116,8 +116,15 @@ def _add_fuzz(commands: Any) -> None:
     fuzz.add_argument(
         "--models",
         action="store_true",
-        help="fuzz random models (URDF/SDFormat trees, parse and Finalize) instead of "
-        "SceneGraph command sequences",
+        help="fuzz random model files (URDF, SDFormat, model directives, with packages, "
+        "includes and meshes; parse, reports, Finalize) instead of SceneGraph command sequences",
+    )
+    fuzz.add_argument(
+        "--without",
+        metavar="ELEMENT,...",
+        default="",
+        help="with --models: leave out these model grammar elements (e.g. "
+        "packages,sdf:merge-include; see conformance.fuzz.model_scenes.SWITCHES)",
     )
     fuzz.add_argument(
         "--poses",

@@ -404,16 +404,20 @@ class Coverage:
         """The expected features reached fewer than ``at_least`` times."""
         return [name for name in expected if self.hits[name] < at_least]
 
+    def headline(self, expected: list[str]) -> str:
+        """The table's first line: how many features were reached, and the maxima."""
+        return (
+            f"coverage: {len(expected) - len(self.gaps(expected))} of {len(expected)} features "
+            f"reached; max {self.max_proximity} proximity geometries at a location, "
+            f"max {self.max_transients} active transient declarations"
+        )
+
     def table(self, expected: Iterable[str]) -> str:
         """The coverage table ``fuzz --coverage`` prints."""
         expected = list(expected)
         rows = self.rows(expected)
         width = max(len(name) for name, _ in rows)
-        lines = [
-            f"coverage: {len(expected) - len(self.gaps(expected))} of {len(expected)} features "
-            f"reached; max {self.max_proximity} proximity geometries at a location, "
-            f"max {self.max_transients} active transient declarations",
-        ]
+        lines = [self.headline(expected)]
         for name, count in rows:
             mark = "GAP" if count == 0 and name in expected else ""
             lines.append(f"  {name:<{width}}  {count:>7}  {mark}".rstrip())

@@ -1,4 +1,4 @@
-"""``fuzz --models``: random models as scenario cases, run on two backends by the corpus runner.
+"""``fuzz --models``: random model files as scenario cases, run on two backends by the runner.
 
 Each example is one case (``model_cases``), in the scenario grammar:
 
@@ -6,22 +6,34 @@ Each example is one case (``model_cases``), in the scenario grammar:
    (``register_geometry`` on ``world``: bodies welded to the world are
    filtered against it, whichever source it comes from);
 2. now and then ``set_adjacent_filters`` (when both backends have the op);
-3. ``add_models``: a tree from ``conformance.fuzz.models``, rendered as URDF
-   or SDFormat (with up to two nested models), sometimes with a model name
-   prefix; one in eight examples is a model with a broken group
-   (``kinematic_trees(invalid=True)``), for the parse errors. Now and then
-   the same text is parsed again (under the prefix ``q``, with
-   ``auto_renaming``, or as it is: a name clash), and the last Parser's
-   ``collision_filter_groups`` report is compared (both backends having the
-   op);
-4. for a valid model, up to two bodies the case adds (``add_rigid_body``,
+3. ``add_models`` of a scene from ``conformance.fuzz.model_scenes``: a
+   URDF, SDFormat or model directives document, parsed from a string or a
+   file, with the files it needs (packages, included models and model
+   directories, meshes, a second directives file), sometimes with a model
+   name prefix; one in ``invalid_share`` (4) examples has a fault Drake refuses
+   (a broken group or joint, an XML error, a missing include, a directives
+   fault), for the parse errors, and then, one time in four, a broken scene
+   for each other fault of every format (with
+   ``auto_renaming``, so that their models' names do not clash first).
+   Now and then the same scene is parsed again
+   (under the prefix ``q``, with ``auto_renaming``, with the same Parser, or
+   as it is: a name clash), and now and then the first model is renamed
+   (``rename_model_instance``) and the scene parsed again, with the same
+   Parser or a new one, which may rename (Drake issue #21316);
+4. after **every** ``add_models``: the Parser's ``collision_filter_groups``
+   report (when both backends have the op) and a ``model_inventory``;
+5. for a valid scene, up to two bodies the case adds (``add_rigid_body``,
    ``register_collision_geometry``: ``B0`` with ``b0``, ``B1`` with ``b1``),
    each on a joint of any ``add_joint`` type from the world, a parsed body
    or the other added body; and up to two ``apply`` steps, before or after
    Finalize, whose declarations name the parsed bodies' frames (``m::l1``),
    their collision geometry (``m::l1/c0``), the added bodies, the world and
    the anchored geometry;
-5. ``finalize``, then ``check``.
+6. ``finalize``, a ``model_inventory``, then ``check``.
+
+``without`` names grammar elements (``model_scenes.SWITCHES``) to leave out,
+for a backend that lacks them; ``model_coverage`` counts what the drawn
+files and the reference's answers reached.
 
 The case runs through ``conformance.run.runner.run_case``, the corpus
 runner: each backend runs it from a reset, and the runner's step-by-step
@@ -35,7 +47,8 @@ A backend that breaks (raises, times out) ends the campaign with a
 ``HarnessError`` holding the case's commands, as for the lockstep machine.
 A step naming a model body or geometry that the backend's parse did not
 make ends that backend's run (``UnknownNameError``); the case is then run
-again up to its ``add_models`` step, whose disagreement is the finding.
+again up to its last ``add_models`` step and the reports after it, whose
+disagreement is the finding.
 
 ``ModelCampaign`` is ``Campaign`` with this example in place of the lockstep
 machine: the same seeds, batches, budgets, Hypothesis settings and results.
@@ -45,9 +58,9 @@ from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -67,28 +80,37 @@ from conformance.fuzz.lockstep import (
     TraceStep,
     stop_point,
 )
-from conformance.fuzz.models import (
-    FORMATS,
-    WORLD,
-    geometry_names,
-    kinematic_trees,
-    render,
+from conformance.fuzz.model_coverage import ModelCoverage
+from conformance.fuzz.model_scenes import (
+    DIRECTIVES,
+    SCENE_FORMATS,
+    SWITCHES,
+    Scene,
+    model_scenes,
+    scene_faults,
 )
+from conformance.fuzz.models import WORLD
 from conformance.grammar import GRAMMAR, features_of
 from conformance.grammar.multibody import JOINT_TYPES
 from conformance.policy.divergences import match_step
-from conformance.protocol import Backend, Command, backend_id
+from conformance.protocol import Backend, Command, Result, backend_id
 from conformance.run.runner import CaseReport, Failure, Status, run_case
 
 __all__ = [
     "ADDED_BODY",
     "MODEL_FEATURES",
+    "MODEL_SWITCHES",
     "ModelCampaign",
     "model_case",
     "model_cases",
     "run_model_case",
 ]
 
+#: The grammar elements of a case, besides its scenes': the renaming flow, a directives
+#: scene parsed again under a prefix, and a directives scene parsed again at all.
+_CASE_SWITCHES = frozenset({"rename-then-parse", "dmd:prefix", "dmd:again"})
+#: The grammar elements ``without`` may leave out: the scenes' and the case's.
+MODEL_SWITCHES: tuple[str, ...] = (*SWITCHES, *sorted(_CASE_SWITCHES))
 #: What a backend needs for ``fuzz --models`` at all.
 MODEL_FEATURES = frozenset({"multibody", "parsing"})
 #: The names of the bodies a case adds, their collision geometries and joints, before the
@@ -106,86 +128,203 @@ _ADDED_BODIES = st.lists(
     max_size=2,
 )
 _PREFIX = "p"
-#: Nested models in an SDFormat model (each ``<model name="n<i>">`` a model instance
-#: ``m::n<i>`` whose bodies and groups the outer model names as ``n<i>::...``).
-_MAX_NESTED = 2
-#: How the model is parsed a second time, if at all: under another prefix, with
-#: SetAutoRenaming (Drake names the instance ``m_1``), or as it is (the names clash).
+#: How the scene is parsed a second time, if at all: under another prefix, with
+#: SetAutoRenaming (Drake names the instance ``m_1``), with the same Parser, or as it is
+#: (the names clash).
 _AGAIN: tuple[dict[str, Any] | None, ...] = (
+    None,
     None,
     {"prefix": "q"},
     {"auto_renaming": True},
+    {"reuse_parser": True},
     {},
 )
+#: After renaming the first model (``<name>_old``), how the scene is parsed again: with a
+#: new Parser, the same one (Drake issue #21316), or a new one that renames.
+_AFTER_RENAME: tuple[dict[str, Any], ...] = ({}, {"reuse_parser": True}, {"auto_renaming": True})
+_RENAMED = "_old"
 _ANCHORED = "w"
 _FILE = ScenarioFile(Path("fuzz-models"), "fuzz --models", "random models")
 
 
 # ------------------------------------------------------------------ cases
-def _scope(model_name: str, prefix: str | None) -> str:
-    return model_name if prefix is None else f"{prefix}::{model_name}"
+def _parse_args(scene: Scene, prefix: str | None) -> dict[str, Any]:
+    """The ``add_models`` arguments of a scene: its files, and its path or text."""
+    args: dict[str, Any] = {}
+    if scene.files:
+        args["files"] = dict(scene.files)
+    if scene.path is not None:
+        args["path"] = scene.path
+    else:
+        args |= {"text": scene.text, "format": scene.format}
+    if prefix is not None:
+        args["prefix"] = prefix
+    return args
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """What a case does besides its scene, drawn before it (see ``model_cases``)."""
+
+    anchored: list[str]
+    adjacent: bool | None
+    prefix: str | None
+    again: dict[str, Any] | None
+    rename: dict[str, Any] | None
+    added: list[tuple[dict[str, Any], str | None, int]]
+    applies: list[tuple[Any, bool]]
+    reports: list[str] = field(default_factory=list)
+
+
+def _directives_plan(plan: _Plan, without: frozenset[str]) -> _Plan:
+    """The plan for a directives scene: no prefix (it scopes directives in ways of their
+    own), and no parse again under a prefix (``dmd:prefix``) or at all (``dmd:again``)."""
+    plan = replace(plan, prefix=None)
+    if "dmd:prefix" in without and plan.again is not None and "prefix" in plan.again:
+        plan = replace(plan, again=None)
+    if "dmd:again" in without:
+        plan = replace(plan, again=None, rename=None)
+    return plan
+
+
+def _reports(plan: _Plan) -> list[Command]:
+    return [Command(op, {}) for op in plan.reports]
+
+
+def _parses(scene: Scene, plan: _Plan) -> list[Command]:
+    """The ``add_models`` steps, each followed by the reports."""
+    first = _parse_args(scene, plan.prefix)
+    commands = [Command("add_models", first), *_reports(plan)]
+    if plan.again is not None:
+        again = dict(first)
+        if "prefix" in plan.again or "reuse_parser" in plan.again:
+            again.pop("prefix", None)
+        again |= plan.again
+        commands += [Command("add_models", again), *_reports(plan)]
+    if plan.rename is not None:
+        scope = "" if plan.prefix is None else f"{plan.prefix}::"
+        top = f"{scope}{scene.top}"
+        commands.append(
+            Command("rename_model_instance", {"model": top, "name": f"{top}{_RENAMED}"})
+        )
+        again = dict(first)
+        if "reuse_parser" in plan.rename:
+            again.pop("prefix", None)
+        commands += [Command("add_models", again | plan.rename), *_reports(plan)]
+    return commands
 
 
 @st.composite
 def model_cases(
     draw: st.DrawFn,
     *,
-    formats: tuple[str, ...] = FORMATS,
+    formats: tuple[str, ...] = SCENE_FORMATS,
     features: frozenset[str] | None = None,
-    invalid_share: int = 8,
+    invalid_share: int = 4,
     max_anchored: int = 2,
     max_applies: int = 2,
+    without: frozenset[str] = frozenset(),
 ) -> list[Command]:
     """The commands of one example (see the module doc).
 
     ``features``: what both backends support (default: everything), so an op
     neither has is never drawn. One example in ``invalid_share`` has a broken
-    model (0: none).
+    scene (0: none). ``without``: grammar elements left out
+    (``model_scenes.SWITCHES``, and ``rename-then-parse``).
     """
     have = (lambda tag: True) if features is None else features.__contains__
-    # Everything but the model first: a draw after the model that depends on its
+    # Everything but the scene first: a draw after the scene that depends on its
     # bodies keeps the shrinker from deleting bodies (measured: half the shrunk
     # models kept unneeded bodies). Declarations are drawn as templates, resolved
-    # against the model's names once it exists.
-    fmt = draw(st.sampled_from(formats))
+    # against the scene's names once it exists.
     invalid = invalid_share > 0 and draw(st.integers(0, invalid_share - 1)) == invalid_share - 1
     anchored = [f"{_ANCHORED}{i}" for i in range(draw(st.integers(0, max_anchored)))]
     adjacent = draw(st.sampled_from((None, False, True)))
+    if not have(GRAMMAR["set_adjacent_filters"].feature):
+        adjacent = None
     prefix = draw(st.sampled_from((None, _PREFIX)))
     again = draw(st.sampled_from(_AGAIN))
-    report = draw(st.booleans()) and have(GRAMMAR["collision_filter_groups"].feature)
-    added = draw(_ADDED_BODIES)
-    applies = draw(
-        st.lists(st.tuples(cs.declaration_templates(), st.booleans()), max_size=max_applies)
+    rename = None
+    if "rename-then-parse" not in without and draw(st.integers(0, 3)) == 3:
+        rename = draw(st.sampled_from(_AFTER_RENAME))
+    reports = ["model_inventory"]
+    if have(GRAMMAR["collision_filter_groups"].feature):
+        reports.insert(0, "collision_filter_groups")
+    plan = _Plan(
+        anchored,
+        adjacent,
+        prefix,
+        again,
+        rename,
+        draw(_ADDED_BODIES),
+        draw(st.lists(st.tuples(cs.declaration_templates(), st.booleans()), max_size=max_applies)),
+        reports,
     )
-    nesting = _MAX_NESTED if fmt == "sdf" else 0
-    model = draw(kinematic_trees(formats=(fmt,), invalid=invalid, max_nested=nesting))
-
+    scene_without = without - _CASE_SWITCHES
+    scene = draw(model_scenes(formats=formats, invalid=invalid, without=scene_without))
+    if scene.format == DIRECTIVES:
+        plan = _directives_plan(plan, without)
+    # An invalid example parses more broken scenes, with the next faults of their table:
+    # the faults are many, the invalid examples few.
+    extra: list[Scene] = []
+    if scene.fault is not None:
+        # Other faults too, of every format, one broken scene each, one time in four each:
+        # the faults are many, the invalid examples few (one fault per example left one of
+        # fourteen unreached at seed 1 x 300). A shrunk finding keeps the scenes it needs.
+        for fmt in formats:
+            for index, fault in enumerate(scene_faults(fmt, scene_without)):
+                if (fmt, fault) != (scene.format, scene.fault) and draw(st.integers(0, 3)) == 3:
+                    broken_scenes = model_scenes(
+                        formats=(fmt,), invalid=True, without=scene_without, fault_index=index
+                    )
+                    extra.append(draw(broken_scenes))
     commands = [
         Command("register_geometry", {"name": name, "frame": WORLD, "roles": ["proximity"]})
-        for name in anchored
+        for name in plan.anchored
     ]
-    if adjacent is not None and have(GRAMMAR["set_adjacent_filters"].feature):
-        commands.append(Command("set_adjacent_filters", {"value": adjacent}))
-    add: dict[str, Any] = {"text": render(model, fmt), "format": fmt}
-    if prefix is not None:
-        add["prefix"] = prefix
-    commands.append(Command("add_models", add))
-    if again is not None:  # the same text once more: a second instance, renamed, or a clash
-        commands.append(Command("add_models", {"text": add["text"], "format": fmt, **again}))
-    if report:
-        commands.append(Command("collision_filter_groups", {}))
-    finalize = [Command("finalize", {}), Command("check", {})]
-    if invalid:
+    if plan.adjacent is not None:
+        commands.append(Command("set_adjacent_filters", {"value": plan.adjacent}))
+    commands += _parses(scene, plan)
+    for broken in extra:  # renamed, or their models' names would clash before the fault
+        args = _parse_args(broken, None) | {"auto_renaming": True}
+        commands += [Command("add_models", args), *_reports(plan)]
+    finalize = [Command("finalize", {}), Command("model_inventory", {}), Command("check", {})]
+    if not scene.valid:
         return commands + finalize
-    scope = _scope(model.name, prefix)
-    bodies = model.scoped_bodies()
-    frames = [f"{scope}::{name}" for name, _ in bodies]
-    geometries = [f"{scope}{name.removeprefix(model.name)}" for name in geometry_names(model, fmt)]
+    return commands + _on_top(scene, plan, finalize)
+
+
+def _renamed(name: str, scene: Scene, plan: _Plan) -> str:
+    """A body or geometry name of the first parse after the renaming, if any: the first
+    model's own bodies are then ``<top>_old::...`` (its nested models keep their names;
+    the scene parsed again may fail)."""
+    scope = "" if plan.prefix is None else f"{plan.prefix}::"
+    top = f"{scope}{scene.top}::"
+    if plan.rename is None or not name.startswith(top):
+        return name
+    rest = name.removeprefix(top)
+    if "::" in rest.split("/", 1)[0]:
+        return name
+    return f"{scope}{scene.top}{_RENAMED}::{rest}"
+
+
+def _on_top(scene: Scene, plan: _Plan, finalize: list[Command]) -> list[Command]:
+    """The bodies the case adds and the declarations it applies, with ``finalize``."""
+    scope = "" if plan.prefix is None else f"{plan.prefix}::"
+    frames = [_renamed(name, scene, plan) for name in scene.bodies(scope)]
+    geometries = [_renamed(name, scene, plan) for name in scene.geometries(scope)]
+    solid_names = {
+        f"{scope}{name}::{body}"
+        for name, model, _ in scene.instances
+        for body, b in model.scoped_bodies()
+        if any(g.collision for g in b.geometries)
+    }
+    solid_names = {_renamed(name, scene, plan) for name in solid_names}
     # Parents with collision geometry first: there a joint type shows in C.
-    solid = [f"{scope}::{n}" for n, b in bodies if any(g.collision for g in b.geometries)]
-    parents = [*solid, WORLD, *(f for f in frames if f not in solid)]
-    for i, (instance, joint_type, pick) in enumerate(added):
+    solid = [f for f in frames if f in solid_names]
+    parents = [*solid, WORLD, *(f for f in frames if f not in solid_names)]
+    commands = []
+    for i, (instance, joint_type, pick) in enumerate(plan.added):
         body, geometry = f"{ADDED_BODY}{i}", f"{_ADDED_GEOMETRY}{i}"
         commands.append(Command("add_rigid_body", {"name": body, **instance}))
         commands.append(Command("register_collision_geometry", {"name": geometry, "body": body}))
@@ -196,9 +335,10 @@ def model_cases(
         parents.insert(len(solid), body)
         frames.append(body)
         geometries.append(geometry)
-    geometries += anchored
+    geometries += plan.anchored
     frames.append(WORLD)
-    for template, after in applies:
+    finalize = list(finalize)
+    for template, after in plan.applies:
         declaration = template.resolve(
             lambda pick: cs.pick(geometries, pick), lambda pick: cs.pick(frames, pick)
         )
@@ -224,7 +364,9 @@ def _step_index(failure: Failure) -> int:
 
 
 def _broken(report: CaseReport, commands: list[Command]) -> HarnessError | None:
-    """A HarnessError if a backend broke, skipped the case, or the case was cut short."""
+    """A HarnessError if a backend broke, skipped the case, or the case was cut short (its
+    commands without ``check``, which a reproducer cannot hold without expectations)."""
+    commands = [c for c in commands if c.op != "check"]
     skipped = [
         f"{n} ({report.skip_reasons[n]})" for n, s in report.status.items() if s is Status.SKIP
     ]
@@ -273,16 +415,23 @@ def _known(divergence: Divergence, backend: Backend, reference: Backend, stats: 
     return False
 
 
+#: The steps that report on a parse (``model_cases`` puts them after every add_models).
+_REPORTS = frozenset({"collision_filter_groups", "model_inventory"})
+
+
 def run_model_case(
     commands: list[Command],
     backend: Backend,
     reference: Backend,
     *,
     step_timeout: float | None = None,
+    on_results: Callable[[list[Command], list[Result]], None] | None = None,
 ) -> Divergence | None:
     """Runs the case on both backends; the Divergence of their first disagreement, or None.
 
-    Raises HarnessError for a backend that broke (see the module doc).
+    ``on_results`` gets the commands and the reference's results (for
+    coverage). Raises HarnessError for a backend that broke (see the module
+    doc).
     """
     report = run_case(
         model_case(commands),
@@ -291,9 +440,15 @@ def run_model_case(
         strict_divergences=True,
         step_timeout=step_timeout,
     )
+    trace = report.traces.get(reference.name)
+    if on_results is not None and trace is not None:
+        on_results(commands, list(trace.results))
     if report.aborted and not report.broken and "add_models" in [c.op for c in commands]:
-        # A name the backend's parse did not make: compare the case up to add_models.
+        # A name the backend's parse did not make: compare the case up to the last
+        # add_models and its reports.
         last = max(i for i, c in enumerate(commands) if c.op == "add_models") + 1
+        while last < len(commands) and commands[last].op in _REPORTS:
+            last += 1
         shorter = run_model_case(commands[:last], backend, reference, step_timeout=step_timeout)
         if shorter is not None:
             return shorter
@@ -322,10 +477,12 @@ def _quiet_drake() -> Iterator[None]:
 class ModelCampaign(Campaign):
     """A ``Campaign`` whose examples are random models (``model_cases``), not lockstep runs."""
 
-    #: Formats drawn (default: URDF and SDFormat).
-    formats: tuple[str, ...] = FORMATS
+    #: Formats drawn (default: URDF, SDFormat and model directives).
+    formats: tuple[str, ...] = SCENE_FORMATS
     #: One example in this many has a broken model (0: none).
-    invalid_share: int = 8
+    invalid_share: int = 4
+    #: Grammar elements left out (``model_scenes.SWITCHES``, ``rename-then-parse``).
+    without: frozenset[str] = frozenset()
 
     def run(self) -> CampaignResult:
         with _quiet_drake():
@@ -342,8 +499,14 @@ class ModelCampaign(Campaign):
                 f"{backend.name} and {reference.name}"
             )
         strategy = model_cases(
-            formats=self.formats, features=features, invalid_share=self.invalid_share
+            formats=self.formats,
+            features=features,
+            invalid_share=self.invalid_share,
+            without=self.without,
         )
+        if not isinstance(stats.coverage, ModelCoverage):
+            stats.coverage = ModelCoverage()
+        coverage = stats.coverage
 
         @hypothesis_seed(seed)
         @fuzz_settings(max_examples=size or 100, database=self.database)
@@ -353,7 +516,11 @@ class ModelCampaign(Campaign):
             start = time.perf_counter()
             try:
                 divergence = run_model_case(
-                    commands, backend, reference, step_timeout=self.step_timeout
+                    commands,
+                    backend,
+                    reference,
+                    step_timeout=self.step_timeout,
+                    on_results=coverage.follow_case,
                 )
             except HarnessError as exc:
                 raise HarnessAbort(exc) from None

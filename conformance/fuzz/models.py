@@ -1,8 +1,11 @@
 """Random kinematic trees and their collision filter groups, rendered as URDF and SDFormat (public).
 
-A ``Model`` is pure data: bodies with geometry, the joints of a tree over
-them, and ``<drake:collision_filter_group>`` declarations. ``to_urdf`` and
-``to_sdf`` render it with ``xml.etree``; ``kinematic_trees`` draws one.
+A ``Model`` is pure data (``conformance.fuzz.model_data``): bodies with
+geometry, the joints of a tree over them, frames, SDFormat nested models and
+includes, and ``<drake:collision_filter_group>`` declarations. ``to_urdf``
+and ``to_sdf`` (``conformance.fuzz.model_render``) render it;
+``kinematic_trees`` draws one. ``conformance.fuzz.model_scenes`` puts
+models into files, packages and model directives.
 
 >>> from conformance.fuzz.models import kinematic_trees, to_sdf, to_urdf
 >>> model = kinematic_trees(formats=("urdf", "sdf")).example()  # doctest: +SKIP
@@ -17,32 +20,50 @@ it can reverse, which ``JOINT_KINDS`` marks). A joint between two bodies may
 be reversed too (the later body is its parent). What each kind is in each
 format was measured on pydrake 1.51.1:
 
-=========== ============================ ============ =================== =========
-kind        URDF                         SDFormat     Drake's joint       reversible
-=========== ============================ ============ =================== =========
-revolute    ``<joint type="revolute">``  revolute     RevoluteJoint       yes
-continuous  ``<joint type="continuous">`` continuous  RevoluteJoint       yes
-prismatic   ``<joint type="prismatic">`` prismatic    PrismaticJoint      yes
-fixed       ``<joint type="fixed">``     fixed        WeldJoint           yes
-floating    ``<joint type="floating">``  (invalid)    none: the child is  no
-                                                      left free (warning)
-planar      ``<joint type="planar">``    (invalid)    PlanarJoint         no
-ball        ``<drake:joint type="ball">`` ball        BallRpyJoint        no
-universal   ``<drake:joint ...>``        universal    UniversalJoint      no
-screw       ``<drake:joint ...>`` and    screw        ScrewJoint          no
-            ``<drake:screw_thread_pitch>``
-=========== ============================ ============ =================== =========
+============ ============================== ============ =================== =========
+kind         URDF                           SDFormat     Drake's joint       reversible
+============ ============================== ============ =================== =========
+revolute     ``<joint type="revolute">``    revolute     RevoluteJoint       yes
+continuous   ``<joint type="continuous">``  continuous   RevoluteJoint       yes
+prismatic    ``<joint type="prismatic">``   prismatic    PrismaticJoint      yes
+fixed        ``<joint type="fixed">``       fixed        WeldJoint           yes
+floating     ``<joint type="floating">``    (invalid)    none: the child is  no
+                                                         left free (warning)
+planar       ``<joint type="planar">``      (invalid)    PlanarJoint         no
+drake_planar ``<drake:joint type="planar">`` (invalid)   PlanarJoint         no
+ball         ``<drake:joint type="ball">``  ball         BallRpyJoint        no
+universal    ``<drake:joint ...>``          universal    UniversalJoint      no
+screw        ``<drake:joint ...>`` and      screw        ScrewJoint          no
+             ``<drake:screw_thread_pitch>``
+curvilinear  ``<drake:joint ...>`` and      (invalid)    CurvilinearJoint    no
+             ``<drake:curves>``
+============ ============================== ============ =================== =========
 
 SDFormat wants an ``<axis>`` for revolute, continuous, prismatic and screw,
-and ``<axis>`` with ``<axis2>`` for universal; the renderer writes them.
+and ``<axis>`` with ``<axis2>`` for universal; the renderer writes them. With
+``joint_attributes``, revolute and prismatic joints may have limits
+(lower ≤ upper) and every kind Drake reads a damping for may have one (≥ 0).
 
-**Geometry.** 0-3 per body: a sphere, box or cylinder, ``<collision>`` or
-``<visual>``, named or not. Names are unique per body and element kind (SDFormat
-rejects a repeated collision name in a link). URDF leaves an unnamed element
-unnamed, and Drake names it after its shape (``Sphere``, ``Box_1``...);
-SDFormat requires a name, so ``to_sdf`` writes ``collision<k>`` or
-``visual<k>`` (``k``: its position in the body). ``geometry_names`` lists the
-names a scenario can refer to without knowing Drake's default-name rule.
+**Geometry.** 0-3 per body, of ``shapes`` (default: sphere, box, cylinder;
+``SHAPE_KINDS`` has Drake's capsule and ellipsoid, SDFormat's own shapes and
+meshes), ``<collision>`` or ``<visual>``, named or not. Names are unique per
+body and element kind (SDFormat rejects a repeated collision name in a
+link). URDF leaves an unnamed element unnamed, and Drake names it after its
+shape (``Sphere``, ``Box_1``...); SDFormat requires a name, so ``to_sdf``
+writes ``collision<k>`` or ``visual<k>`` (``k``: its position in the body).
+``geometry_names`` lists the names a scenario can refer to without knowing
+Drake's default-name rule. A ``plane`` is always a ``<visual>``: Drake's
+HalfSpace on a moving body crashes FCL's broadphase (Drake issue #19263;
+pydrake 1.51.1 and 1.58.0 segfault with 8 such bodies). A mesh (``mesh``, or ``convex``: with
+``<drake:declare_convex/>``) names ``mesh.obj`` (a visual one may name
+``mesh.stl``) and may be scaled: in URDF by one value or three, in
+SDFormat by three (one is an SDFormat error, measured).
+
+**Frames.** With ``max_frames``, ``<frame>`` elements: in URDF on a link or
+the world; in SDFormat attached to a link, an earlier frame, a nested or
+included model, or a body inside one (``n0::l1``), some with a pose
+``relative_to`` a link or an earlier frame; and a joint between two of the
+model's own links may name, as its parent or child, a frame on that link.
 
 **Groups.** ``name``, ``members`` (links), ``member_groups`` and
 ``ignored`` (``ignored_collision_filter_group``) name other groups, possibly
@@ -53,87 +74,106 @@ attribute as written. Whether it drops the group depends on the format
 it is an error (``collision filter group with name 'm::g' not found``). A
 valid model therefore refers only to groups that no format it is drawn for
 drops, and every kept group has a member or a member group (else
-``group 'm::g' has no members``). ``kinematic_trees(invalid=True)`` breaks
-one of these rules on purpose (``FAULTS``), for the error paths.
+``group 'm::g' has no members``).
+
+**Faults.** ``kinematic_trees(invalid=True)`` breaks one rule on purpose:
+one of ``FAULTS`` that every format drawn has (the groups' rules above, a
+joint to an unknown link, a link or frame named ``world`` in SDFormat, a
+negative damping, a lower limit above the upper, a ``.stl`` collision mesh,
+a URDF scale of two values, a frame on an unknown link or in a cycle), each
+refused by pydrake 1.51.1 (measured).
 """
 
 from __future__ import annotations
 
 import enum
-import xml.etree.ElementTree as ET
-from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, replace
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import replace
+from typing import TypeVar
 
 from hypothesis import strategies as st
+
+from conformance.fuzz.model_data import (
+    DRAKE_NAMESPACE,
+    FORMATS,
+    IGNORE_VALUES,
+    JOINT_KINDS,
+    SHAPE_KINDS,
+    SHAPES,
+    WORLD,
+    Body,
+    Frame,
+    Geometry,
+    Group,
+    Include,
+    Joint,
+    JointKind,
+    Model,
+    ShapeKind,
+    drops,
+    geometry_names,
+)
+from conformance.fuzz.model_render import MESH_BASE, render, to_sdf, to_urdf
 
 __all__ = [
     "DRAKE_NAMESPACE",
     "FAULTS",
     "FORMATS",
+    "GROUP_FAULTS",
     "IGNORE_VALUES",
     "JOINT_KINDS",
+    "MESH_BASE",
     "SHAPES",
+    "SHAPE_KINDS",
     "WORLD",
     "Body",
+    "Frame",
     "Geometry",
     "Group",
+    "Include",
     "Joint",
     "JointKind",
     "Model",
+    "ShapeKind",
     "collision_filter_groups",
     "drops",
+    "faults_for",
+    "free_roots",
     "geometry_names",
     "kinematic_trees",
     "render",
+    "spread",
     "to_sdf",
     "to_urdf",
 ]
 
-DRAKE_NAMESPACE = "http://drake.mit.edu"
-WORLD = "world"
-FORMATS = ("urdf", "sdf")
-SHAPES = ("sphere", "box", "cylinder")
-#: Values of a group's ``ignore`` attribute (None: not written).
-IGNORE_VALUES: tuple[str | None, ...] = (None, "true", "false", "1", "True")
+T = TypeVar("T")
 #: Names a geometry may be given; the shape names meet Drake's default names.
 _GEOMETRY_NAMES = ("c0", "c1", "c2", "Sphere", "Box")
 #: Names of links and groups that no model defines.
 _UNDEFINED_LINKS = ("zz", WORLD)
 _UNDEFINED_GROUP = "nope"
+#: Valid joint attributes as written: limits (lower ≤ upper) and dampings (≥ 0).
+_LIMITS = (("-1", "1"), ("0", "0.5"))
+_DAMPINGS = ("0", "0.1")
+#: Shapes drawn as visual geometry only: a HalfSpace for proximity on a moving body can
+#: crash Drake (Drake issue #19263: a segfault in FCL's broadphase; measured on pydrake
+#: 1.51.1 and 1.58.0 with 8 or more such bodies, each with a sphere beside it).
+_VISUAL_ONLY = frozenset({"plane"})
+#: Mesh scales: URDF reads one value or three, SDFormat three.
+_SCALES = {"urdf": (None, "2", "1 2 3"), "sdf": (None, "1 2 3")}
 
 
-# ------------------------------------------------------------------ joints
-@dataclass(frozen=True)
-class JointKind:
-    """One row of the joint table (see the module doc)."""
+def spread(items: Sequence[T]) -> st.SearchStrategy[T]:
+    """One of ``items``, about evenly: a wide integer modulo their number.
 
-    name: str
-    #: The URDF element (``joint`` or ``drake:joint``) and its type, or None.
-    urdf: tuple[str, str] | None
-    #: The SDFormat type, or None if SDFormat has no such joint.
-    sdf: str | None
-    #: Drake's class for it (None: the child is left free).
-    drake: str | None
-    #: Axes SDFormat wants (0, 1 or 2).
-    axes: int = 0
-    #: Drake reverses it when the tree needs (a joint whose child is the world).
-    reversible: bool = False
-
-
-JOINT_KINDS: dict[str, JointKind] = {
-    kind.name: kind
-    for kind in (
-        JointKind("revolute", ("joint", "revolute"), "revolute", "RevoluteJoint", 1, True),
-        JointKind("continuous", ("joint", "continuous"), "continuous", "RevoluteJoint", 1, True),
-        JointKind("prismatic", ("joint", "prismatic"), "prismatic", "PrismaticJoint", 1, True),
-        JointKind("fixed", ("joint", "fixed"), "fixed", "WeldJoint", 0, True),
-        JointKind("floating", ("joint", "floating"), None, None),
-        JointKind("planar", ("joint", "planar"), None, "PlanarJoint"),
-        JointKind("ball", ("drake:joint", "ball"), "ball", "BallRpyJoint"),
-        JointKind("universal", ("drake:joint", "universal"), "universal", "UniversalJoint", 2),
-        JointKind("screw", ("drake:joint", "screw"), "screw", "ScrewJoint", 1),
-    )
-}
+    N.B. Hypothesis draws ``sampled_from`` and small ``integers`` far from
+    evenly over a few hundred examples (measured at seed 1: a joint kind of
+    eleven never drawn in 300 cases, a fault of five never in 25 draws), so
+    the model grammar's categorical choices are drawn this way. It still
+    shrinks to the first item.
+    """
+    return st.integers(0, 1 << 16).map(lambda i: items[i % len(items)])
 
 
 def _kinds_for(formats: Sequence[str], kinds: Iterable[str] | None) -> tuple[str, ...]:
@@ -149,212 +189,43 @@ def _kinds_for(formats: Sequence[str], kinds: Iterable[str] | None) -> tuple[str
     return out
 
 
-# ------------------------------------------------------------------ model
-@dataclass(frozen=True)
-class Geometry:
-    shape: str  # one of SHAPES
-    name: str | None = None  # None: unnamed
-    collision: bool = True  # False: a <visual>
+def _shapes_for(formats: Sequence[str], shapes: Iterable[str]) -> tuple[str, ...]:
+    """The shapes of ``shapes`` that every format in ``formats`` has."""
+    out = tuple(s for s in shapes if all(getattr(SHAPE_KINDS[s], fmt) for fmt in formats))
+    if not out:
+        raise ValueError(f"no shape of {tuple(shapes)} exists in every format of {formats}")
+    return out
 
 
-@dataclass(frozen=True)
-class Body:
-    name: str
-    geometries: tuple[Geometry, ...] = ()
+def free_roots(model: Model) -> list[str]:
+    """The root of each tree of the model's top-level bodies that no joint joins to the
+    world: a body that is no joint's child, in a tree without a world joint. Welding one
+    to anything makes no loop (a URDF floating joint joins nothing: Drake drops it)."""
+    bodies = [b.name for b in model.bodies]
+    parent: dict[str, str] = {name: name for name, _ in model.scoped_bodies()}
+    parent[WORLD] = WORLD
 
+    def find(name: str) -> str:
+        while parent[name] != name:
+            name = parent[name]
+        return name
 
-@dataclass(frozen=True)
-class Joint:
-    name: str
-    kind: str  # a key of JOINT_KINDS
-    parent: str  # a body's name or WORLD
-    child: str  # a body's name or WORLD
-
-
-@dataclass(frozen=True)
-class Group:
-    """A ``<drake:collision_filter_group>``, as written (names unscoped)."""
-
-    name: str
-    members: tuple[str, ...] = ()
-    member_groups: tuple[str, ...] = ()
-    ignored: tuple[str, ...] = ()
-    ignore: str | None = None
-
-
-@dataclass(frozen=True)
-class Model:
-    """A model; ``nested`` models (SDFormat only) are its children, whose bodies and groups
-    its joints and groups name as ``<nested>::<name>``."""
-
-    name: str
-    bodies: tuple[Body, ...]
-    joints: tuple[Joint, ...] = ()
-    groups: tuple[Group, ...] = ()
-    nested: tuple[Model, ...] = ()
-
-    def scoped_bodies(self) -> list[tuple[str, Body]]:
-        """Every body with its name relative to this model (``l0``, ``n0::l0``)."""
-        return [(body.name, body) for body in self.bodies] + [
-            (f"{inner.name}::{name}", body)
-            for inner in self.nested
-            for name, body in inner.scoped_bodies()
+    children: set[str] = set()
+    for joint in model.joints:
+        if joint.kind == "floating":
+            continue
+        ends = [
+            _body_of(end, model.frames, list(parent)) or end for end in (joint.parent, joint.child)
         ]
+        if not all(end in parent for end in ends):
+            continue
+        children.add(ends[1])
+        parent[find(ends[0])] = find(ends[1])
+    grounded = find(WORLD)
+    return [b for b in bodies if b not in children and find(b) != grounded]
 
 
-def drops(group: Group, fmt: str) -> bool:
-    """Whether the format's parser drops ``group`` for its ``ignore`` attribute (measured).
-
-    URDF: the value is exactly ``"true"``. SDFormat reads a boolean:
-    ``true`` or ``1``, in any case.
-    """
-    if group.ignore is None:
-        return False
-    if fmt == "urdf":
-        return group.ignore == "true"
-    return group.ignore.lower() in ("true", "1")
-
-
-def _default_name(geometry: Geometry, position: int) -> str:
-    """The name ``to_sdf`` writes for an unnamed element (none of _GEOMETRY_NAMES)."""
-    return f"{'collision' if geometry.collision else 'visual'}{position}"
-
-
-def geometry_names(model: Model, fmt: str, *, visual: bool = False) -> list[str]:
-    """Scoped names (``model::body/name``, ``model::nested::body/name``) of the collision
-    geometry whose name is certain.
-
-    Certain: written in the text and unlike Drake's default names (in URDF an
-    unnamed sphere is ``Sphere``, and a named ``Sphere`` beside it is renamed).
-    With ``visual``, visual elements too.
-    """
-    defaults = {shape.capitalize() for shape in SHAPES}
-    names = []
-    for scoped, body in model.scoped_bodies():
-        for position, geometry in enumerate(body.geometries):
-            if not geometry.collision and not visual:
-                continue
-            name = geometry.name
-            if name is None and fmt == "sdf":
-                name = _default_name(geometry, position)
-            if name is not None and name not in defaults:
-                names.append(f"{model.name}::{scoped}/{name}")
-    return names
-
-
-# ------------------------------------------------------------------ rendering
-_SIZES = {"sphere": {"radius": "0.1"}, "box": {"size": "0.1 0.2 0.3"}}
-_CYLINDER = {"radius": "0.1", "length": "0.2"}
-_AXES = (("axis", "0 0 1"), ("axis2", "0 1 0"))
-
-
-def _urdf_shape(parent: ET.Element, shape: str) -> None:
-    geometry = ET.SubElement(parent, "geometry")
-    ET.SubElement(geometry, shape, _SIZES.get(shape, _CYLINDER))
-
-
-def _sdf_shape(parent: ET.Element, shape: str) -> None:
-    element = ET.SubElement(ET.SubElement(parent, "geometry"), shape)
-    for key, value in _SIZES.get(shape, _CYLINDER).items():
-        ET.SubElement(element, key).text = value
-
-
-def _text(parent: ET.Element, tag: str, text: str) -> ET.Element:
-    element = ET.SubElement(parent, tag)
-    element.text = text
-    return element
-
-
-def _serialize(root: ET.Element) -> str:
-    ET.indent(root)
-    return ET.tostring(root, encoding="unicode") + "\n"
-
-
-def to_urdf(model: Model) -> str:
-    """The model as URDF text (``xmlns:drake`` declared on ``<robot>``)."""
-    if model.nested:
-        raise ValueError("URDF has no nested models")
-    robot = ET.Element("robot", {"name": model.name, "xmlns:drake": DRAKE_NAMESPACE})
-    for body in model.bodies:
-        link = ET.SubElement(robot, "link", {"name": body.name})
-        for geometry in body.geometries:
-            tag = "collision" if geometry.collision else "visual"
-            attributes = {"name": geometry.name} if geometry.name is not None else {}
-            _urdf_shape(ET.SubElement(link, tag, attributes), geometry.shape)
-    for joint in model.joints:
-        kind = JOINT_KINDS[joint.kind]
-        if kind.urdf is None:
-            raise ValueError(f"URDF has no {joint.kind} joint")
-        tag, joint_type = kind.urdf
-        element = ET.SubElement(robot, tag, {"name": joint.name, "type": joint_type})
-        ET.SubElement(element, "parent", {"link": joint.parent})
-        ET.SubElement(element, "child", {"link": joint.child})
-        if joint.kind == "screw":
-            ET.SubElement(element, "drake:screw_thread_pitch", {"value": "0.1"})
-    for group in model.groups:
-        attributes = {"name": group.name}
-        if group.ignore is not None:
-            attributes["ignore"] = group.ignore
-        element = ET.SubElement(robot, "drake:collision_filter_group", attributes)
-        for link_name in group.members:
-            ET.SubElement(element, "drake:member", {"link": link_name})
-        for name in group.member_groups:
-            ET.SubElement(element, "drake:member_group", {"name": name})
-        for name in group.ignored:
-            ET.SubElement(element, "drake:ignored_collision_filter_group", {"name": name})
-    return _serialize(robot)
-
-
-def to_sdf(model: Model) -> str:
-    """The model as SDFormat 1.9 text; unnamed elements get ``collision<k>``/``visual<k>``."""
-    sdf = ET.Element("sdf", {"version": "1.9", "xmlns:drake": DRAKE_NAMESPACE})
-    _sdf_model(sdf, model)
-    return _serialize(sdf)
-
-
-def _sdf_model(parent: ET.Element, model: Model) -> None:
-    """``<model>``: its links, nested models, joints, then groups."""
-    root = ET.SubElement(parent, "model", {"name": model.name})
-    for body in model.bodies:
-        link = ET.SubElement(root, "link", {"name": body.name})
-        for position, geometry in enumerate(body.geometries):
-            tag = "collision" if geometry.collision else "visual"
-            name = geometry.name if geometry.name is not None else _default_name(geometry, position)
-            _sdf_shape(ET.SubElement(link, tag, {"name": name}), geometry.shape)
-    for inner in model.nested:
-        _sdf_model(root, inner)
-    for joint in model.joints:
-        kind = JOINT_KINDS[joint.kind]
-        if kind.sdf is None:
-            raise ValueError(f"SDFormat has no {joint.kind} joint")
-        element = ET.SubElement(root, "joint", {"name": joint.name, "type": kind.sdf})
-        _text(element, "parent", joint.parent)
-        _text(element, "child", joint.child)
-        for axis, xyz in _AXES[: kind.axes]:
-            _text(ET.SubElement(element, axis), "xyz", xyz)
-    for group in model.groups:
-        attributes = {"name": group.name}
-        if group.ignore is not None:
-            attributes["ignore"] = group.ignore
-        element = ET.SubElement(root, "drake:collision_filter_group", attributes)
-        for link_name in group.members:
-            _text(element, "drake:member", link_name)
-        for name in group.member_groups:
-            _text(element, "drake:member_group", name)
-        for name in group.ignored:
-            _text(element, "drake:ignored_collision_filter_group", name)
-
-
-def render(model: Model, fmt: str) -> str:
-    """``to_urdf`` or ``to_sdf`` by ``fmt`` (``"urdf"`` or ``"sdf"``)."""
-    if fmt == "urdf":
-        return to_urdf(model)
-    if fmt == "sdf":
-        return to_sdf(model)
-    raise ValueError(f"unknown model format {fmt!r} (have {', '.join(FORMATS)})")
-
-
-# ------------------------------------------------------------------ strategies
+# ------------------------------------------------------------------ geometry
 class _Root(enum.Enum):
     """How a root body meets the world."""
 
@@ -363,19 +234,45 @@ class _Root(enum.Enum):
     CHILD_WORLD = "child_world"  # a joint from it to the world (URDF, reversible kinds)
 
 
-@st.composite
-def _geometries(draw: st.DrawFn, max_geometries: int) -> tuple[Geometry, ...]:
-    drawn = draw(
-        st.lists(
-            st.builds(
-                Geometry,
-                shape=st.sampled_from(SHAPES),
-                name=st.none() | st.sampled_from(_GEOMETRY_NAMES),
-                collision=st.booleans().map(lambda visual: not visual),
-            ),
-            max_size=max_geometries,
+def _geometry(
+    shapes: Sequence[str], formats: Sequence[str], one_value_scale: bool = True
+) -> st.SearchStrategy[Geometry]:
+    """One geometry; a mesh gets a scale every format reads (one value only if
+    ``one_value_scale``), and a visual one may name .stl."""
+    scales = [s for s in _SCALES["urdf"] if all(s in _SCALES[fmt] for fmt in formats)]
+    if not one_value_scale:
+        scales = [s for s in scales if s is None or " " in s]
+
+    def mesh(geometry: Geometry) -> st.SearchStrategy[Geometry]:
+        if geometry.shape in _VISUAL_ONLY:
+            return st.just(replace(geometry, collision=False))
+        if not SHAPE_KINDS[geometry.shape].mesh:
+            return st.just(geometry)
+        files = ("mesh.obj",) if geometry.collision else ("mesh.obj", "mesh.stl")
+        return st.builds(
+            replace,
+            st.just(geometry),
+            scale=st.sampled_from(scales),
+            mesh=st.sampled_from(files),
         )
-    )
+
+    return st.builds(
+        Geometry,
+        shape=spread(shapes),
+        name=st.none() | st.sampled_from(_GEOMETRY_NAMES),
+        collision=st.booleans().map(lambda visual: not visual),
+    ).flatmap(mesh)
+
+
+@st.composite
+def _geometries(
+    draw: st.DrawFn,
+    max_geometries: int,
+    shapes: Sequence[str],
+    formats: Sequence[str],
+    one_value_scale: bool = True,
+) -> tuple[Geometry, ...]:
+    drawn = draw(st.lists(_geometry(shapes, formats, one_value_scale), max_size=max_geometries))
     seen: set[tuple[bool, str]] = set()
     out = []
     for geometry in drawn:  # names unique per body and element kind
@@ -386,41 +283,7 @@ def _geometries(draw: st.DrawFn, max_geometries: int) -> tuple[Geometry, ...]:
     return tuple(out)
 
 
-FAULTS = (
-    "unknown_link",  # a member link no body has (or the world)
-    "undefined_member_group",
-    "undefined_ignored_group",
-    "empty_group",  # no members, no member groups
-    "duplicate_group",
-    "scoped_group_name",
-)
-
-
-def _fault(draw: st.DrawFn, groups: list[Group], bodies: Sequence[str]) -> list[Group]:
-    """``groups`` with one rule broken (``FAULTS``)."""
-    fault = draw(st.sampled_from(FAULTS))
-    if not groups:
-        groups = [Group("g0", members=(bodies[0],), ignored=("g0",))]
-    at = draw(st.integers(0, len(groups) - 1))
-    group = groups[at] = replace(groups[at], ignore=None)  # a dropped group would hide it
-    if fault == "unknown_link":
-        link = draw(st.sampled_from(_UNDEFINED_LINKS))
-        groups[at] = replace(group, members=(*group.members, link))
-    elif fault == "undefined_member_group":
-        groups[at] = replace(group, member_groups=(*group.member_groups, _UNDEFINED_GROUP))
-    elif fault == "undefined_ignored_group":
-        groups[at] = replace(group, ignored=(*group.ignored, _UNDEFINED_GROUP))
-    elif fault == "empty_group":
-        groups[at] = replace(group, members=(), member_groups=())
-    elif fault == "duplicate_group":
-        # The copy is of the kept group at ``at``: a copy of a group some format drops
-        # (URDF ignore="true") is no duplicate there, and Drake accepts it (measured).
-        groups.append(group)
-    else:
-        groups[at] = replace(group, name=f"x::{group.name}")
-    return groups
-
-
+# ------------------------------------------------------------------ groups
 #: A group as drawn: its ``ignore`` attribute, then picks of its members, member groups and
 #: ignored groups (resolved once all groups and bodies are drawn).
 _GroupSpec = tuple[str | None, list[int], list[int], list[int]]
@@ -445,22 +308,29 @@ def _group_specs(
     )
 
 
-def _kept(groups: Iterable[Group], formats: Sequence[str]) -> list[str]:
+def _kept(groups: Iterable[tuple[str, Group]], formats: Sequence[str]) -> list[str]:
     """The names of the groups that no format of ``formats`` drops."""
-    return [g.name for g in groups if not any(drops(g, fmt) for fmt in formats)]
+    return [name for name, g in groups if not any(drops(g, fmt) for fmt in formats)]
 
 
 def _groups(
     specs: Sequence[_GroupSpec],
     bodies: Sequence[str],
     formats: Sequence[str],
-    nested: Sequence[Model] = (),
+    children: Sequence[tuple[str, Model]] = (),
+    prefix: str = "",
 ) -> list[Group]:
     """The groups of ``specs`` over ``bodies``, valid in every format of ``formats``; their
-    member and ignored groups may be the kept groups of ``nested`` models too."""
-    names = [f"g{i}" for i in range(len(specs))]
-    kept = _kept((Group(n, ignore=spec[0]) for n, spec in zip(names, specs, strict=True)), formats)
-    kept += [f"{inner.name}::{name}" for inner in nested for name in _kept(inner.groups, formats)]
+    member and ignored groups may be the kept groups of ``children`` (scope, model) too."""
+    names = [f"{prefix}g{i}" for i in range(len(specs))]
+    own = [(n, Group(n, ignore=spec[0])) for n, spec in zip(names, specs, strict=True)]
+    kept = _kept(own, formats)
+    kept += [
+        f"{scope}{name}"
+        for scope, inner in children
+        if scope  # a merged include's groups are dropped (model_data.Model.all_groups)
+        for name in _kept(inner.all_groups(), formats)
+    ]
 
     def resolve(picks: Sequence[int], among: Sequence[str]) -> tuple[str, ...]:
         return tuple(among[pick % len(among)] for pick in picks) if among else ()
@@ -495,21 +365,289 @@ def collision_filter_groups(
     (cycles and forward references included), ignored groups (the group itself included),
     ``ignore`` attributes.
 
-    Valid in every format of ``formats`` unless ``invalid``: then one of ``FAULTS``.
-    Each group is one list element, so the shrinker deletes whole groups.
+    Valid in every format of ``formats`` unless ``invalid``: then one of the
+    group faults of ``FAULTS``. Each group is one list element, so the
+    shrinker deletes whole groups.
     """
     groups = _groups(draw(_group_specs(max_groups, max_members, ignore_values)), bodies, formats)
     if invalid:
-        groups = _fault(draw, groups, bodies)
+        fault = draw(st.sampled_from(_GROUP_FAULTS))
+        model = _GROUP_FAULT_FUNCTIONS[fault](draw, Model("m", (Body(bodies[0]),)), groups, bodies)
+        groups = list(model.groups)
     return tuple(groups)
 
 
+# ------------------------------------------------------------------ frames
+#: A frame as drawn: picks of what it is attached to and (None: no pose) relative to.
+_FrameSpec = tuple[int, int | None]
+
+
+def _frame_targets(model: Model, fmt_sdf: bool, into_children: bool) -> list[str]:
+    """What a frame may be attached to: the model's bodies, in SDFormat also (with
+    ``into_children``) its children (not merged includes) and their bodies; in URDF also
+    the world."""
+    bodies = [b.name for b in model.bodies]
+    if not fmt_sdf:
+        return [*bodies, WORLD]
+    if not into_children:
+        return bodies
+    children = [scope.removesuffix("::") for scope, _ in model.children() if scope]
+    inner = [name for name, _ in model.scoped_bodies() if name not in bodies]
+    return [*bodies, *children, *inner]
+
+
+def _frames(
+    specs: Sequence[_FrameSpec], model: Model, sdf: bool, prefix: str, into_children: bool
+) -> list[Frame]:
+    """The frames of ``specs``: each on a target or (SDFormat) an earlier frame, some with
+    a pose relative to a body or an earlier frame (SDFormat only)."""
+    targets = _frame_targets(model, sdf, into_children)
+    bodies = [b.name for b in model.bodies]
+    frames: list[Frame] = []
+    for i, (attach, relative) in enumerate(specs):
+        earlier = [f.name for f in frames] if sdf else []
+        among = [*targets, *earlier]
+        relative_to = None
+        if relative is not None:
+            relatives = [*bodies, *earlier]
+            relative_to = relatives[relative % len(relatives)]
+        frames.append(Frame(f"{prefix}f{i}", among[attach % len(among)], relative_to))
+    return frames
+
+
+def _body_of(frame: str, frames: Sequence[Frame], bodies: Sequence[str]) -> str | None:
+    """The model's own body a frame's chain of ``attached_to`` ends at (None: elsewhere)."""
+    by_name = {f.name: f for f in frames}
+    seen: set[str] = set()
+    while frame in by_name and frame not in seen:
+        seen.add(frame)
+        frame = by_name[frame].attached_to
+    return frame if frame in bodies else None
+
+
+def _through_frames(
+    joints: Sequence[Joint], frames: Sequence[Frame], bodies: Sequence[str], picks: Sequence[int]
+) -> list[Joint]:
+    """SDFormat: joints whose parent or child is, by ``picks``, a frame on that body (each
+    joint one of them, where a frame is on it)."""
+    on: dict[str, list[str]] = {}
+    for frame in frames:
+        body = _body_of(frame.name, frames, bodies)
+        if body is not None:
+            on.setdefault(body, []).append(frame.name)
+    out = []
+    for joint, pick in zip(joints, [*picks, *[0] * len(joints)], strict=False):
+        parent, child = joint.parent, joint.child
+        if pick % 2 == 0 and parent in on:
+            parent = on[parent][pick // 2 % len(on[parent])]
+        elif child in on:
+            child = on[child][pick // 2 % len(on[child])]
+        out.append(replace(joint, parent=parent, child=child))
+    return out
+
+
+# ------------------------------------------------------------------ faults
+def _extra_body(model: Model, prefix: str) -> str:
+    return f"{prefix}lx"
+
+
+def _group_fault(
+    draw: st.DrawFn, groups: list[Group], bodies: Sequence[str]
+) -> tuple[list[Group], int, Group]:
+    """The groups (one made if none), the index of the one to break, and it, kept."""
+    groups = list(groups)
+    if not groups:
+        groups = [Group("g0", members=(bodies[0],), ignored=("g0",))]
+    at = draw(st.integers(0, len(groups) - 1))
+    group = groups[at] = replace(groups[at], ignore=None)  # a dropped group would hide it
+    return groups, at, group
+
+
+def _unknown_link(
+    draw: st.DrawFn, model: Model, groups: list[Group], bodies: Sequence[str]
+) -> Model:
+    groups, at, group = _group_fault(draw, groups, bodies)
+    link = draw(st.sampled_from(_UNDEFINED_LINKS))
+    groups[at] = replace(group, members=(*group.members, link))
+    return replace(model, groups=tuple(groups))
+
+
+def _undefined_member_group(
+    draw: st.DrawFn, model: Model, groups: list[Group], bodies: Sequence[str]
+) -> Model:
+    groups, at, group = _group_fault(draw, groups, bodies)
+    groups[at] = replace(group, member_groups=(*group.member_groups, _UNDEFINED_GROUP))
+    return replace(model, groups=tuple(groups))
+
+
+def _undefined_ignored_group(
+    draw: st.DrawFn, model: Model, groups: list[Group], bodies: Sequence[str]
+) -> Model:
+    groups, at, group = _group_fault(draw, groups, bodies)
+    groups[at] = replace(group, ignored=(*group.ignored, _UNDEFINED_GROUP))
+    return replace(model, groups=tuple(groups))
+
+
+def _empty_group(
+    draw: st.DrawFn, model: Model, groups: list[Group], bodies: Sequence[str]
+) -> Model:
+    groups, at, group = _group_fault(draw, groups, bodies)
+    groups[at] = replace(group, members=(), member_groups=())
+    return replace(model, groups=tuple(groups))
+
+
+def _duplicate_group(
+    draw: st.DrawFn, model: Model, groups: list[Group], bodies: Sequence[str]
+) -> Model:
+    # The copy is of the kept group at ``at``: a copy of a group some format drops
+    # (URDF ignore="true") is no duplicate there, and Drake accepts it (measured).
+    groups, _, group = _group_fault(draw, groups, bodies)
+    return replace(model, groups=(*groups, group))
+
+
+def _scoped_group_name(
+    draw: st.DrawFn, model: Model, groups: list[Group], bodies: Sequence[str]
+) -> Model:
+    groups, at, group = _group_fault(draw, groups, bodies)
+    groups[at] = replace(group, name=f"x::{group.name}")
+    return replace(model, groups=tuple(groups))
+
+
+_GroupFault = Callable[[st.DrawFn, Model, list[Group], Sequence[str]], Model]
+_GROUP_FAULT_FUNCTIONS: dict[str, _GroupFault] = {
+    "unknown_link": _unknown_link,  # a member link no body has (or the world)
+    "undefined_member_group": _undefined_member_group,
+    "undefined_ignored_group": _undefined_ignored_group,
+    "empty_group": _empty_group,  # no members, no member groups
+    "duplicate_group": _duplicate_group,
+    "scoped_group_name": _scoped_group_name,
+}
+_GROUP_FAULTS = tuple(_GROUP_FAULT_FUNCTIONS)
+
+
+def _joint_to_unknown_link(draw: st.DrawFn, model: Model, prefix: str, fmt: str) -> Model:
+    joint = Joint(f"{prefix}jx", "fixed", model.bodies[0].name, "zz")
+    return replace(model, joints=(*model.joints, joint))
+
+
+def _world_link(draw: st.DrawFn, model: Model, prefix: str, fmt: str) -> Model:
+    return replace(model, bodies=(*model.bodies, Body(WORLD)))
+
+
+def _world_frame(draw: st.DrawFn, model: Model, prefix: str, fmt: str) -> Model:
+    return replace(model, frames=(*model.frames, Frame(WORLD, model.bodies[0].name)))
+
+
+def _faulty_joint(model: Model, prefix: str, joint: Joint) -> Model:
+    body = Body(_extra_body(model, prefix), (Geometry("sphere", "c0"),))
+    return replace(model, bodies=(*model.bodies, body), joints=(*model.joints, joint))
+
+
+def _negative_damping(draw: st.DrawFn, model: Model, prefix: str, fmt: str) -> Model:
+    kinds = [
+        k.name
+        for k in JOINT_KINDS.values()
+        if k.damping and getattr(k, fmt) is not None and (fmt == "urdf" or k.axes)
+    ]
+    kind = draw(spread(kinds))
+    joint = Joint(f"{prefix}jx", kind, model.bodies[0].name, _extra_body(model, prefix))
+    return _faulty_joint(model, prefix, replace(joint, damping="-1"))
+
+
+def _inverted_limits(draw: st.DrawFn, model: Model, prefix: str, fmt: str) -> Model:
+    kind = draw(st.sampled_from([k.name for k in JOINT_KINDS.values() if k.limits]))
+    joint = Joint(f"{prefix}jx", kind, model.bodies[0].name, _extra_body(model, prefix))
+    return _faulty_joint(model, prefix, replace(joint, limits=("1", "-1")))
+
+
+def _stl_collision(draw: st.DrawFn, model: Model, prefix: str, fmt: str) -> Model:
+    shape = draw(st.sampled_from(("mesh", "convex")))
+    geometry = Geometry(shape, "c0", mesh="mesh.stl")
+    return replace(model, bodies=(*model.bodies, Body(_extra_body(model, prefix), (geometry,))))
+
+
+def _two_value_scale(draw: st.DrawFn, model: Model, prefix: str, fmt: str) -> Model:
+    geometry = Geometry("mesh", "c0", scale="1 2")
+    return replace(model, bodies=(*model.bodies, Body(_extra_body(model, prefix), (geometry,))))
+
+
+def _frame_on_unknown_link(draw: st.DrawFn, model: Model, prefix: str, fmt: str) -> Model:
+    return replace(model, frames=(*model.frames, Frame(f"{prefix}fx", "zz")))
+
+
+def _frame_cycle(draw: st.DrawFn, model: Model, prefix: str, fmt: str) -> Model:
+    cycle = (Frame(f"{prefix}fx", f"{prefix}fy"), Frame(f"{prefix}fy", f"{prefix}fx"))
+    return replace(model, frames=(*model.frames, *cycle))
+
+
+_ModelFault = Callable[[st.DrawFn, Model, str, str], Model]
+#: fault → (the formats it exists in, how it breaks the model).
+_MODEL_FAULTS: dict[str, tuple[tuple[str, ...], _ModelFault]] = {
+    "joint_to_unknown_link": (FORMATS, _joint_to_unknown_link),
+    "world_link": (("sdf",), _world_link),
+    "world_frame": (("sdf",), _world_frame),
+    "negative_damping": (FORMATS, _negative_damping),
+    "inverted_limits": (FORMATS, _inverted_limits),
+    "stl_collision": (FORMATS, _stl_collision),
+    "two_value_scale": (("urdf",), _two_value_scale),
+    "frame_on_unknown_link": (FORMATS, _frame_on_unknown_link),
+    "frame_cycle": (("sdf",), _frame_cycle),
+}
+#: Every way ``kinematic_trees(invalid=True)`` breaks a model.
+FAULTS = (*_GROUP_FAULTS, *_MODEL_FAULTS)
+#: The faults that break a model's collision filter groups.
+GROUP_FAULTS = _GROUP_FAULTS
+
+
+def faults_for(fmt: str) -> tuple[str, ...]:
+    """The faults a model of format ``fmt`` can have (``FAULTS``)."""
+    return (*_GROUP_FAULTS, *(f for f, (formats, _) in _MODEL_FAULTS.items() if fmt in formats))
+
+
+def _fault(
+    draw: st.DrawFn,
+    model: Model,
+    formats: Sequence[str],
+    faults: Sequence[str],
+    prefix: str,
+) -> Model:
+    """``model`` with one of ``faults`` that every format of ``formats`` has."""
+    usable = [
+        f
+        for f in faults
+        if f in _GROUP_FAULT_FUNCTIONS or all(fmt in _MODEL_FAULTS[f][0] for fmt in formats)
+    ]
+    fault = draw(spread(usable))
+    if fault in _GROUP_FAULT_FUNCTIONS:
+        names = [name for name, _ in model.scoped_bodies()]
+        return _GROUP_FAULT_FUNCTIONS[fault](draw, model, list(model.groups), names)
+    return _MODEL_FAULTS[fault][1](draw, model, prefix, formats[0])
+
+
+# ------------------------------------------------------------------ joints
 #: A body as drawn: its geometry, then its parent pick (0: a root; k: body (k - 1) mod i),
-#: its joint kind pick, whether the joint is reversed, and (a root) how it meets the world.
-_BodySpec = tuple[tuple[Geometry, ...], int, int, bool, _Root]
+#: its joint kind pick, whether the joint is reversed, how a root meets the world, and the
+#: picks of its joint's limits and damping (0: none).
+_BodySpec = tuple[tuple[Geometry, ...], int, int, bool, _Root, int, int]
 
 
-def _joints(specs: Sequence[_BodySpec], bodies: Sequence[str], kinds: Sequence[str]) -> list[Joint]:
+def _attributes(joint: Joint, limits: int, damping: int, formats: Sequence[str]) -> Joint:
+    """The joint with the limits and damping its picks name, where its kind reads them."""
+    kind = JOINT_KINDS[joint.kind]
+    if limits and kind.limits:
+        joint = replace(joint, limits=_LIMITS[(limits - 1) % len(_LIMITS)])
+    if damping and kind.damping and ("sdf" not in formats or kind.axes):
+        joint = replace(joint, damping=_DAMPINGS[(damping - 1) % len(_DAMPINGS)])
+    return joint
+
+
+def _joints(
+    specs: Sequence[_BodySpec],
+    bodies: Sequence[str],
+    kinds: Sequence[str],
+    formats: Sequence[str],
+    prefix: str = "",
+) -> list[Joint]:
     """The joints of the tree the body specs describe (see ``_BodySpec``).
 
     N.B. A joint is reversed only in a tree joined to the world (through no URDF
@@ -523,27 +661,31 @@ def _joints(specs: Sequence[_BodySpec], bodies: Sequence[str], kinds: Sequence[s
     reversible = [k for k in kinds if JOINT_KINDS[k].reversible]
     joints: list[Joint] = []
     anchored: list[bool] = []  # joined to the world, walked from it
-    for i, (_, parent, kind_pick, reverse, root) in enumerate(specs):
-        body, name, kind = bodies[i], f"j{len(joints)}", kinds[kind_pick]
+    for i, (_, parent, kind_pick, reverse, root, limits, damping) in enumerate(specs):
+        body, name, kind = bodies[i], f"{prefix}j{len(joints)}", kinds[kind_pick]
+        joint: Joint | None = None
         if parent and i:
             at = (parent - 1) % i
             other = bodies[at]
             anchored.append(anchored[at] and kind != "floating")
             if reverse and kind in reversible and anchored[at]:
-                joints.append(Joint(name, kind, body, other))
+                joint = Joint(name, kind, body, other)
             else:
-                joints.append(Joint(name, kind, other, body))
-            continue
-        anchored.append(root is not _Root.FREE and kind != "floating")
-        if root is _Root.PARENT_WORLD:
-            joints.append(Joint(name, kind, WORLD, body))
-        elif root is _Root.CHILD_WORLD:
-            kind = kind if kind in reversible else reversible[kind_pick % len(reversible)]
-            anchored[-1] = True
-            joints.append(Joint(name, kind, body, WORLD))
+                joint = Joint(name, kind, other, body)
+        else:
+            anchored.append(root is not _Root.FREE and kind != "floating")
+            if root is _Root.PARENT_WORLD:
+                joint = Joint(name, kind, WORLD, body)
+            elif root is _Root.CHILD_WORLD:
+                kind = kind if kind in reversible else reversible[kind_pick % len(reversible)]
+                anchored[-1] = True
+                joint = Joint(name, kind, body, WORLD)
+        if joint is not None:
+            joints.append(_attributes(joint, limits, damping, formats))
     return joints
 
 
+# ------------------------------------------------------------------ trees
 @st.composite
 def kinematic_trees(
     draw: st.DrawFn,
@@ -559,27 +701,48 @@ def kinematic_trees(
     invalid: bool = False,
     max_nested: int = 0,
     attach_to_world: bool = True,
+    shapes: Iterable[str] = SHAPES,
+    max_frames: int = 0,
+    joint_attributes: bool = False,
+    includes: Sequence[Include] = (),
+    faults: Sequence[str] = FAULTS,
+    prefix: str = "",
+    frames_into_children: bool = True,
+    joints_into_includes: bool = True,
+    one_value_scale: bool = True,
+    reversed_joints: bool = True,
 ) -> Model:
     """A random tree that renders in every format of ``formats`` (see the module doc).
 
-    ``joint_kinds`` limits the kinds (default: every kind all ``formats`` have).
-    ``invalid`` breaks one rule of the groups on purpose (``FAULTS``). Each body
-    is one list element, and everything shrinks towards free roots, so a shrunk
-    model keeps only the bodies and joints a finding needs.
+    ``joint_kinds`` limits the kinds and ``shapes`` the shapes (default: every
+    kind all ``formats`` have; sphere, box and cylinder). ``includes``
+    (SDFormat) are the model's includes, which its joints, frames and groups
+    may name. ``prefix`` starts every name the model defines (bodies
+    ``<prefix>l0``, joints, frames, groups, nested models), for a model that
+    is merged into another. ``invalid`` breaks one rule on purpose (one of
+    ``faults``). ``frames_into_children`` lets frames attach to nested and
+    included models and their bodies, ``joints_into_includes`` lets joints
+    hold an included model's first body, ``one_value_scale`` lets a URDF mesh
+    be scaled by one value, ``reversed_joints`` lets a joint's child be the
+    world or an earlier body (Finalize reverses it). Each body is one list
+    element, and everything shrinks towards free roots, so a shrunk model
+    keeps only the bodies and joints a finding needs.
     """
     if min_bodies < 1:
         raise ValueError("a model needs a body (SDFormat: 'A model must have at least one link')")
-    if max_nested and "urdf" in formats:
+    if (max_nested or includes) and "urdf" in formats:
         raise ValueError("URDF has no nested models")
     kinds = _kinds_for(formats, joint_kinds)
-    reversible = [k for k in kinds if JOINT_KINDS[k].reversible]
+    shape_kinds = _shapes_for(formats, shapes)
+    sdf = "sdf" in formats
+    reversible = [k for k in kinds if JOINT_KINDS[k].reversible] if reversed_joints else []
     roots = [_Root.FREE]
     if attach_to_world:
         roots.append(_Root.PARENT_WORLD)
-    if attach_to_world and "sdf" not in formats and reversible:  # SDFormat: "invalid child"
+    if attach_to_world and not sdf and reversible:  # SDFormat: "invalid child"
         roots.append(_Root.CHILD_WORLD)
     # Nested models first, each with the pick of the body whose joint holds its first
-    # link (0: none) and that joint's kind.
+    # link (0: none) and that joint's kind; the includes' picks likewise.
     nested_specs = draw(
         st.lists(
             st.tuples(
@@ -592,50 +755,78 @@ def kinematic_trees(
                     max_groups=2,
                     ignore_values=ignore_values,
                     attach_to_world=False,
+                    shapes=shape_kinds,
                 ),
                 st.integers(0, max_bodies),
-                st.integers(0, len(kinds) - 1),
+                spread(range(len(kinds))),
             ),
             max_size=max_nested,
         )
     )
+    include_picks = [
+        draw(st.tuples(st.integers(0, max_bodies), spread(range(len(kinds))))) for _ in includes
+    ]
     # Joint names differ from the parent model's: Drake adds a frame '<joint>_child' to the
     # child's model instance, so a joint j0 into n0 would clash with n0's own j0 (measured).
     nested = tuple(
         replace(
             inner,
-            name=f"n{i}",
-            joints=tuple(replace(j, name=f"n{i}{j.name}") for j in inner.joints),
+            name=f"{prefix}n{i}",
+            joints=tuple(replace(j, name=f"{prefix}n{i}{j.name}") for j in inner.joints),
         )
         for i, (inner, _, _) in enumerate(nested_specs)
     )
-    # The groups' picks first: drawn after the bodies, they would keep the shrinker
-    # from deleting bodies (see conformance.fuzz.model_campaign).
+    # The picks of groups and frames first: drawn after the bodies, they would keep the
+    # shrinker from deleting bodies (see conformance.fuzz.model_campaign).
     group_specs = draw(_group_specs(max_groups, 3, ignore_values))
+    frame_specs: list[_FrameSpec] = draw(
+        st.lists(
+            st.tuples(st.integers(0, 255), st.none() | st.integers(0, 255)),
+            max_size=max_frames,
+        )
+    )
+    if not sdf:  # URDF frames have no pose relative to another frame
+        frame_specs = [(attach, None) for attach, _ in frame_specs]
+    via_frames: list[int] = (
+        draw(st.lists(st.integers(0, 255), max_size=max_bodies)) if (sdf and max_frames) else []
+    )
+    attribute = st.integers(0, 2) if joint_attributes else st.just(0)
     specs: list[_BodySpec] = draw(
         st.lists(
             st.tuples(
-                _geometries(max_geometries),
+                _geometries(max_geometries, shape_kinds, formats, one_value_scale),
                 st.integers(0, max_bodies),
-                st.integers(0, len(kinds) - 1),
+                spread(range(len(kinds))),
                 st.integers(0, 4).map(lambda x: x == 4),  # reversed, 1 in 5
                 st.sampled_from(roots),
+                attribute,
+                attribute,
             ),
             min_size=min_bodies,
             max_size=max_bodies,
         )
     )
-    bodies = tuple(Body(f"l{i}", spec[0]) for i, spec in enumerate(specs))
-    joints = _joints(specs, [b.name for b in bodies], kinds)
-    for inner, (_, parent, kind_pick) in zip(nested, nested_specs, strict=True):
+    bodies = tuple(Body(f"{prefix}l{i}", spec[0]) for i, spec in enumerate(specs))
+    body_names = [b.name for b in bodies]
+    if not reversed_joints:
+        specs = [(*spec[:3], False, *spec[4:]) for spec in specs]
+    joints = _joints(specs, body_names, kinds, formats, prefix)
+    children = [*((f"{n.name}::", n) for n in nested), *((i.scope, i.model) for i in includes)]
+    picks = [(p, k) for _, p, k in nested_specs] + include_picks
+    jointed = len(nested) + (len(includes) if joints_into_includes else 0)
+    for (scope, inner), (parent, kind_pick) in zip(children[:jointed], picks, strict=False):
         if parent:
-            other = bodies[(parent - 1) % len(bodies)].name
-            child = f"{inner.name}::{inner.bodies[0].name}"
-            joints.append(Joint(f"j{len(joints)}", kinds[kind_pick], other, child))
-    model = Model("", bodies, tuple(joints), nested=nested)
+            other = body_names[(parent - 1) % len(body_names)]
+            child = f"{scope}{inner.bodies[0].name}"
+            joints.append(Joint(f"{prefix}j{len(joints)}", kinds[kind_pick], other, child))
+    model = Model("", bodies, tuple(joints), nested=nested, includes=tuple(includes))
+    frames = _frames(frame_specs, model, sdf, prefix, frames_into_children)
+    if via_frames:
+        joints = _through_frames(joints, frames, body_names, via_frames)
     names = [name for name, _ in model.scoped_bodies()]
-    groups = _groups(group_specs, names, formats, nested)
+    groups = _groups(group_specs, names, formats, children, prefix)
+    model = replace(model, joints=tuple(joints), frames=tuple(frames), groups=tuple(groups))
     if invalid:
-        groups = _fault(draw, groups, names)
+        model = _fault(draw, model, formats, faults, prefix)
     name = draw(st.sampled_from(model_names))
-    return replace(model, name=name, groups=tuple(groups))
+    return replace(model, name=name)

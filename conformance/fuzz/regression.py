@@ -61,11 +61,12 @@ DEFAULT_REGRESSIONS = Path("scenarios/regressions")
 
 def _result_expectation(op: str, result: Result) -> dict[str, Any]:
     """``error``, or ``returns`` for a bool, an int, or any value of a query op (a list of
-    records, a pose), which ``run`` compares as the op's ``CommandSpec.compare`` says."""
+    records, a pose) or a model op (the model instances a parse made, a group report, an
+    inventory), which ``run`` compares as the op's ``CommandSpec.compare`` says."""
     if result.error is not None:
         return {"error": result.error.to_json()}
     if isinstance(result.value, bool | int) or (
-        result.value is not None and GRAMMAR[op].domain == "queries"
+        result.value is not None and GRAMMAR[op].domain in ("queries", "model")
     ):
         return {"returns": result.value}
     return {}

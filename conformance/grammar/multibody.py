@@ -47,12 +47,15 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
             Arg("auto_renaming", K.BOOL),
             Arg("files", K.FILES),
             Arg("folder", K.FOLDER),
+            Arg("reuse_parser", K.BOOL),
         ),
         "parsing",
-        "A new Parser(plant=[, model_name_prefix=]): AddModelsFromString(file_contents=, "
-        "file_type=) or AddModels(file_name=); ``files`` form the package 'pkg'; with "
-        "``folder``, ``path`` is below it and its packages are added "
-        "(PopulateFromFolder(path=), replacing default packages of the same name); "
+        "A new Parser(plant=[, model_name_prefix=]) (with ``reuse_parser``: the last "
+        "add_models' Parser, and no ``prefix``): AddModelsFromString(file_contents=, "
+        "file_type=) or AddModels(file_name=); ``files`` form the package 'pkg', and each "
+        "folder of them holding a package.xml is a package too (PopulateFromFolder(path=) "
+        "on the case's folder); with ``folder``, ``path`` is below it and its packages are "
+        "added (PopulateFromFolder(path=), replacing default packages of the same name); "
         "returns the new model instances' names",
         one_of=(("text", "path"),),
         needs=(("text", ("format",)), ("folder", ("path",))),
@@ -77,6 +80,16 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
         '("frame/name: Shape [roles]")}, each a sorted list',
         domain="model",
         compare=Comparison.INVENTORY,
+    ),
+    CommandSpec(
+        "rename_model_instance",
+        (Arg("model", K.MODEL_INSTANCE, True), Arg("name", K.MODEL_INSTANCE, True)),
+        "multibody",
+        "MultibodyPlant.RenameModelInstance(model_instance=GetModelInstanceByName(name=model), "
+        "name=name); a parse after it may reuse the old name (Drake issue #21316)",
+        since="1.20",
+        domain="model",
+        scoped_names=True,
     ),
     CommandSpec(
         "add_rigid_body",
