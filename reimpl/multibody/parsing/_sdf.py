@@ -98,10 +98,8 @@ def read_sdf(
     try:
         root = parse_xml(source.text)
     except XmlSyntaxError as exc:
-        raise Diagnostics(None).error(
-            f"Error parsing XML from string: Error={exc.name} ErrorID={exc.error_id} "
-            f"(0x{exc.error_id:x}) Line number={exc.line}"
-        ) from None
+        where = "from string" if source.path is None else f"in file [{source.label or source.path}]"
+        raise Diagnostics(None).error(f"Error parsing XML {where}: {exc.message}") from None
     if root.tag != "sdf" or root.get("version") is None:
         raise Diagnostics(None).error(f"Unable to read SDF string: {source.text}")
     loaded = Loaded()
