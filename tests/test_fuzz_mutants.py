@@ -7,9 +7,8 @@ a divergence. The shrunk sequence is written as a scenario file, and
 for reimpl: the file records pydrake's behaviour, which reimpl matches.
 
 The model mutants (conformance.testing.model_mutants) are proved the same way
-by ``fuzz --models``, leaving out the grammar elements reimpl lacks today
-(``REIMPL_GAPS``) but those the mutant needs. They take minutes, so they are
-fuzz shards: ``pytest -m fuzz tests/test_fuzz_mutants.py``.
+by ``fuzz --models``, on the whole model grammar. They take minutes, so they
+are fuzz shards: ``pytest -m fuzz tests/test_fuzz_mutants.py``.
 """
 
 from __future__ import annotations
@@ -17,7 +16,6 @@ from __future__ import annotations
 import io
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
 import pytest
 
@@ -26,7 +24,7 @@ from conformance.cli.main import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, main
 from conformance.fuzz.campaign import Campaign
 from conformance.fuzz.model_campaign import ModelCampaign
 from conformance.fuzz.regression import write_regression
-from conformance.testing.model_mutants import MODEL_MUTANTS, REIMPL_GAPS, model_mutant_backend
+from conformance.testing.model_mutants import MODEL_MUTANTS, model_mutant_backend
 from conformance.testing.mutants import MUTANTS, mutant_backend
 
 PYDRAKE = load_backend("pydrake")
@@ -74,53 +72,12 @@ def test_fuzz_catches_the_mutant_within_300_examples_and_the_shrunk_file_replays
 
 
 # ------------------------------------------------------------------ model mutants
-#: Model mutants and the grammar elements each needs that reimpl lacks today (REIMPL_GAPS):
-#: its proof lets the campaign draw them. A mutant whose elements reimpl lacks cannot be
-#: told from reimpl's own divergence there: its proof is an expected failure until reimpl's
-#: parsers learn them (strict: it then passes, and the marker must go).
-MODEL_MUTANT_NEEDS: dict[str, frozenset[str]] = {
-    "rpy_floating_unfiltered": frozenset(),
-    "include_name_ignored": frozenset(),
-    "frame_attached_to_ignored": frozenset(),
-    "drake_capsule_dropped": frozenset(),
-    "member_groups_ignored": frozenset(),
-    "auto_renaming_ignored": frozenset(),
-    "add_weld_unfiltered": frozenset(),
-    "directives_model_namespace_ignored": frozenset(
-        {"dmd:model_namespace", "dmd:add_model_instance", "dmd:group-model_namespace"}
-    ),
-    "malformed_xml_accepted": frozenset({"xml:unclosed-root"}),
-    "merge_include_not_merged": frozenset({"sdf:merge-include"}),
-    "declare_convex_ignored": frozenset({"urdf:convex", "sdf:convex"}),
-    "one_value_scale_rejected": frozenset({"urdf:mesh-scale-1"}),
-    "renamed_model_report_stale": frozenset({"rename-then-parse"}),
-    "package_lookup_wrong_package": frozenset({"packages"}),
-}
-#: What reimpl lacks that each of these mutants needs (measured at seed 1: the shrunk
-#: finding fails for plain reimpl too).
-REIMPL_LACKS: dict[str, str] = {
-    "merge_include_not_merged": 'reimpl reads merge="true" as a nested model',
-    "declare_convex_ignored": "reimpl ignores <drake:declare_convex/>",
-    "one_value_scale_rejected": "reimpl refuses a one-value URDF scale",
-    "renamed_model_report_stale": "reimpl keeps the old name and asserts (Drake #21316)",
-    "package_lookup_wrong_package": "reimpl's PackageMap has no PopulateFromFolder",
-}
-
-
-def test_every_model_mutant_has_a_proof_and_a_one_sentence_bug_and_a_witness() -> None:
-    assert set(MODEL_MUTANT_NEEDS) == set(MODEL_MUTANTS)
+def test_every_model_mutant_has_a_one_sentence_bug_and_a_witness() -> None:
     assert len(MODEL_MUTANTS) >= 11
     for name, mutant in MODEL_MUTANTS.items():
         assert mutant.bug.endswith(".")
         if name != "rpy_floating_unfiltered":
             assert "pydrake" in mutant.witness
-        assert MODEL_MUTANT_NEEDS[name] <= REIMPL_GAPS
-
-
-def _model_proof(name: str) -> Any:
-    if name in REIMPL_LACKS:
-        return pytest.param(name, marks=pytest.mark.xfail(reason=REIMPL_LACKS[name], strict=True))
-    return name
 
 
 @pytest.mark.fuzz
@@ -128,18 +85,16 @@ def _model_proof(name: str) -> Any:
     PYDRAKE.version() != "1.51.1",
     reason="reimpl answers as 1.51.1; against another release the campaign finds its changes",
 )
-@pytest.mark.parametrize("name", [_model_proof(name) for name in sorted(MODEL_MUTANT_NEEDS)])
+@pytest.mark.parametrize("name", sorted(MODEL_MUTANTS))
 def test_fuzz_models_catches_the_model_mutant_within_300_examples_and_the_file_replays(
     name: str, tmp_path: Path, record_property: Callable[[str, object], None]
 ) -> None:
-    without = REIMPL_GAPS - MODEL_MUTANT_NEEDS[name]
     result = ModelCampaign(
         backend=lambda: model_mutant_backend(name),
         reference=lambda: PYDRAKE,
         seed=1,
         max_examples=300,
         shrink_time=SHRINK_SECONDS,
-        without=without,
     ).run()
     assert len(result.divergences) == 1, f"model mutant {name} survived 300 examples"
     divergence = result.divergences[0]

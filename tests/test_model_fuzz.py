@@ -28,7 +28,7 @@ from conformance.fuzz.model_campaign import ModelCampaign, model_cases
 from conformance.fuzz.model_coverage import MODEL_FEATURES
 from conformance.fuzz.models import Body, Geometry, Group, Joint, Model
 from conformance.protocol import Command
-from conformance.testing.model_mutants import MODEL_MUTANTS, REIMPL_GAPS, model_mutant_backend
+from conformance.testing.model_mutants import MODEL_MUTANTS, model_mutant_backend
 from reimpl.multibody import tree as reimpl_tree
 
 PYDRAKE = load_backend("pydrake")
@@ -317,8 +317,6 @@ def run(*argv: str) -> int:
     return main(["run", *argv, "-q"], out=io.StringIO(), err=io.StringIO())
 
 
-#: ``--without``: what reimpl lacks today (conformance.testing.model_mutants.REIMPL_GAPS).
-WITHOUT = ("--without", ",".join(sorted(REIMPL_GAPS)))
 #: reimpl answers as Drake 1.51.1 does. Against another release a campaign finds the
 #: release's changes first: on 1.58.0 a URDF joint without <origin> adds no
 #: '<joint>_parent' frame, which 1.51.1 adds (both measured; model_inventory shows it).
@@ -331,7 +329,7 @@ SAME_RELEASE = pytest.mark.skipif(
 @SAME_RELEASE
 def test_fuzz_models_of_reimpl_against_pydrake_exits_0_and_writes_nothing(tmp_path: Path) -> None:
     out_dir = tmp_path / "r"
-    code, out, err = fuzz("--seed", "3", "--max-examples", "50", "--out", str(out_dir), *WITHOUT)
+    code, out, err = fuzz("--seed", "3", "--max-examples", "50", "--out", str(out_dir))
     assert code == EXIT_OK, out + err
     assert "50 examples" in out
     assert "0 divergence(s)" in out
@@ -351,7 +349,6 @@ def test_fuzz_models_catches_the_rpy_floating_mutant_with_a_shrunk_file_that_rep
 ) -> None:
     code, out, _ = fuzz(
         "--backend", MUTANT, "--seed", "3", "--max-examples", "300", "--out", str(tmp_path),
-        *WITHOUT,
     )  # fmt: skip
     assert code == EXIT_FAILURE
     assert "(reproduces)" in out
@@ -381,8 +378,7 @@ def test_the_same_seed_gives_the_same_model_finding(tmp_path: Path) -> None:
         folder = tmp_path / attempt
         code, out, _ = fuzz(
             "--backend", MUTANT, "--seed", "3", "--max-examples", "300", "--out", str(folder),
-            *WITHOUT,
-        )  # fmt: skip
+            )  # fmt: skip
         assert code == EXIT_FAILURE
         (path,) = folder.glob("*.json")
         found.append((path.name, path.read_text(), out.splitlines()[-1].split(" in ")[0]))

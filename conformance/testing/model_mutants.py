@@ -18,9 +18,8 @@ second directives file) are read as they are.
 
 Each mutant's ``witness`` is the shortest input found at seed 1 (``fuzz
 --models --seed 1 --max-examples 300 --backend
-conformance.testing.model_mutants:<name>``, with ``--without`` the
-``REIMPL_GAPS`` the mutant does not need, while reimpl lacks them) and
-pydrake 1.51.1's exact answer on it.
+conformance.testing.model_mutants:<name>``) and pydrake 1.51.1's exact
+answer on it.
 
 Use one as a backend spec, ``conformance.testing.model_mutants:<name>``, e.g.
 ``python -m conformance fuzz --models --backend
@@ -43,56 +42,7 @@ from xml.etree import ElementTree
 from conformance.backends.reimpl_api import reimpl_api
 from conformance.backends.scene_graph import Api, SceneGraphBackend
 
-__all__ = ["MODEL_MUTANTS", "REIMPL_GAPS", "ModelMutant", "model_mutant_backend"]
-
-#: The model grammar elements (``fuzz --models --without``) where reimpl diverged from pydrake
-#: 1.51.1 when the mutants were measured (each with the shrunk finding of ``fuzz --models
-#: --seed 1``; see the report of issue 27). A mutant's proof leaves them out, so that what
-#: the campaign catches is the mutant's bug, not reimpl's. Empty it as reimpl's parsers
-#: learn them.
-REIMPL_GAPS: frozenset[str] = frozenset(
-    {
-        "urdf:frame",  # <frame> dropped
-        "urdf:mesh-scale-1",  # scale="2" refused: 'Expected 3 values for attribute scale'
-        "urdf:convex",  # <drake:declare_convex/> ignored: a Mesh
-        "sdf:convex",
-        "reversed-joints",  # Finalize adds no '<joint>_<parent>_M', '<joint>_world_F' frames
-        # tinyxml2's quirks rejected, its errors not raised or worded apart
-        "xml:cdata",
-        "xml:doctype",
-        "xml:dashdash-comment",
-        "xml:blank-before-declaration",
-        "xml:bom",
-        "xml:trailing-nul",
-        "xml:unclosed-root",
-        "xml:mismatched-end-tag",
-        "xml:trailing-text",
-        "xml:processing-instruction",
-        "xml:duplicate-attribute",
-        "urdf:joint-curvilinear",  # "unrecognized type: 'curvilinear'"
-        "packages",  # PackageMap.PopulateFromFolder missing
-        "dmd:nested-model",  # add_model of an SDFormat with a nested model returns both
-        "sdf:frame-attached_to-nested",  # frames into nested models: wrong instance, KeyError
-        "sdf:include-joint",  # a joint to an included model's link: KeyError
-        "sdf:drake:capsule",  # dropped
-        "sdf:drake:ellipsoid",  # dropped
-        "dmd:add_model_instance",  # not renamed by SetAutoRenaming
-        "dmd:prefix",  # a prefix on directives: "no model instance named 'q'"
-        "rename-then-parse",  # Drake issue #21316: reports the old name, asserts on reuse
-        "sdf:merge-include",  # read as a nested model
-        "sdf:include-dir",  # "The file 'pb/i0' is not a recognized type"
-        "fault:negative_damping",  # accepted
-        "fault:inverted_limits",  # accepted
-        "fault:joint_to_unknown_link",  # SDFormat: the failed parse leaves the model
-        "fault:frame_on_unknown_link",  # URDF <frame> dropped
-        "fault:world_link",  # accepted
-        "fault:world_frame",  # accepted
-        "fault:frame_cycle",  # another message (GetFrameByName)
-        "fault:include-missing",  # the error's line: <include>'s, not <uri>'s
-        "dmd:model_namespace",  # with SetAutoRenaming: "already contains ... 'ns'"
-        "dmd:group-model_namespace",  # pydrake asserts in the resolver; reimpl raises
-    }
-)
+__all__ = ["MODEL_MUTANTS", "ModelMutant", "model_mutant_backend"]
 
 #: A rewrite of a document: (text, file type: ``urdf``, ``sdf`` or ``dmd.yaml``) → text.
 Rewrite = Callable[[str, str], str]
