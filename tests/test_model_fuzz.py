@@ -404,6 +404,7 @@ def test_without_needs_models_and_names_known_grammar_elements(tmp_path: Path) -
 
 
 @pytest.mark.fuzz
+@SAME_RELEASE
 def test_fuzz_models_reaches_every_grammar_feature_at_seed_1_in_300_examples(
     tmp_path: Path,
 ) -> None:
