@@ -6,6 +6,24 @@ Drake 1.51.1 (measured on pydrake). ``PackageMap`` resolves ``package://``
 URIs; ``CollisionFilterGroups`` reports a parse's groups. The model-directive
 structs (``ModelDirectives``, ``AddModel``, ...) and functions
 (``LoadModelDirectives``, ``ProcessModelDirectives``, ...) are pydrake's.
+
+What is read, and what is not:
+
+* URDF, SDFormat (with libsdformat's own checks, includes of files and model
+  directories, merge-includes and URDF through the interface API) and model
+  directives, element by element in Drake's order of checks, so that the first
+  error of a file with several is Drake's, with its line.
+* Mesh files are named, not read, except where their contents decide a result
+  Drake reports: a mesh in the proximity role has its convex hull made at
+  registration, so reimpl reads a collision ``.obj``'s vertex lines (and which
+  face, line and point elements it has), a ``.vtk``'s points, cell sizes and
+  types, and whether a ``.gltf`` exists, to raise Drake's hull errors
+  (``reimpl/geometry/_proximity_mesh.py``); a visual mesh is never read, and
+  neither is a texture.
+* MuJoCo ``.xml`` and ``.obj`` model files are not read (a reimpl error; known
+  divergence ``reimpl-reads-no-mujoco-or-obj-models``), nor are deformable
+  bodies, whose only measured answer reimpl gives is Drake's refusal on a
+  continuous plant.
 """
 
 from __future__ import annotations
