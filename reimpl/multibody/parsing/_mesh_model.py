@@ -2,7 +2,8 @@
 
 Drake (measured on pydrake 1.51.1) reads the file named by its absolute path
 P (not normalized) as a triangle mesh (``_obj_mesh``; its errors, e.g. ``error:
-The OBJ data parsed contains no objects; ...``), then:
+The OBJ data parsed contains no objects; ...``, and its warning, an error under
+strict parsing), then:
 
 1. the model's name: the caller's, else the OBJ's object name (its last ``o``
    line), else the file's stem; the model instance is that name in the
@@ -55,6 +56,8 @@ def read_obj_model(
     assert source.path is not None
     path = source.path if os.path.isabs(source.path) else os.path.join(os.getcwd(), source.path)
     mesh = read_obj_mesh(path, (1.0, 1.0, 1.0), path)
+    if mesh.warning:
+        Diagnostics(None, context.strict).warning(mesh.warning)
     name = model_name or mesh.name or stem(path)
     plant = context.plant
     instance = context.add_model_instance(scoped.join(parent_scope, name))

@@ -36,6 +36,7 @@ from reimpl.geometry import Box, Capsule, Cylinder, Ellipsoid, Mesh, Sphere
 from reimpl.geometry._drake_text import shortest
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _mjcf_values as values
+from reimpl.multibody.parsing._diagnostics import Diagnostics
 from reimpl.multibody.parsing._mesh_inertia import (
     MassProperties,
     convex_hull_properties,
@@ -116,6 +117,8 @@ def _mesh_unit(
     path = str(shape.source().path())
     scale = tuple(float(s) for s in shape.scale3())
     mesh = read_obj_mesh(path, (scale[0], scale[1], scale[2]), path)
+    if mesh.warning:  # N.B. Drake reads the mesh with its default policy: never strict.
+        Diagnostics(None).warning(mesh.warning)
     result: MassProperties | str = mesh_properties(mesh, 1.0)
     fell_back = isinstance(result, str)
     if isinstance(result, str):
@@ -160,6 +163,35 @@ def geom_mass(
     return mass, p_BG
 
 
+def _dot(u: list[float], v: list[float]) -> float:
+    """A dot product summed left to right, as Eigen sums a short one."""
+    total = u[0] * v[0]
+    for a, b in zip(u[1:], v[1:], strict=True):
+        total += a * b
+    return total
+
+
+def _re_express(diagonal: list[float], R: np.ndarray) -> np.ndarray:
+    """RotationalInertia(Ixx, Iyy, Izz).ReExpress(R), in Drake's operations (so that a
+    report prints the same digits): rotational_inertia.cc's ReExpressInPlace."""
+    a, b, c = diagonal
+    d = e = f = 0.0
+    L = [[a - c, d], [d, b - c], [2 * e, 2 * f]]
+    rt = [[R[0, 0], R[1, 0], R[2, 0]], [R[0, 1], R[1, 1], R[2, 1]]]
+    rv = [e * rt[1][k] - f * rt[0][k] for k in range(3)]
+    columns = [[L[0][j], L[1][j], L[2][j]] for j in range(2)]
+    Y = [[_dot(list(R[i]), columns[j]) for j in range(2)] for i in (1, 2)]
+    z11 = _dot(Y[0], [rt[0][1], rt[1][1]])
+    z22 = _dot(Y[1], [rt[0][2], rt[1][2]])
+    z00 = (L[0][0] + L[1][1]) - (z11 + z22)
+    z10 = _dot(Y[0], [rt[0][0], rt[1][0]])
+    z20 = _dot(Y[1], [rt[0][0], rt[1][0]])
+    z21 = _dot(Y[1], [rt[0][1], rt[1][1]])
+    xx, xy, yy = z00 + c, z10 + rv[2], z11 + c
+    xz, yz, zz = z20 - rv[1], z21 + rv[0], c + z22
+    return np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+
+
 def inertial_mass(context: MjcfContext, node: XmlElement) -> tuple[float, np.ndarray]:
     """ParseInertial: the body's (mass, centre of mass), or Drake's error."""
     X_BF = parse_transform(context, node)
@@ -168,8 +200,7 @@ def inertial_mass(context: MjcfContext, node: XmlElement) -> tuple[float, np.nda
         raise context.d.error(node, "The inertial tag must include the mass attribute.")
     diagonal = values.vector(node, "diaginertia", 3)
     if diagonal is not None:
-        R = X_BF.rotation().matrix()
-        inertia = R @ np.diag(diagonal) @ R.T
+        inertia = _re_express(diagonal, X_BF.rotation().matrix())
     else:
         full = values.vector(node, "fullinertia", 6)
         if full is None:

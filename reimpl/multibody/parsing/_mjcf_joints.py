@@ -141,6 +141,7 @@ class _Joint:
         joint = make(frame_on_parent, frame_on_child)
         if limits is not None:
             if not limits[0] <= limits[1]:
+                plant.AddJoint(joint)  # N.B. Drake adds it, then fails to limit it.
                 raise SystemExit(_SET_POSITION_LIMITS)
             joint = make(frame_on_parent, frame_on_child, *limits)
         return plant.AddJoint(joint)

@@ -21,20 +21,30 @@ reversed. No element at all is ``error: The OBJ data parsed contains no
 objects; the data could be corrupt, empty, or not an OBJ file. Name: 'P'``;
 elements but no triangle is ``A mesh must contain at least one triangle``.
 
-Not modelled (a reimpl error): a face with fewer than three vertices, an index
-of 0 or one that names no vertex (tinyobjloader warns, skips or fails; Drake
-then fails in ways reimpl does not reproduce).
+tinyobjloader's warnings are kept, in its order, as one text ``Warning while
+parsing OBJ 'P' : ...``: ``Degenerated face found\\n.`` for each face of fewer
+than three vertices (skipped), given when its group ends (at a ``g`` or ``o``
+line, or after the end's), and at the end ``Vertex normal indices out of
+bounds (line N.)\\n\\n`` and the same for ``texcoord`` when a face names a
+``vn`` or ``vt`` that is not there (N the file's number of lines).
+
+Not modelled (a reimpl error): an index of 0, or a vertex index that names no
+vertex (tinyobjloader warns, and Drake then fails in ways reimpl does not
+reproduce).
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 from reimpl.multibody.parsing._diagnostics import ModelParseError
 
 __all__ = ["ObjMesh", "read_obj_mesh", "tinyobj_real"]
 
+#: A line: leading blanks, its keyword, one space or tab, the rest.
+_KEYWORD = re.compile(r"[ \t]*([^ \t]*)[ \t](.*)", re.DOTALL)
 _LEADING_INTEGER = re.compile(r"[ \t\n\v\f\r]*([+-]?[0-9]+)")
 
 Vertex = tuple[float, float, float]
@@ -48,6 +58,8 @@ class ObjMesh:
     vertices: list[Vertex]
     triangles: list[Triangle]
     name: str
+    #: tinyobjloader's warning (``Warning while parsing OBJ 'P' : ...``), or ""
+    warning: str = ""
 
 
 def tinyobj_real(text: str) -> float:
@@ -70,15 +82,8 @@ def _atoi(token: str) -> int:
     return int(match.group(1)) if match else 0
 
 
-def _vertex_index(token: str, count: int, path: str, line_number: int) -> int:
-    """tinyobjloader's fixIndex of ``atoi(token)``, 0-based (a bad index is refused).
-
-    A negative index counts back from the ``count`` vertices read so far; a
-    positive one is checked against all the file's vertices once they are read.
-    """
-    number = _atoi(token)
-    if number == 0 or count + number < 0:
-        raise _refuse(path, line_number, "a vertex index that names no vertex")
+def _fix_index(number: int, count: int) -> int:
+    """tinyobjloader's fixIndex: 0-based from 1-based, or back from ``count`` if negative."""
     return number - 1 if number > 0 else count + number
 
 
@@ -103,49 +108,123 @@ def _triangles(vertices: list[Vertex], face: list[int]) -> list[Triangle]:
     return [(face[0], face[i], face[i + 1]) for i in range(1, len(face) - 1)]
 
 
+@dataclass
+class _Reader:
+    """tinyobjloader's LoadObj over the lines of one file (the parts Drake's mesh needs)."""
+
+    path: str
+    raw: list[Vertex] = field(default_factory=list)
+    faces: list[list[int]] = field(default_factory=list)
+    counts: dict[str, int] = field(default_factory=lambda: {"vt": 0, "vn": 0})
+    #: the largest texture-coordinate and normal index used (0-based), as tinyobjloader's
+    greatest: dict[str, int] = field(default_factory=lambda: {"vt": -1, "vn": -1})
+    has_elements: bool = False
+    name: str = ""
+    #: tinyobjloader's warnings, and the degenerate faces of the group being read
+    warnings: str = ""
+    degenerate: int = 0
+
+    def vertex(self, rest: str, number: int) -> None:
+        xyz = [*rest.split()[:3], "", "", ""][:3]
+        self.raw.append((tinyobj_real(xyz[0]), tinyobj_real(xyz[1]), tinyobj_real(xyz[2])))
+
+    def _corner(self, token: str, number: int) -> int:
+        """One ``v[/vt][/vn]`` of a face: its vertex index (its others only tracked)."""
+        parts = token.split("/")
+        first = _atoi(parts[0])
+        index = _fix_index(first, len(self.raw))
+        if first == 0 or index < 0:
+            raise _refuse(self.path, number, "a vertex index that names no vertex")
+        for kind, part in zip(("vt", "vn"), parts[1:3], strict=False):
+            if part:
+                value = _atoi(part)
+                if value == 0:
+                    raise _refuse(self.path, number, f"a {kind} index of 0")
+                fixed = _fix_index(value, self.counts[kind])
+                self.greatest[kind] = max(self.greatest[kind], fixed)
+        return index
+
+    def face(self, rest: str, number: int) -> None:
+        tokens = rest.split()
+        corners = [self._corner(t, number) for t in tokens]
+        if len(corners) < 3:
+            self.degenerate += 1
+            return
+        self.faces.append(corners)
+        self.has_elements = True
+
+    def element(self, rest: str, number: int) -> None:
+        self.has_elements = True
+
+    def _flush(self) -> None:
+        """exportGroupsToShape: the warnings about the group's degenerate faces."""
+        self.warnings += "Degenerated face found\n." * self.degenerate
+        self.degenerate = 0
+
+    def group(self, rest: str, number: int) -> None:
+        self._flush()
+
+    def object(self, rest: str, number: int) -> None:
+        self._flush()
+        self.name = rest
+
+    def texcoord(self, rest: str, number: int) -> None:
+        self.counts["vt"] += 1
+
+    def normal(self, rest: str, number: int) -> None:
+        self.counts["vn"] += 1
+
+    def finish(self, lines: int) -> None:
+        """The end of the file: the index warnings, then the last group's."""
+        for kind, what in (("vn", "Vertex normal"), ("vt", "Vertex texcoord")):
+            if self.greatest[kind] >= self.counts[kind]:
+                self.warnings += f"{what} indices out of bounds (line {lines}.)\n\n"
+        self._flush()
+        if any(index >= len(self.raw) for face in self.faces for index in face):
+            raise ModelParseError(
+                "reimpl does not read OBJ faces with a vertex index that names no vertex "
+                f"('{self.path}')"
+            )
+
+
+#: A line's keyword (followed by a space or tab) -> what reads it.
+_LINE_READERS: dict[str, Callable[[_Reader, str, int], None]] = {
+    "v": _Reader.vertex,
+    "vt": _Reader.texcoord,
+    "vn": _Reader.normal,
+    "f": _Reader.face,
+    "l": _Reader.element,
+    "p": _Reader.element,
+    "g": _Reader.group,
+    "o": _Reader.object,
+}
+
+
 def read_obj_mesh(path: str, scale: tuple[float, float, float], hint: str) -> ObjMesh:
     """The triangle mesh of the OBJ file at ``path`` (``hint`` names it in messages)."""
     try:
         with open(path, encoding="utf-8", errors="replace", newline="") as stream:
-            text = stream.read()
+            lines = stream.read().split("\n")
     except OSError:
         raise RuntimeError(f"MemoryFile::Make() cannot read the file '{hint}'.") from None
-    raw: list[Vertex] = []
-    faces: list[list[int]] = []
-    has_elements = False
-    name = ""
-    for number, line in enumerate(text.split("\n"), 1):
-        token = line.rstrip("\r").lstrip(" \t")
-        kind, rest = token[:1], token[2:]
-        if len(token) < 2 or token[1] not in " \t":
-            continue
-        if kind == "v":
-            xyz = [*rest.split()[:3], "", "", ""][:3]
-            raw.append((tinyobj_real(xyz[0]), tinyobj_real(xyz[1]), tinyobj_real(xyz[2])))
-        elif kind == "f":
-            tokens = rest.split()
-            if len(tokens) < 3:
-                raise _refuse(path, number, "fewer than three vertices")
-            faces.append([_vertex_index(t, len(raw), path, number) for t in tokens])
-            has_elements = True
-        elif kind in ("l", "p"):
-            has_elements = True
-        elif kind == "o":
-            name = rest
-    if any(index >= len(raw) for face in faces for index in face):
-        raise ModelParseError(
-            f"reimpl does not read OBJ faces with a vertex index that names no vertex ('{path}')"
-        )
-    if not has_elements:
+    reader = _Reader(path)
+    for number, line in enumerate(lines, 1):
+        match = _KEYWORD.match(line.rstrip("\r"))
+        read = _LINE_READERS.get(match.group(1)) if match else None
+        if match is not None and read is not None:
+            read(reader, match.group(2), number)
+    reader.finish(len(lines) - (1 if lines and lines[-1] == "" else 0))
+    if not reader.has_elements:
         raise ModelParseError(
             "error: The OBJ data parsed contains no objects; the data could be corrupt, empty, "
             f"or not an OBJ file. Name: '{hint}'"
         )
     sx, sy, sz = scale
-    vertices = [(x * sx, y * sy, z * sz) for x, y, z in raw]
-    triangles = [t for face in faces for t in _triangles(raw, face)]
+    vertices = [(x * sx, y * sy, z * sz) for x, y, z in reader.raw]
+    triangles = [t for face in reader.faces for t in _triangles(reader.raw, face)]
     if sum(s < 0 for s in scale) % 2 == 1:
         triangles = [(c, b, a) for a, b, c in triangles]
     if not triangles:
         raise RuntimeError("A mesh must contain at least one triangle")
-    return ObjMesh(vertices, triangles, name)
+    warning = f"Warning while parsing OBJ '{hint}' : {reader.warnings}" if reader.warnings else ""
+    return ObjMesh(vertices, triangles, reader.name, warning)
