@@ -9,9 +9,10 @@ line after leading spaces and tabs:
   a positive index counts from 1, a negative one back from the vertices read so
   far. A triangle is kept as is; a quad is split along its shorter diagonal
   ([0, 1, 2] + [0, 2, 3] when ‖v₂ − v₀‖ < ‖v₃ − v₁‖, else [0, 1, 3] + [1, 2, 3]),
-  as tinyobjloader triangulates it; a larger polygon is split as a fan from its
-  first vertex (tinyobjloader clips ears: the same triangles' union for a convex
-  face, whose volume terms agree up to rounding);
+  as tinyobjloader triangulates it; a larger polygon is cut into ears by
+  tinyobjloader's own clipper (in the two coordinates its first turning corner
+  spans most, an ear kept when it turns the polygon's way and holds no other
+  vertex; a polygon it cannot finish keeps the ears it cut);
 * ``l`` and ``p``: elements without faces;
 * ``o name``: the object's name, the text after ``o`` and one space or tab
   (the last one read names the mesh).
@@ -45,6 +46,8 @@ __all__ = ["ObjMesh", "read_obj_mesh", "tinyobj_real"]
 
 #: A line: leading blanks, its keyword, one space or tab, the rest.
 _KEYWORD = re.compile(r"[ \t]*([^ \t]*)[ \t](.*)", re.DOTALL)
+#: tinyobjloader's epsilon (double precision).
+_EPSILON = 2.220446049250313e-16
 _LEADING_INTEGER = re.compile(r"[ \t\n\v\f\r]*([+-]?[0-9]+)")
 
 Vertex = tuple[float, float, float]
@@ -100,12 +103,75 @@ def _split_quad(vertices: list[Vertex], face: list[int]) -> list[Triangle]:
     return [(a, b, d), (b, c, d)]
 
 
+def _point_in_triangle(vx: list[float], vy: list[float], tx: float, ty: float) -> bool:
+    """tinyobjloader's pnpoly for a triangle (an even-odd crossing test)."""
+    inside = False
+    j = 2
+    for i in range(3):
+        if (vy[i] > ty) != (vy[j] > ty) and tx < (vx[j] - vx[i]) * (ty - vy[i]) / (
+            vy[j] - vy[i]
+        ) + vx[i]:
+            inside = not inside
+        j = i
+    return inside
+
+
+def _axes(vertices: list[Vertex], face: list[int]) -> tuple[int, int]:
+    """The two coordinates the ear clipper works in: from the first corner that turns."""
+    n = len(face)
+    for k in range(n):
+        v0, v1, v2 = (vertices[face[(k + m) % n]] for m in range(3))
+        e0 = [v1[a] - v0[a] for a in range(3)]
+        e1 = [v2[a] - v1[a] for a in range(3)]
+        cx = abs(e0[1] * e1[2] - e0[2] * e1[1])
+        cy = abs(e0[2] * e1[0] - e0[0] * e1[2])
+        cz = abs(e0[0] * e1[1] - e0[1] * e1[0])
+        if cx > _EPSILON or cy > _EPSILON or cz > _EPSILON:
+            if cx > cy and cx > cz:
+                return 1, 2
+            return (0, 1) if cz > cx and cz > cy else (0, 2)
+    return 1, 2
+
+
+def _clip_ears(vertices: list[Vertex], face: list[int]) -> list[Triangle]:
+    """tinyobjloader's built-in ear clipping of a polygon of more than four vertices."""
+    first, second = _axes(vertices, face)
+    remaining = list(face)
+    triangles: list[Triangle] = []
+    guess = 0
+    iterations = previous = len(remaining)
+    while len(remaining) > 3 and iterations > 0:
+        n = len(remaining)
+        if guess >= n:
+            guess -= n
+        if previous != n:
+            previous, iterations = n, n
+        else:
+            iterations -= 1
+        ear = [remaining[(guess + k) % n] for k in range(3)]
+        vx = [vertices[i][first] for i in ear]
+        vy = [vertices[i][second] for i in ear]
+        cross = (vx[1] - vx[0]) * (vy[2] - vy[1]) - (vy[1] - vy[0]) * (vx[2] - vx[1])
+        area = (vx[0] * vy[1] - vy[0] * vx[1]) * 0.5
+        if cross * area < 0.0 or any(
+            _point_in_triangle(vx, vy, vertices[i][first], vertices[i][second])
+            for i in (remaining[(guess + k) % n] for k in range(3, n))
+        ):
+            guess += 1
+            continue
+        triangles.append((ear[0], ear[1], ear[2]))
+        del remaining[(guess + 1) % n]
+    if len(remaining) == 3:
+        triangles.append((remaining[0], remaining[1], remaining[2]))
+    return triangles
+
+
 def _triangles(vertices: list[Vertex], face: list[int]) -> list[Triangle]:
     if len(face) == 3:
         return [(face[0], face[1], face[2])]
     if len(face) == 4:
         return _split_quad(vertices, face)
-    return [(face[0], face[i], face[i + 1]) for i in range(1, len(face) - 1)]
+    return _clip_ears(vertices, face)
 
 
 @dataclass
