@@ -20,15 +20,40 @@ before the next):
    ``<keyframe>``, ``<visual>`` and ``<extension>`` (``<size>`` and
    ``<custom>`` are ignored silently).
 
-What reimpl leaves out of Drake's reading (each a reimpl ModelParseError that
-says so): cameras when the Parser has a DiagramBuilder (Drake adds sensors),
-a contact pair whose geom name ends more than one geometry's name, the
-convex-hull fallback inertia of a planar mesh, Drake's report of an
-implausible mesh inertia whose centre of mass is not the origin, a geom
-direction within 1e-12 of -z that is not exactly -z, and OBJ faces tinyobj
-would warn about or reject (``_obj_mesh``). Dynamics are kept as reimpl's plant
-keeps them: gravity, actuators and constraints are read and checked but not
-stored; masses and centres of mass are.
+The subset (Drake's; the documented MuJoCo content outside it is warned about
+as Drake warns, and what reimpl leaves out of Drake's reading is refused):
+
+=================  ==========================================================
+ element            what is read
+=================  ==========================================================
+ ``<include>``      expanded in place, before anything else
+ ``<compiler>``     autolimits, coordinate (local only), angle, assetdir,
+                    meshdir, eulerseq, inertiafromgeom
+ ``<option>``       gravity (checked; reimpl's plant keeps no gravity)
+ ``<default>``      classes (nested) of geom, joint, mesh, equality, pair,
+                    motor, position, camera and the other defaultable elements
+ ``<asset>``        material (its rgba), mesh (an ``.obj`` file, its scale)
+ ``<worldbody>``    geoms on the world, cameras, bodies
+ ``<body>``         name, childclass, pose, inertial, geoms, joints (hinge,
+                    slide, ball, free; several chained through massless
+                    bodies), freejoint, else welded to its parent; cameras
+ ``<geom>``         sphere, capsule, cylinder, ellipsoid, box, plane, mesh;
+                    fromto; roles from contype/conaffinity and group; colour
+                    from rgba or material; friction; mass or density
+ ``<actuator>``     motor and position (checked; reimpl keeps no actuators)
+ ``<contact>``      pair (unfilters two geometries), exclude (filters two
+                    bodies)
+ ``<equality>``     connect (checked; reimpl keeps no constraints)
+=================  ==========================================================
+
+Masses and centres of mass are kept as Drake computes them. Left out of
+Drake's reading (each a reimpl ModelParseError that says so): a camera when the
+Parser has a DiagramBuilder (Drake adds an RgbdSensor), a contact pair whose
+geom name ends more than one geometry's name, the convex-hull fallback inertia
+of a planar mesh, Drake's report of an implausible mesh inertia whose centre of
+mass is not the origin, a geom direction within 1e-12 of -z that is not
+exactly -z, an ``xyaxes`` whose axes are parallel, and OBJ faces with an index
+of 0 or one that names no vertex (``_obj_mesh``).
 """
 
 from __future__ import annotations

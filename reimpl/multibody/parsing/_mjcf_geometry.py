@@ -38,9 +38,9 @@ defaults to ``geom<k>``, k counting the geoms of its body, or of its
 5. warnings for ``shellinertia``, ``fitscale``, ``fluidshape``, ``fluidcoef``
    and ``user``; then, for a body's geom, its mass (``_mjcf_inertia``).
 
-The visual is registered with the colour, the collision with the friction,
-both under the geom's name (a body's first, then its collisions: all the
-visuals and collisions in the body's geom order, each geom's visual first).
+Each geom's visual (with the colour), then its collision (with the friction),
+both under the geom's name, in the order of the geoms; a body's once the body
+is added.
 """
 
 from __future__ import annotations

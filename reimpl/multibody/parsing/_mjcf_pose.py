@@ -27,9 +27,11 @@ order). The first orientation present, in the table's order, gives R:
                 Quaternion::FromTwoVectors)
 =============  =================================================================
 
-Not modelled: Eigen's FromTwoVectors for a direction within 1e-12 of -z
-(cosine below -1 + 1e-12) that is not exactly -z, where Eigen takes the axis
-from an SVD; exactly -z is a half turn about +x, as Drake gives (measured).
+Not modelled (a reimpl error): Eigen's FromTwoVectors for a direction within
+1e-12 of -z (cosine below -1 + 1e-12) that is not exactly -z, where Eigen takes
+the axis from an SVD (exactly -z is a half turn about +x, as Drake gives,
+measured); an ``xyaxes`` whose y axis is parallel to its x axis (Drake makes a
+singular "rotation").
 """
 
 from __future__ import annotations
