@@ -19,7 +19,12 @@ from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 from conformance.cli.main import main
 from conformance.cli.models import model_file_cases
 from conformance.corpus.loader import default_corpus_root
-from conformance.corpus.model_files import GROUPS_SUFFIX, find_model_files, model_cases
+from conformance.corpus.model_files import (
+    GROUPS_SUFFIX,
+    find_model_files,
+    is_model_file,
+    model_cases,
+)
 from conformance.grammar.schema import scenario_schema
 from conformance.protocol import Command, ErrorKind
 
@@ -98,12 +103,51 @@ def test_a_failed_drake_demand_is_an_assertion_error_result_not_a_broken_backend
     assert error.message.endswith("in AddWeld(): condition 'found' failed.")
 
 
-def test_find_model_files_lists_urdf_sdf_and_directives_in_sorted_order() -> None:
+#: The MuJoCo models of Drake's repository (its other .xml files are package.xml files).
+MUJOCO_FILES = [
+    Path("multibody/benchmarks/acrobot/acrobot.xml"),
+    Path("multibody/parsing/test/box_package/mjcfs/box.xml"),
+    Path("multibody/parsing/test/mujoco_parser_test/nested.xml"),
+    Path("multibody/parsing/test/mujoco_parser_test/pendulum.xml"),
+    Path("multibody/parsing/test/mujoco_parser_test/pendulum_geom.xml"),
+    Path("multibody/parsing/test/mujoco_parser_test/scene.xml"),
+    Path("multibody/parsing/test/sdf_parser_test/interface_api_test/arm.xml"),
+]
+
+
+def test_find_model_files_lists_urdf_sdf_directives_and_mujoco_in_sorted_order() -> None:
     files = find_model_files(DRAKE)
-    assert len(files) == 155
+    assert len(files) == 162
     assert files == sorted(files)
-    assert {f.name.rsplit(".", 1)[-1] for f in files} == {"urdf", "sdf", "yaml"}
+    assert {f.name.rsplit(".", 1)[-1] for f in files} == {"urdf", "sdf", "yaml", "xml"}
+    assert [f for f in files if f.suffix == ".xml"] == MUJOCO_FILES
     assert Path(ACROBOT) in files
+
+
+def test_find_model_files_lists_obj_meshes_only_when_asked() -> None:
+    with_obj = find_model_files(DRAKE, obj=True)
+    meshes = [f for f in with_obj if f.suffix == ".obj"]
+    assert len(meshes) == 19
+    assert Path("multibody/parsing/test/tri_cube.obj") in meshes
+    assert sorted(set(with_obj) - set(meshes)) == find_model_files(DRAKE)
+
+
+@pytest.mark.parametrize(
+    ("text", "is_model"),
+    [
+        ('<mujoco model="m"/>', True),
+        ('\ufeff<?xml version="1.0"?>\n<!-- a <mujoco> comment -->\n<mujoco>\n</mujoco>', True),
+        ("<package format='2'><name>mujoco</name></package>", False),
+        ("<mujocox/>", False),
+        ("", False),
+    ],
+)
+def test_an_xml_file_is_a_model_file_when_its_first_element_is_mujoco(
+    tmp_path: Path, text: str, is_model: bool
+) -> None:
+    path = tmp_path / "model.xml"
+    path.write_text(text, encoding="utf-8")
+    assert is_model_file(path) is is_model
 
 
 def test_a_file_that_may_declare_groups_also_gets_a_filter_group_case() -> None:
@@ -150,7 +194,7 @@ def test_models_exits_zero_when_the_backends_agree_on_every_file(tmp_path: Path)
     ("given", "message"),
     [
         ("nowhere", "no such file or folder"),
-        ("README.md", "not a model file (.urdf, .sdf, .dmd.yaml)"),
+        ("README.md", "not a model file (.urdf, .sdf, .dmd.yaml, MuJoCo .xml, .obj)"),
     ],
 )
 def test_models_refuses_what_is_not_a_model_file_with_exit_two(
@@ -166,7 +210,33 @@ def test_models_refuses_what_is_not_a_model_file_with_exit_two(
 def test_models_refuses_a_folder_without_model_files(tmp_path: Path) -> None:
     code, _, err = _models(str(tmp_path), "--backend", "pydrake")
     assert code == EXIT_USAGE
-    assert "no model files (.urdf, .sdf, .dmd.yaml) below this folder" in err
+    assert "no model files (.urdf, .sdf, .dmd.yaml, MuJoCo .xml, .obj) below this folder" in err
+
+
+def test_models_parses_the_obj_meshes_of_a_folder_with_obj(tmp_path: Path) -> None:
+    """Without --obj a folder of meshes has no model files; with it, reimpl and pydrake each
+    add tri_cube.obj as the one-body model tri_cube, and agree (pydrake 1.51.1)."""
+    mesh = DRAKE / "multibody/parsing/test/tri_cube.obj"
+    (tmp_path / "tri_cube.obj").write_bytes(mesh.read_bytes())
+    code, _, err = _models(str(tmp_path), "--backend", "pydrake")
+    assert code == EXIT_USAGE
+    assert "no model files" in err
+    report = tmp_path / "report.json"
+    code, out, _ = _models(
+        str(tmp_path),
+        "--obj",
+        "--backend",
+        "reimpl",
+        "--backend",
+        "pydrake",
+        "-q",
+        "--json",
+        str(report),
+    )
+    assert code == EXIT_OK
+    (case,) = json.loads(report.read_text())["cases"]
+    assert case["qualified_name"].endswith(" > tri_cube.obj")
+    assert "1 pass" in out
 
 
 def test_the_schema_accepts_every_error_kind_of_the_protocol() -> None:

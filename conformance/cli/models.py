@@ -1,7 +1,8 @@
 """``python -m conformance models``: your own model files, parsed by every backend and compared.
 
-Each PATH is a model file (``.urdf``, ``.sdf``, ``.dmd.yaml``) or a folder
-searched for them; a folder's packages (every ``package.xml`` below it) are
+Each PATH is a model file (``.urdf``, ``.sdf``, ``.dmd.yaml``, a MuJoCo
+``.xml``, an ``.obj`` mesh) or a folder searched for them (``.obj`` files only
+with ``--obj``); a folder's packages (every ``package.xml`` below it) are
 added to each parse's package map, and a file's are those of the nearest
 folder above it that holds a ``package.xml`` (else its own folder). Every
 file is a case (``corpus.model_files``): parse, Finalize, then what the plant
@@ -27,7 +28,7 @@ from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_backend_options, refuse
 from conformance.cli.run import load_backends, run_cases, write_outputs
 from conformance.corpus.loader import PACKAGE_MANIFEST, Case, ScenarioError
-from conformance.corpus.model_files import MODEL_SUFFIXES, find_model_files, model_scenario
+from conformance.corpus.model_files import find_model_files, is_model_file, model_scenario
 from conformance.run.outputs import unwritable
 from conformance.run.report import RunReport
 from conformance.run.runner import choose_reference
@@ -57,6 +58,11 @@ def add_models_parser(commands: argparse._SubParsersAction) -> None:  # type: ig
         metavar="NAME",
         help="the backend others are judged against (default: pydrake if given, else the first)",
     )
+    models.add_argument(
+        "--obj",
+        action="store_true",
+        help="also parse the .obj files found below a folder (as one-body mesh models)",
+    )
     models.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
     models.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
     add_backend_options(
@@ -75,22 +81,25 @@ def _package_root(file: Path) -> Path:
     return file.parent
 
 
-def model_file_cases(paths: list[Path]) -> list[Case]:
-    """The cases of the model files at ``paths`` (files, or folders searched for them)."""
+#: What a model file is, for messages.
+_KINDS = ".urdf, .sdf, .dmd.yaml, MuJoCo .xml, .obj"
+
+
+def model_file_cases(paths: list[Path], *, obj: bool = False) -> list[Case]:
+    """The cases of the model files at ``paths`` (files, or folders searched for them;
+    the ``.obj`` files in a folder only with ``obj``)."""
     cases: list[Case] = []
     for given in paths:
         path = given.resolve()
         if path.is_dir():
-            folder, files = path, find_model_files(path)
+            folder, files = path, find_model_files(path, obj=obj)
             if not files:
-                raise ScenarioError(
-                    str(given), f"no model files ({', '.join(MODEL_SUFFIXES)}) below this folder"
-                )
-        elif path.is_file() and path.name.lower().endswith(MODEL_SUFFIXES):
+                raise ScenarioError(str(given), f"no model files ({_KINDS}) below this folder")
+        elif path.is_file() and is_model_file(path, obj=True):
             folder = _package_root(path)
             files = [path.relative_to(folder)]
         elif path.exists():
-            raise ScenarioError(str(given), f"not a model file ({', '.join(MODEL_SUFFIXES)})")
+            raise ScenarioError(str(given), f"not a model file ({_KINDS})")
         else:
             raise ScenarioError(str(given), "no such file or folder")
         scenario = model_scenario(folder, files, description=f"the model files below {folder}")
@@ -112,7 +121,7 @@ def models_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
             args.backends, python=args.python, step_timeout=args.step_timeout or None
         )
         reference = choose_reference(backends, args.reference).name
-        cases = model_file_cases(args.paths)
+        cases = model_file_cases(args.paths, obj=args.obj)
     except (BackendLoadError, ScenarioError, ValueError) as exc:
         err.write(f"error: {exc}\n")
         return EXIT_USAGE

@@ -1,7 +1,9 @@
 """Cases for model files that nobody wrote for this harness: a case per file.
 
-A model file (``*.urdf``, ``*.sdf``, ``*.dmd.yaml``) below a folder is the case
-``<path below the folder>``:
+A model file below a folder (``*.urdf``, ``*.sdf``, ``*.dmd.yaml``, and a
+``*.xml`` whose first element is ``<mujoco>``, a MuJoCo model; ``*.obj`` too,
+as a one-body mesh model, when asked: ``find_model_files(folder, obj=True)``)
+is the case ``<path below the folder>``:
 
 1. ``add_models`` with ``folder`` and ``path``: a new Parser whose package map
    holds the folder's packages (``PopulateFromFolder``), then
@@ -25,6 +27,7 @@ gives, so that every backend must give them too.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -34,12 +37,23 @@ from conformance.corpus.loader import ScenarioFile, scenario_from_data
 __all__ = [
     "GROUPS_SUFFIX",
     "MODEL_SUFFIXES",
+    "OBJ_SUFFIX",
     "find_model_files",
+    "is_model_file",
     "model_cases",
     "model_scenario",
 ]
 
-MODEL_SUFFIXES = (".urdf", ".sdf", ".dmd.yaml")
+#: The suffixes of model files (an ``.xml`` one only when it is MuJoCo's: ``is_model_file``).
+MODEL_SUFFIXES = (".urdf", ".sdf", ".dmd.yaml", ".xml")
+#: A mesh Drake parses as a one-body model; a model file only when asked for.
+OBJ_SUFFIX = ".obj"
+#: What may come before an XML file's first element: blanks, a declaration, comments,
+#: a DOCTYPE.
+_XML_PROLOG = re.compile(r"(?:\s+|<\?.*?\?>|<!--.*?-->|<![^>]*>)*", re.DOTALL)
+_MUJOCO_ROOT = re.compile(r"<\s*mujoco[\s/>]")
+#: How much of an ``.xml`` file is read to find its first element.
+_XML_HEAD = 65536
 #: Folders that hold build outputs or version control, never a user's models.
 _SKIPPED_FOLDERS = frozenset({".git", "bazel-bin", "bazel-out", "bazel-testlogs", "__pycache__"})
 #: The description suffix of a file's filter-group case.
@@ -54,15 +68,38 @@ _STEPS: tuple[tuple[str, ...], ...] = (
 )
 
 
-def find_model_files(folder: Path) -> list[Path]:
-    """The model files below ``folder``, relative to it, in sorted order."""
+def _is_mujoco(path: Path) -> bool:
+    """Whether the XML file's first element is ``<mujoco>`` (not, e.g., a ``package.xml``)."""
+    try:
+        with path.open(encoding="utf-8", errors="replace") as stream:
+            head = stream.read(_XML_HEAD)
+    except OSError:
+        return False
+    text = head.lstrip("\ufeff")
+    prolog = _XML_PROLOG.match(text)
+    return _MUJOCO_ROOT.match(text, prolog.end() if prolog else 0) is not None
+
+
+def is_model_file(path: Path, *, obj: bool = False) -> bool:
+    """Whether ``path`` names a model file (an ``.obj`` one only with ``obj``)."""
+    name = path.name.lower()
+    if name.endswith(OBJ_SUFFIX):
+        return obj
+    if name.endswith(".xml"):
+        return _is_mujoco(path)
+    return name.endswith(MODEL_SUFFIXES)
+
+
+def find_model_files(folder: Path, *, obj: bool = False) -> list[Path]:
+    """The model files below ``folder``, relative to it, in sorted order (``.obj`` files
+    too with ``obj``)."""
     found = []
     for parent, folders, names in os.walk(folder):
         folders[:] = sorted(f for f in folders if f not in _SKIPPED_FOLDERS)
         found += [
             Path(parent, name).relative_to(folder)
             for name in names
-            if name.lower().endswith(MODEL_SUFFIXES)
+            if is_model_file(Path(parent, name), obj=obj)
         ]
     return sorted(found)
 

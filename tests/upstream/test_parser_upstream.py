@@ -33,9 +33,10 @@
 Drake's files are read from the vendored checkout (``drake_models``), as Drake's
 test reads them with FindResourceOrThrow. Changes, each for a stated reason:
 
-* MuJoCo (``.xml``) and OBJ models are left out: reimpl reads URDF, SDFormat
-  and model directives only. ``acrobot.dmd.yaml`` adds a MuJoCo file, so the
-  directives cases use the same directive with ``acrobot.urdf``.
+* The MuJoCo acrobot is Drake's ``multibody/benchmarks/acrobot/acrobot.xml``
+  (upstream's BasicTest loads dm_control's, which is not vendored), and
+  ``acrobot.dmd.yaml`` adds dm_control's too, so the directives cases use the
+  same directive with ``acrobot.urdf``.
 * ``RobotDiagramBuilder`` (pydrake.planning) is replaced by
   ``AddMultibodyPlantSceneGraph``, which names its systems the same way.
 * ``package://drake/multibody/benchmarks/...`` is not in pydrake's wheel (its
@@ -78,7 +79,7 @@ def _acrobot_dmd(folder: Path, drake_models: Path) -> Path:
 
 
 # ---------------------------------------------------------------------- BasicTest
-@pytest.mark.parametrize("file_name", ["acrobot.sdf", "acrobot.urdf"])
+@pytest.mark.parametrize("file_name", ["acrobot.sdf", "acrobot.urdf", "acrobot.xml"])
 def test_a_file_loads_and_loads_again_with_a_name_prefix(
     drake: ModuleType, drake_models: Path, file_name: str
 ) -> None:
@@ -96,6 +97,18 @@ def test_a_file_loads_and_loads_again_with_a_name_prefix(
     assert len(dut.AddModels(file_name=path)) == 1
     prefixed = drake.multibody.parsing.Parser(plant, "prefix").AddModels(file_name=path)
     assert names_of(plant, prefixed) == ["prefix::acrobot"]
+
+
+def test_an_obj_file_loads_and_loads_again_with_a_name_prefix(
+    drake: ModuleType, drake_models: Path
+) -> None:
+    """Upstream BasicTest, OBJ: a one-body model named after the file."""
+    path = str(drake_models / "multibody/parsing/test/box_package/meshes/box.obj")
+    plant = _plant(drake)
+    ids = drake.multibody.parsing.Parser(plant=plant).AddModels(file_name=path)
+    assert names_of(plant, ids) == ["box"]
+    prefixed = drake.multibody.parsing.Parser(plant, "prefix").AddModels(file_name=path)
+    assert names_of(plant, prefixed) == ["prefix::box"]
 
 
 def test_a_directives_file_loads_and_loads_again_with_a_name_prefix(
@@ -219,7 +232,8 @@ def test_the_drake_package_holds_only_the_wheels_model_files(drake: ModuleType) 
 
 # ---------------------------------------------------------------- BasicStringTest
 @pytest.mark.parametrize(
-    ("file_name", "file_type"), [("acrobot.sdf", "sdf"), ("acrobot.urdf", "urdf")]
+    ("file_name", "file_type"),
+    [("acrobot.sdf", "sdf"), ("acrobot.urdf", "urdf"), ("acrobot.xml", "xml")],
 )
 def test_model_text_loads(
     drake: ModuleType, drake_models: Path, file_name: str, file_type: str

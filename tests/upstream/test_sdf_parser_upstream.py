@@ -4,8 +4,7 @@
 # roles), collision filter groups and parse errors, re-expressed as pytest functions that run
 # unchanged on pydrake and on reimpl through the public Parser API. Dynamics-only checks
 # (inertias, actuators, springs, mimic, constraints, hydroelastic values, pose values beyond
-# what decides a name or a body) are left out, and so are the MuJoCo includes
-# (top_merge_include*.sdf), which reimpl does not read. Expected values
+# what decides a name or a body) are left out. Expected values
 # are upstream's, re-measured on pydrake 1.51.1 and 1.58.0 (both give the same answers here).
 #
 # Drake's license (BSD 3-Clause), which covers the upstream test this file is ported from:
@@ -44,6 +43,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
+import numpy as np
 import pytest
 
 _TEST = "multibody/parsing/test"
@@ -1172,6 +1172,94 @@ def test_a_merge_include_reaches_frames_of_the_merged_model(
     ]
     assert parse.frame("grasp_frame") == ("arm", "gripper_link")
     assert not parse.plant.HasModelInstanceNamed(name="arm::gripper")
+
+
+def _check_merge_include_poses(drake: ModuleType, parse: _Parse, prefix: str) -> None:
+    """Upstream TestMergeIncludeWithInterfaceApi: the merge-included SDFormat, URDF and MuJoCo
+    arms of top_merge_include.sdf (no nested model instances for them), and their poses."""
+    plant, join = parse.plant, (lambda name: f"{prefix}::{name}")
+    for absent in (
+        "arm::gripper",
+        "arm_sdf::test_arm_sdf_name",
+        "arm_urdf::test_arm_urdf_name",
+        "arm_sdf_name_override::test_arm_sdf_name",
+        "arm_urdf_name_override::test_arm_urdf_name",
+    ):
+        assert not plant.HasModelInstanceNamed(name=join(absent))
+    instance = {
+        name: plant.GetModelInstanceByName(name=join(name))
+        for name in ("arm_urdf", "arm_urdf_name_override", "arm_sdf", "arm_mjcf")
+    }
+    assert plant.HasFrameNamed(name="_merged__arm__model__", model_instance=instance["arm_urdf"])
+    assert plant.HasFrameNamed(
+        name="_merged__test_arm_urdf_name__model__",
+        model_instance=instance["arm_urdf_name_override"],
+    )
+    context = plant.CreateDefaultContext()
+    math = drake.math
+
+    def X_W(name: str, model: Any) -> Any:
+        frame = plant.GetFrameByName(name=name, model_instance=model)
+        return frame.CalcPoseInWorld(context=context)
+
+    def pose(rpy: list[float], p: list[float]) -> Any:
+        return math.RigidTransform(rpy=math.RollPitchYaw(rpy=rpy), p=p)
+
+    X_WT = pose([0, 0, 0], [0, 0, 1])
+    flange = plant.GetModelInstanceByName(name=join("arm_sdf::flange"))
+    expected = [
+        ("grasp_frame", instance["arm_sdf"], pose([0.1, 0.2, 0.3], [1, 2, 4])),
+        ("__model__", instance["arm_sdf"], X_WT),
+        ("L1", instance["arm_sdf"], pose([0, 0, 0], [1, 0, 1])),
+        ("__model__", instance["arm_urdf"], X_WT),
+        ("L2", instance["arm_urdf"], pose([0.1, 0.2, 0.3], [1, 4, 4])),
+        ("__model__", flange, pose([0, 0, 0], [1, 2, 2])),
+        ("gripper_mount", flange, pose([0.1, 0.2, 0.3], [1, 2, 4])),
+        ("__model__", instance["arm_mjcf"], X_WT),
+        ("L2", instance["arm_mjcf"], pose([0.1, 0.2, 0.3], [11, 4, 4])),
+    ]
+    for name, model, X_expected in expected:
+        X = X_W(name, model)
+        assert np.allclose(X.GetAsMatrix4(), X_expected.GetAsMatrix4(), rtol=0, atol=1e-13), name
+
+
+def test_a_mujoco_arm_merges_into_a_model_beside_sdformat_and_urdf_arms(
+    drake: ModuleType, drake_models: Path
+) -> None:
+    """Upstream MergeIncludeInterfaceApi1 (top_merge_include.sdf merge-includes arm.xml)."""
+    api_test = drake_models / _SDF_TEST / "interface_api_test"
+    parse = _Parse(drake).package("interface_api_test", api_test)
+    parse.file(api_test / "top_merge_include.sdf")
+    parse.plant.Finalize()
+    _check_merge_include_poses(drake, parse, "top")
+
+
+def test_a_world_merge_includes_the_mujoco_arm_in_each_top(
+    drake: ModuleType, drake_models: Path
+) -> None:
+    """Upstream MergeIncludeInterfaceApi2 (top_merge_include_world.sdf, two tops)."""
+    api_test = drake_models / _SDF_TEST / "interface_api_test"
+    parse = _Parse(drake).package("interface_api_test", api_test)
+    parse.file(api_test / "top_merge_include_world.sdf")
+    parse.plant.Finalize()
+    for prefix in ("top", "another_top"):
+        _check_merge_include_poses(drake, parse, prefix)
+
+
+def test_a_model_of_mujoco_includes_merges_into_the_world(
+    drake: ModuleType, drake_models: Path
+) -> None:
+    """Upstream MergeIncludeIntoWorld (top_merge_include_in_nested_model.sdf)."""
+    api_test = drake_models / _SDF_TEST / "interface_api_test"
+    parse = _Parse(drake).package("interface_api_test", api_test)
+    parse.string(
+        "<sdf version='1.10'><world name='merge_into_world'><include merge=\"true\"><uri>"
+        "package://interface_api_test/top_merge_include_in_nested_model.sdf"
+        "</uri></include></world></sdf>"
+    )
+    parse.plant.Finalize()
+    for prefix in ("top", "another_top"):
+        _check_merge_include_poses(drake, parse, prefix)
 
 
 # ------------------------------------------------------- collision filter groups

@@ -1,8 +1,9 @@
 """The model parsing subset of ``pydrake.multibody.parsing``, reimplemented.
 
-``Parser`` reads URDF, SDFormat and model directives (``.dmd.yaml``) into a
-MultibodyPlant, with the names, collision filter groups and error messages of
-Drake 1.51.1 (measured on pydrake). ``PackageMap`` resolves ``package://``
+``Parser`` reads URDF, SDFormat, MuJoCo XML, model directives (``.dmd.yaml``)
+and ``.obj`` meshes (one-body models) into a MultibodyPlant, with the names,
+collision filter groups and error messages of Drake 1.51.1 (measured on
+pydrake). ``PackageMap`` resolves ``package://``
 URIs; ``CollisionFilterGroups`` reports a parse's groups. The model-directive
 structs (``ModelDirectives``, ``AddModel``, ...) and functions
 (``LoadModelDirectives``, ``ProcessModelDirectives``, ...) are pydrake's.
@@ -20,10 +21,15 @@ What is read, and what is not:
   types, and whether a ``.gltf`` exists, to raise Drake's hull errors
   (``reimpl/geometry/_proximity_mesh.py``); a visual mesh is never read, and
   neither is a texture.
-* MuJoCo ``.xml`` and ``.obj`` model files are not read (a reimpl error; known
-  divergence ``reimpl-reads-no-mujoco-or-obj-models``), nor are deformable
-  bodies, whose only measured answer reimpl gives is Drake's refusal on a
-  continuous plant.
+* MuJoCo XML (``_mjcf``): the subset Drake reads (compiler, option, defaults
+  and classes, assets, bodies, geoms, joints, inertials, actuators, contact
+  pairs and excludes, equality connects, ``<include>``), with Drake's warnings
+  for what it ignores; the few parts reimpl leaves out raise a reimpl error
+  that says so (see ``_mjcf``). ``.obj`` model files (``_mesh_model``): a body
+  with the mesh as collision and visual geometry, its mass from the mesh at
+  1000 kg/m³.
+* Deformable bodies are not read: the only measured answer reimpl gives is
+  Drake's refusal on a continuous plant.
 """
 
 from __future__ import annotations

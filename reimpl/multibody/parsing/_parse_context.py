@@ -50,6 +50,8 @@ class ParseContext:
     auto_renaming: bool
     strict: bool
     read_file: Callable[[ParseContext, str, str | None, str], list[Any]]
+    #: the DiagramBuilder the Parser was given, if any (MuJoCo cameras need one)
+    builder: Any = None
 
     def has_scene_graph(self) -> bool:
         return bool(self.plant.geometry_source_is_registered())

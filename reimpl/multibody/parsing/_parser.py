@@ -19,9 +19,8 @@ The order of the checks is Drake 1.51.1's (parser.cc, measured on pydrake):
    file by its absolute path (``/cwd/a.urdf:0: error: ...``, ``error: Error
    finding file [/cwd/a.sdf].``); a ``.dmd.yaml`` keeps the name as given.
 
-N.B. Known divergence: reimpl reads URDF, SDFormat and model directives only.
-An existing MuJoCo ``.xml`` or ``.obj`` file, or such model text, is an error
-saying so; a missing one gives Drake's message.
+MuJoCo ``.xml`` files and text are read by ``_mjcf`` (a subset, as Drake's
+parser reads one), ``.obj`` files as one-body models by ``_mesh_model``.
 """
 
 from __future__ import annotations
@@ -45,6 +44,8 @@ from reimpl.multibody.parsing._diagnostics import (
 )
 from reimpl.multibody.parsing._directives import process_directives, read_directives
 from reimpl.multibody.parsing._instanced_name import InstancedName, order, spelled
+from reimpl.multibody.parsing._mesh_model import read_obj_model
+from reimpl.multibody.parsing._mjcf import read_mujoco
 from reimpl.multibody.parsing._package_map import PackageMap, UriError, resolve_uri
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext, Reader
 from reimpl.multibody.parsing._sdf import read_sdf
@@ -66,14 +67,6 @@ def _failure(where: str, line: int, function: str, condition: str) -> SystemExit
     return SystemExit(f"Failure at {where}:{line} in {function}(): condition '{condition}' failed.")
 
 
-def _unsupported(kind: str) -> Reader:
-    def read(context: ParseContext, source: ModelSource, name: str | None, scope: str) -> Any:
-        where = source.path or literal_string_name(source.file_type)
-        raise ModelParseError(f"error: reimpl does not read {kind} models ('{where}')")
-
-    return read
-
-
 @dataclass(frozen=True)
 class _FileType:
     """How Drake reads one kind of model file."""
@@ -81,14 +74,21 @@ class _FileType:
     reader: Reader
     #: the message for a file that is not there (or is a folder: ``{error}``)
     missing: str
-    #: (function, line) of the reader's DRAKE_THROW_UNLESS(!is_finalized())
-    finalized: tuple[str, str, int] | None
+    #: (file, function, line, plant) of the reader's DRAKE_THROW_UNLESS(!plant->is_finalized())
+    finalized: tuple[str, str, int, str] | None
     #: the message for model text of this type, where Drake refuses it
     text_error: str | None = None
 
 
-_FINALIZED_URDF = ("detail_urdf_parser.cc", "AddOrMergeModelFromUrdf", 1457)
-_FINALIZED_SDF = ("detail_sdf_parser.cc", "AddModelsFromSdf", 2954)
+_FINALIZED_URDF = ("detail_urdf_parser.cc", "AddOrMergeModelFromUrdf", 1457, "plant")
+_FINALIZED_SDF = ("detail_sdf_parser.cc", "AddModelsFromSdf", 2954, "workspace.plant")
+_FINALIZED_MJCF = (
+    "detail_mujoco_parser.cc",
+    "AddOrMergeModelFromMujocoXml",
+    2103,
+    "workspace.plant",
+)
+_FINALIZED_MESH = ("detail_mesh_parser.cc", "AddModelFromMesh", 133, "workspace.plant")
 
 #: file type (a name's suffix) -> how it is read, in Drake's SelectParser order
 _FILE_TYPES: dict[str, _FileType] = {
@@ -97,15 +97,15 @@ _FILE_TYPES: dict[str, _FileType] = {
     ),
     "sdf": _FileType(read_sdf, "error: Error finding file [{absolute}].", _FINALIZED_SDF),
     "xml": _FileType(
-        _unsupported("MuJoCo XML"),
+        read_mujoco,
         "{absolute}:0: error: Failed to parse XML file {path}:\n{error}",
-        None,
+        _FINALIZED_MJCF,
     ),
     "dmd.yaml": _FileType(read_directives, "No such file {path} during LoadModelDirectives", None),
     "obj": _FileType(
-        _unsupported("OBJ"),
+        read_obj_model,
         "error: Cannot open file '{absolute}'",
-        None,
+        _FINALIZED_MESH,
         text_error=(
             "Parser does not yet support adding models using in-memory OBJ data. The OBJ "
             "data must be referenced as a file."
@@ -135,11 +135,8 @@ def _check_reader(context: ParseContext, file_type: str) -> None:
     """The reader's own DRAKE_THROW_UNLESS(!plant->is_finalized())."""
     finalized = _FILE_TYPES[file_type].finalized
     if finalized is not None and context.plant.is_finalized():
-        file, function, line = finalized
-        condition = "!plant->is_finalized()"
-        if file == "detail_sdf_parser.cc":
-            condition = "!workspace.plant->is_finalized()"
-        raise _failure(f"{_PARSING}/{file}", line, function, condition)
+        file, function, line, plant = finalized
+        raise _failure(f"{_PARSING}/{file}", line, function, f"!{plant}->is_finalized()")
 
 
 def _read_file(context: ParseContext, path: str, model_name: str | None, scope: str) -> list[Any]:
@@ -363,6 +360,7 @@ class Parser:
             auto_renaming=self._auto_renaming,
             strict=self._strict,
             read_file=_read_file,
+            builder=self._builder,
         )
         instances = read(context)
         self._groups.merge(context.resolver.resolve())

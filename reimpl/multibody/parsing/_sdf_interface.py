@@ -18,9 +18,12 @@ made, so SDFormat names and poses can refer to it:
   frames other than bodies' and the model frame (attached to their body),
   joints its new joints (child body, pose on the child).
 
-Errors: ``//include/static`` is refused; a URDF with no link is ``Model must
-have at least one link.``. Other files (``.dmd.yaml``, …) are dropped
-silently; MuJoCo ``.xml`` files are outside reimpl (ModelParseError).
+MuJoCo ``.xml`` files are taken the same way (``_mjcf``; the model name is
+the include's ``<name>`` or ``<mujoco model>``).
+
+Errors: ``//include/static`` is refused; a model with no link (body) is
+``Model must have at least one link.``. Other files (``.dmd.yaml``, …) are
+dropped silently.
 """
 
 from __future__ import annotations
@@ -32,7 +35,7 @@ from typing import Any
 from reimpl.math import RigidTransform
 from reimpl.multibody import kinematics
 from reimpl.multibody.parsing import _scoped_name as scoped
-from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
+from reimpl.multibody.parsing._diagnostics import Diagnostics
 from reimpl.multibody.parsing._parse_context import ParseContext
 from reimpl.multibody.parsing._sdf_graph import GFrame, GJoint, GLink, GModel
 from reimpl.multibody.parsing._sdf_poses import GzPose
@@ -121,8 +124,6 @@ def load_interface_model(
         raise Diagnostics(None).error(
             "Drake does not yet support //include/static for custom nesting."
         )
-    if not path.lower().endswith(".urdf"):
-        raise ModelParseError(f"reimpl does not read MuJoCo files (an <include> of {path})")
     plant = context.plant
     if merge:
         target_name = parent_name or ""
