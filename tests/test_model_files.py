@@ -14,8 +14,9 @@ from typing import Any
 
 import pytest
 
+from conformance.backends.environments import DrakeEnvironmentError, find_python
 from conformance.backends.loader import load_backend
-from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
+from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.main import main
 from conformance.cli.models import model_file_cases
 from conformance.corpus.loader import default_corpus_root
@@ -175,19 +176,120 @@ def _models(*argv: str) -> tuple[int, str, str]:
     return code, out.getvalue(), err.getvalue()
 
 
+def _report(folder: Path) -> dict[str, Any]:
+    document: dict[str, Any] = json.loads((folder / "report.json").read_text())
+    return document
+
+
 def test_models_exits_zero_when_the_backends_agree_on_every_file(tmp_path: Path) -> None:
-    report = tmp_path / "report.json"
     code, out, _ = _models(
-        str(DRAKE / "examples" / "acrobot"), "--backend", "pydrake", "-q", "--json", str(report)
+        str(DRAKE / "examples" / "acrobot"), "-q", "--report", str(tmp_path / "report")
     )
     assert code == EXIT_OK
-    cases = json.loads(report.read_text())["cases"]
-    assert sorted(c["qualified_name"] for c in cases) == [
-        "acrobot > Acrobot.sdf",
-        "acrobot > Acrobot.urdf",
-        "acrobot > Acrobot_no_collision.urdf",
+    assert out.splitlines()[0] == "reimpl against pydrake: agrees on all 3 file(s)"
+    report = _report(tmp_path / "report")
+    assert report["columns"] == ["reimpl", "pydrake"]
+    assert report["files"] == {
+        name: {"reimpl": "pass", "pydrake": "pass"}
+        for name in ("Acrobot.sdf", "Acrobot.urdf", "Acrobot_no_collision.urdf")
+    }
+    assert report["comparisons"] == [
+        {"from": "pydrake", "to": "reimpl", "files": [], "changes": []}
     ]
-    assert "3      3 pass" in out
+    assert sorted(p.name for p in (tmp_path / "report").iterdir()) == [
+        "heatmap.png",
+        "report.json",
+        "report.md",
+    ]
+
+
+#: A URDF whose ``<drake:capsule>`` a mutant drops (model_mutants.drake_capsule_dropped).
+CAPSULES = (
+    '<robot name="r" xmlns:drake="http://drake.mit.edu"><link name="a"><collision name="c">'
+    '<geometry><drake:capsule radius="0.1" length="0.2"/></geometry></collision></link>'
+    '<link name="b"><collision name="d"><geometry><box size="1 1 1"/></geometry></collision>'
+    "</link></robot>\n"
+)
+MUTANT = "conformance.testing.model_mutants:drake_capsule_dropped"
+
+
+def test_models_lists_each_difference_from_the_reference_by_scoped_name_and_exits_one(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / "r.urdf").write_text(CAPSULES, encoding="utf-8")
+    code, out, _ = _models(str(tmp_path), "--backend", "pydrake", "--backend", MUTANT, "-q")
+    assert code == EXIT_FAILURE
+    assert out.splitlines() == [
+        f"{'mutant:drake_capsule_dropped'} against pydrake: 1 of 1 file(s) differ",
+        "  r.urdf",
+        "    geometries: only pydrake: r::a/r::c: Capsule [proximity]",
+        "    candidate pairs: only pydrake: r::a/c-r::b/d",
+    ]
+
+
+def test_models_save_writes_one_columns_answers_and_check_finds_each_change(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / "robot").mkdir()
+    model = tmp_path / "robot" / "r.urdf"
+    model.write_text(CAPSULES, encoding="utf-8")
+    golden = tmp_path / "golden.json"
+    code, out, _ = _models(str(tmp_path / "robot"), "--backend", "pydrake", "--save", str(golden))
+    assert code == EXIT_OK
+    assert out.splitlines()[-1] == f"wrote {golden} (pydrake's answers)"
+    code, out, _ = _models(str(tmp_path / "robot"), "--backend", "reimpl", "--check", str(golden))
+    assert code == EXIT_OK
+    assert out.splitlines() == ["golden (pydrake) → reimpl: no change in 1 file(s)"]
+    model.write_text(CAPSULES.replace('name="b"', 'name="b2"'), encoding="utf-8")
+    code, out, _ = _models(str(tmp_path / "robot"), "--backend", "reimpl", "--check", str(golden))
+    assert code == EXIT_FAILURE
+    assert "golden (pydrake) → reimpl: 1 of 1 file(s) changed" in out
+    assert "    bodies: only golden (pydrake): r::b" in out
+    assert "    bodies: only reimpl: r::b2" in out
+    assert "    candidate pairs: only reimpl: r::a/c-r::b2/d" in out
+
+
+def test_models_save_needs_exactly_one_column(tmp_path: Path) -> None:
+    (tmp_path / "r.urdf").write_text(CAPSULES, encoding="utf-8")
+    code, _, err = _models(str(tmp_path), "--save", str(tmp_path / "g.json"), "-q")
+    assert code == EXIT_USAGE
+    assert "--save needs exactly one column that ran, got ['reimpl', 'pydrake']" in err
+
+
+def test_models_check_refuses_a_file_that_is_not_a_golden_file(tmp_path: Path) -> None:
+    (tmp_path / "r.urdf").write_text(CAPSULES, encoding="utf-8")
+    (tmp_path / "g.json").write_text("{}", encoding="utf-8")
+    code, _, err = _models(str(tmp_path / "r.urdf"), "--check", str(tmp_path / "g.json"))
+    assert code == EXIT_USAGE
+    assert f"error: {tmp_path / 'g.json'}: not a golden file of format 1" in err
+
+
+def test_models_package_option_adds_a_package_the_folder_does_not_hold(tmp_path: Path) -> None:
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "box.obj").write_bytes(
+        (DRAKE / "multibody/parsing/test/tri_cube.obj").read_bytes()
+    )
+    (tmp_path / "robot").mkdir()
+    (tmp_path / "robot" / "r.urdf").write_text(
+        '<robot name="r"><link name="a"><collision><geometry>'
+        '<mesh filename="package://my_meshes/box.obj"/></geometry></collision></link></robot>\n',
+        encoding="utf-8",
+    )
+    robot, meshes = str(tmp_path / "robot"), tmp_path / "meshes"
+    answers = {}
+    for name, extra in (("without", []), ("with", ["--package", f"my_meshes={meshes}"])):
+        golden = tmp_path / f"{name}.json"
+        code, _, _ = _models(robot, "-q", "--backend", "pydrake", "--save", str(golden), *extra)
+        assert code == EXIT_OK
+        (answer,) = json.loads(golden.read_text())["answers"].values()
+        answers[name] = answer["results"][0]
+    assert answers["without"]["error"]["message"] == (
+        "r.urdf:1: error: URI 'package://my_meshes/box.obj' refers to unknown package 'my_meshes'"
+    )
+    assert answers["with"] == {"value": ["r"]}
+    code, out, _ = _models(robot, "-q", "--package", f"my_meshes={meshes}")
+    assert code == EXIT_OK
+    assert out.splitlines() == ["reimpl against pydrake: agrees on all 1 file(s)"]
 
 
 @pytest.mark.parametrize(
@@ -221,22 +323,11 @@ def test_models_parses_the_obj_meshes_of_a_folder_with_obj(tmp_path: Path) -> No
     code, _, err = _models(str(tmp_path), "--backend", "pydrake")
     assert code == EXIT_USAGE
     assert "no model files" in err
-    report = tmp_path / "report.json"
-    code, out, _ = _models(
-        str(tmp_path),
-        "--obj",
-        "--backend",
-        "reimpl",
-        "--backend",
-        "pydrake",
-        "-q",
-        "--json",
-        str(report),
-    )
+    code, _, _ = _models(str(tmp_path), "--obj", "-q", "--report", str(tmp_path / "report"))
     assert code == EXIT_OK
-    (case,) = json.loads(report.read_text())["cases"]
-    assert case["qualified_name"].endswith(" > tri_cube.obj")
-    assert "1 pass" in out
+    assert _report(tmp_path / "report")["files"] == {
+        "tri_cube.obj": {"reimpl": "pass", "pydrake": "pass"}
+    }
 
 
 def test_the_schema_accepts_every_error_kind_of_the_protocol() -> None:
@@ -255,20 +346,56 @@ STL_ROBOT = (
 )
 
 
-def test_models_reports_a_file_that_breaks_a_backend_and_goes_on(tmp_path: Path) -> None:
+def test_models_reports_a_file_that_breaks_a_backend_and_goes_on_exiting_one(
+    tmp_path: Path,
+) -> None:
     """pydrake 1.51.1 leaves the .stl geometry half-registered after its error (a proximity
     role, but no place in the collision filter): GetCollisionCandidates then raises
     IndexError('_Map_base::at') as it pairs it with the box (a Drake bug, measured)."""
     (tmp_path / "a.stl").write_text("solid a\nendsolid a\n", encoding="utf-8")
     (tmp_path / "a_stl.urdf").write_text(STL_ROBOT, encoding="utf-8")
     (tmp_path / "b_box.urdf").write_text(STL_ROBOT.replace("a.stl", "b.obj"), encoding="utf-8")
-    report = tmp_path / "report.json"
-    code, _, err = _models(str(tmp_path), "--backend", "pydrake", "-q", "--json", str(report))
-    assert code == EXIT_USAGE
-    assert "_Map_base::at" in err
-    cases = {
-        c["qualified_name"].split(" > ")[1]: c for c in json.loads(report.read_text())["cases"]
+    code, _, err = _models(
+        str(tmp_path), "--backend", "pydrake", "-q", "--report", str(tmp_path / "report")
+    )
+    assert code == EXIT_FAILURE
+    assert "1 case(s) broke an implementation; see the report" in err
+    assert _report(tmp_path / "report")["files"] == {
+        "a_stl.urdf": {"pydrake": "error"},
+        "b_box.urdf": {"pydrake": "pass"},
     }
-    assert sorted(cases) == ["a_stl.urdf", "b_box.urdf"]
-    assert cases["a_stl.urdf"]["status"] == {"pydrake": "error"}
-    assert cases["b_box.urdf"]["status"] == {"pydrake": "pass"}
+
+
+def _have_python_312() -> bool:
+    try:
+        find_python("1.58.0")
+    except DrakeEnvironmentError:
+        return False
+    return True
+
+
+@pytest.mark.skipif(not _have_python_312(), reason="no Python 3.12+ for Drake 1.58")
+def test_models_across_releases_lists_what_changed_from_each_release_to_the_next(
+    tmp_path: Path,
+) -> None:
+    """Measured: Drake 1.55 stopped making a URDF joint's '<joint>_parent' frame for an
+    identity origin (urdf-identity-joint-parent-frame-until-1.54)."""
+    code, out, _ = _models(
+        str(DRAKE / ACROBOT), "--drake", "1.51.1", "1.58.0", "-q", "--report", str(tmp_path)
+    )
+    assert code == EXIT_OK  # a change between releases is no failure
+    assert out.splitlines()[:3] == [
+        "1.51.1 → 1.58.0: 1 of 1 file(s) changed",
+        f"  {ACROBOT}",
+        "    frames: only 1.51.1: Acrobot::base_weld_parent",
+    ]
+    report = _report(tmp_path)
+    assert report["columns"] == ["1.51.1", "1.58.0"]
+    assert report["comparisons"][0]["changes"] == [
+        {
+            "file": ACROBOT,
+            "what": "frames",
+            "removed": ["Acrobot::base_weld_parent"],
+            "added": [],
+        }
+    ]

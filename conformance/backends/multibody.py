@@ -37,10 +37,11 @@ names. A geometry whose name is taken gets ``#2``, ``#3``... (Drake issue
 
 from __future__ import annotations
 
+import os
 import shutil
 import tempfile
 import weakref
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from types import ModuleType
 from typing import TYPE_CHECKING, Any
@@ -256,15 +257,39 @@ class MultibodyCommands:
         self._plant_named.clear()
         self._name_plant_geometries()
 
-    def _local(self, exc: Exception, *folders: Path) -> Exception:
-        """``exc`` with the case's folder (and ``folders``) cut out of its message."""
+    def _local(self, exc: Exception, *folders: Path, drake: Sequence[str] = ()) -> Exception:
+        """``exc`` with the case's folder (and ``folders``) cut out of its message, and the
+        implementation's own ``drake`` package folder (its spellings ``drake``) written
+        ``<drake>``: each release and implementation installs it elsewhere."""
         cut = [f for f in (self._folder, *folders) if f is not None]
-        if cut and exc.args and isinstance(exc.args[0], str):
+        if (cut or drake) and exc.args and isinstance(exc.args[0], str):
             message = exc.args[0]
             for folder in cut:
                 message = message.replace(f"{folder}/", "")
+            for root in drake:
+                message = message.replace(f"{root}/", "<drake>/")
             exc.args = (message, *exc.args[1:])
         return exc
+
+    @staticmethod
+    def _drake_package(parser: Any) -> list[str]:
+        """The spellings of the implementation's default ``drake`` package folder (as its
+        map gives it, normalized, resolved), if the map has one."""
+        package_map = parser.package_map()
+        if not package_map.Contains(package_name="drake"):
+            return []
+        path = str(package_map.GetPath(package_name="drake")).rstrip("/")
+        return list(dict.fromkeys([path, os.path.normpath(path), os.path.realpath(path)]))
+
+    @staticmethod
+    def _add_named_packages(parser: Any, packages: Mapping[str, str]) -> None:
+        """Each ``name: path`` as a package (Add(package_name=, package_path=)), replacing
+        one the map already has by that name (Drake's defaults too)."""
+        package_map = parser.package_map()
+        for name, path in packages.items():
+            if package_map.Contains(package_name=name):
+                package_map.Remove(package_name=name)
+            package_map.Add(package_name=name, package_path=path)
 
     def _add_packages(self, parser: Any, folder: Path) -> None:
         """The packages below ``folder``: PopulateFromFolder(path=), after removing the
@@ -310,7 +335,9 @@ class MultibodyCommands:
         if self._folder is not None and not parser.package_map().Contains(package_name=PACKAGE):
             parser.package_map().Add(package_name=PACKAGE, package_path=str(self._folder))
         models_folder = Path(args["folder"]) if "folder" in args else None
+        drake = self._drake_package(parser)
         try:
+            self._add_named_packages(parser, args.get("packages", {}))
             if self._folder is not None and package_names(self._folder):
                 self._add_packages(parser, self._folder)
             if models_folder is not None:
@@ -323,7 +350,7 @@ class MultibodyCommands:
                     file_contents=args["text"], file_type=args["format"]
                 )
         except Exception as exc:
-            raise self._local(exc, *filter(None, [models_folder])) from None
+            raise self._local(exc, *filter(None, [models_folder]), drake=drake) from None
         finally:
             self._name_plant_geometries()
         return [plant.GetModelInstanceName(model_instance=m) for m in models]

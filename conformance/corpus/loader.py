@@ -305,8 +305,8 @@ def _name(path: Path, root: Path | None = None) -> str:
 
 
 def _step(index: int, raw: Mapping[str, Any], base: Path) -> Step:
-    """A Step of ``raw``; a folder argument (``ArgKind.FOLDER``) is made absolute against
-    ``base``, the scenario file's folder."""
+    """A Step of ``raw``; folder arguments (``ArgKind.FOLDER``, ``ArgKind.PACKAGES``) are made
+    absolute against ``base``, the scenario file's folder."""
     expect = raw.get("expect", ())
     if isinstance(expect, Mapping):
         expect = (expect,)
@@ -314,6 +314,8 @@ def _step(index: int, raw: Mapping[str, Any], base: Path) -> Step:
     for key, kind in spec(raw["op"]).arg_kinds.items():
         if kind is ArgKind.FOLDER and key in args:
             args[key] = str((base / args[key]).resolve())
+        elif kind is ArgKind.PACKAGES and key in args:
+            args[key] = {name: str((base / path).resolve()) for name, path in args[key].items()}
     return Step(index, raw["op"], args, tuple(expect), raw.get("comment"))
 
 

@@ -117,15 +117,14 @@ def model_cases(
     files: Iterable[Path],
     *,
     folder_arg: str | None = None,
-    expected_errors: Mapping[str, Mapping[int, Mapping[str, str]]] | None = None,
+    packages: Mapping[str, str] | None = None,
 ) -> list[dict[str, Any]]:
     """The raw cases (scenario data) of ``files``, relative paths below ``folder``.
 
     ``folder_arg`` is what the steps write as ``folder`` (default: ``folder``
-    itself; a corpus file writes it relative to itself). ``expected_errors``
-    maps a case's description to {step number: {"kind", "message"}}.
+    itself; a corpus file writes it relative to itself); ``packages`` (name:
+    folder) are added to each parse's package map besides the folder's own.
     """
-    expected_errors = expected_errors or {}
     cases = []
     for relative in files:
         path = relative.as_posix()
@@ -134,13 +133,12 @@ def model_cases(
             descriptions.append(path + GROUPS_SUFFIX)
         for description, ops in zip(descriptions, _STEPS, strict=False):
             steps: list[dict[str, Any]] = []
-            for number, op in enumerate(ops, 1):
+            for op in ops:
                 step: dict[str, Any] = {"op": op}
                 if op == "add_models":
                     step.update(folder=folder_arg or str(folder), path=path)
-                error = expected_errors.get(description, {}).get(number)
-                if error is not None:
-                    step["expect"] = {"error": dict(error)}
+                    if packages:
+                        step["packages"] = dict(packages)
                 steps.append(step)
             cases.append({"description": description, "steps": steps})
     return cases
@@ -151,12 +149,13 @@ def model_scenario(
     files: Sequence[Path],
     *,
     description: str,
+    packages: Mapping[str, str] | None = None,
 ) -> ScenarioFile:
     """The loaded scenario of ``files`` below ``folder``, named after the folder: its cases
     are ``<folder name> > <path>``."""
     data = {
         "description": description,
         "features": ["multibody", "parsing"],
-        "cases": model_cases(folder, files),
+        "cases": model_cases(folder, files, packages=packages),
     }
     return scenario_from_data(data, folder.parent / f"{folder.name}.json", root=folder.parent)

@@ -48,6 +48,7 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
             Arg("files", K.FILES),
             Arg("folder", K.FOLDER),
             Arg("reuse_parser", K.BOOL),
+            Arg("packages", K.PACKAGES),
         ),
         "parsing",
         "A new Parser(plant=[, model_name_prefix=]) (with ``reuse_parser``: the last "
@@ -56,7 +57,8 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
         "folder of them holding a package.xml is a package too (PopulateFromFolder(path=) "
         "on the case's folder); with ``folder``, ``path`` is below it and its packages are "
         "added (PopulateFromFolder(path=), replacing default packages of the same name); "
-        "returns the new model instances' names",
+        "``packages`` are added before both (Add(package_name=, package_path=), replacing "
+        "a package of the same name); returns the new model instances' names",
         one_of=(("text", "path"),),
         needs=(("text", ("format",)), ("folder", ("path",))),
         domain="model",

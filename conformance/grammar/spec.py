@@ -107,6 +107,17 @@ class ArgKind(enum.Enum):
         None,
         None,
     )
+    PACKAGES = (
+        {
+            "type": "object",
+            "description": "Packages by name: each a folder, absolute or relative to the "
+            "scenario file.",
+            "propertyNames": {"type": "string", "minLength": 1},
+            "additionalProperties": {"type": "string", "minLength": 1},
+        },
+        None,
+        None,
+    )
     BOOL = ({"type": "boolean"}, None, None)
     # Posed scenes and proximity queries (grammar.queries).
     SHAPE = ({"$ref": "#/$defs/shape"}, None, None)

@@ -39,6 +39,7 @@ from conformance.backends.calls import BackendError
 from conformance.backends.environments import DrakeEnvironmentError
 from conformance.backends.subprocess_backend import WorkerBackend
 from conformance.corpus.loader import Case
+from conformance.protocol import Backend
 from conformance.run.runner import (
     CaseReport,
     Failure,
@@ -55,6 +56,8 @@ __all__ = [
     "Outcome",
     "ReleaseRun",
     "outcome_of",
+    "run_backends",
+    "run_column",
     "run_matrix",
     "run_release",
 ]
@@ -226,18 +229,61 @@ def run_release(
         return run
     run.python = worker.environment.python
     try:
-        for done, case in enumerate(cases, 1):
-            report = run_case(
-                case, [worker], strict_divergences=strict_divergences, step_timeout=step_timeout
-            )
-            run.cells[case.qualified_name] = outcome_of(report, worker.name)
-            if (trace := report.traces.get(worker.name)) is not None:
-                run.traces[case.qualified_name] = trace
-            on_case(version, done, len(cases))
+        run_column(
+            run,
+            worker,
+            cases,
+            strict_divergences=strict_divergences,
+            step_timeout=step_timeout,
+            on_case=on_case,
+        )
     finally:
         worker.close()
         run.seconds = time.perf_counter() - start
     return run
+
+
+def run_column(
+    run: ReleaseRun,
+    backend: Backend,
+    cases: Sequence[Case],
+    *,
+    strict_divergences: bool = False,
+    step_timeout: float | None = None,
+    on_case: Callable[[str, int, int], None] = lambda name, done, total: None,
+) -> None:
+    """Fills ``run`` (a column) with ``backend``'s cell and trace of each case, run alone."""
+    for done, case in enumerate(cases, 1):
+        report = run_case(
+            case, [backend], strict_divergences=strict_divergences, step_timeout=step_timeout
+        )
+        run.cells[case.qualified_name] = outcome_of(report, backend.name)
+        if (trace := report.traces.get(backend.name)) is not None:
+            run.traces[case.qualified_name] = trace
+        on_case(run.version, done, len(cases))
+
+
+def run_backends(
+    backends: Sequence[Backend],
+    cases: Sequence[Case],
+    *,
+    step_timeout: float | None = None,
+    on_case: Callable[[str, int, int], None] = lambda name, done, total: None,
+) -> Matrix:
+    """Every case on every backend (in this process, one after another), a column each,
+    named after the backend: the matrix of implementations rather than releases."""
+    matrix = Matrix(
+        [b.name for b in backends],
+        [c.qualified_name for c in cases],
+        sources={c.qualified_name: c for c in cases},
+    )
+    for backend in backends:
+        run = ReleaseRun(backend.name)
+        start = time.perf_counter()
+        run_column(run, backend, cases, step_timeout=step_timeout, on_case=on_case)
+        run.seconds = time.perf_counter() - start
+        matrix.runs[backend.name] = run
+    return matrix
 
 
 def run_matrix(

@@ -75,6 +75,7 @@ __all__ = [
     "Status",
     "Trace",
     "choose_reference",
+    "reference_name",
     "run_case",
     "trace_disagreements",
 ]
@@ -153,15 +154,17 @@ class CaseReport:
 
 def choose_reference(backends: Sequence[Backend], name: str | None = None) -> Backend:
     """``name``'s backend; else the first real Drake; else the first backend."""
+    names = [b.name for b in backends]
+    return backends[names.index(reference_name(names, name))]
+
+
+def reference_name(names: Sequence[str], name: str | None = None) -> str:
+    """``name`` (one of ``names``); else the first real Drake's name; else the first."""
     if name is not None:
-        for backend in backends:
-            if backend.name == name:
-                return backend
-        raise ValueError(f"no backend is named {name!r} (have {[b.name for b in backends]})")
-    for backend in backends:
-        if backend.name.startswith(_DRAKE_NAMES):
-            return backend
-    return backends[0]
+        if name not in names:
+            raise ValueError(f"no backend is named {name!r} (have {list(names)})")
+        return name
+    return next((n for n in names if n.startswith(_DRAKE_NAMES)), names[0])
 
 
 def _observed_steps(steps: Sequence[Step]) -> list[bool]:
