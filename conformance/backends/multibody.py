@@ -103,6 +103,12 @@ _ROLE_READERS: Mapping[str, str] = {
 }
 
 
+def _spellings(path: str) -> list[str]:
+    """A folder as messages may spell it: as given, normalized, resolved (no final slash)."""
+    path = path.rstrip("/")
+    return list(dict.fromkeys([path, os.path.normpath(path), os.path.realpath(path)]))
+
+
 def package_names(folder: Path) -> list[str]:
     """The names of the packages below ``folder`` (each ``package.xml``'s ``<name>``), in the
     sorted order of their folders, each once."""
@@ -257,17 +263,22 @@ class MultibodyCommands:
         self._plant_named.clear()
         self._name_plant_geometries()
 
-    def _local(self, exc: Exception, *folders: Path, drake: Sequence[str] = ()) -> Exception:
-        """``exc`` with the case's folder (and ``folders``) cut out of its message, and the
-        implementation's own ``drake`` package folder (its spellings ``drake``) written
-        ``<drake>``: each release and implementation installs it elsewhere."""
+    def _local(
+        self, exc: Exception, *folders: Path, named: Mapping[str, Sequence[str]] | None = None
+    ) -> Exception:
+        """``exc`` with the case's folder (and ``folders``) cut out of its message, and each
+        ``named`` package folder (name: its spellings) written ``<name>``: the
+        implementation's own ``drake`` package, which each release installs elsewhere, and
+        the packages a step names."""
         cut = [f for f in (self._folder, *folders) if f is not None]
-        if (cut or drake) and exc.args and isinstance(exc.args[0], str):
+        renamed = named or {}
+        if (cut or renamed) and exc.args and isinstance(exc.args[0], str):
             message = exc.args[0]
             for folder in cut:
                 message = message.replace(f"{folder}/", "")
-            for root in drake:
-                message = message.replace(f"{root}/", "<drake>/")
+            for name, spellings in renamed.items():
+                for path in spellings:
+                    message = message.replace(f"{path}/", f"<{name}>/")
             exc.args = (message, *exc.args[1:])
         return exc
 
@@ -278,8 +289,7 @@ class MultibodyCommands:
         package_map = parser.package_map()
         if not package_map.Contains(package_name="drake"):
             return []
-        path = str(package_map.GetPath(package_name="drake")).rstrip("/")
-        return list(dict.fromkeys([path, os.path.normpath(path), os.path.realpath(path)]))
+        return _spellings(str(package_map.GetPath(package_name="drake")))
 
     @staticmethod
     def _add_named_packages(parser: Any, packages: Mapping[str, str]) -> None:
@@ -335,7 +345,9 @@ class MultibodyCommands:
         if self._folder is not None and not parser.package_map().Contains(package_name=PACKAGE):
             parser.package_map().Add(package_name=PACKAGE, package_path=str(self._folder))
         models_folder = Path(args["folder"]) if "folder" in args else None
-        drake = self._drake_package(parser)
+        named = {"drake": self._drake_package(parser)} | {
+            name: _spellings(path) for name, path in args.get("packages", {}).items()
+        }
         try:
             self._add_named_packages(parser, args.get("packages", {}))
             if self._folder is not None and package_names(self._folder):
@@ -350,7 +362,7 @@ class MultibodyCommands:
                     file_contents=args["text"], file_type=args["format"]
                 )
         except Exception as exc:
-            raise self._local(exc, *filter(None, [models_folder]), drake=drake) from None
+            raise self._local(exc, *filter(None, [models_folder]), named=named) from None
         finally:
             self._name_plant_geometries()
         return [plant.GetModelInstanceName(model_instance=m) for m in models]

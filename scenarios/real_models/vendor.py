@@ -17,8 +17,8 @@ A data file is anything but source code and build files (see ``_CODE``).
 
 With ``--models``, a checkout of RobotLocomotion/models (Drake's ``drake_models``
 package, at the commit the Drake release pins) is vendored into ``drake_models/``:
-its ``package.xml``, every model file, every licence file, and every file a model
-file names by URI (``package://drake_models/...`` or a relative path; not what a
+its ``package.xml``, every model file, every licence file, every file a model
+file (of it, or of Drake's checkout) names by URI (``package://drake_models/...`` or a relative path; not what a
 named glTF file names in turn: Drake reads a mesh file's contents at parse time
 only for collision geometry, whose meshes here are ``.obj`` and ``.vtk``).
 
@@ -87,10 +87,16 @@ _PACKAGE = "package://drake_models/"
 _LICENCE = re.compile(r"^(LICEN[CS]E|COPYING)", re.IGNORECASE)
 
 
-def models_files(root: Path) -> list[Path]:
-    """What to vendor of RobotLocomotion/models (see the module doc), relative, sorted."""
+def models_files(root: Path, drake: Path | None = None) -> list[Path]:
+    """What to vendor of RobotLocomotion/models (see the module doc), relative, sorted; with
+    ``drake`` (a checkout), the files its own model files name there too."""
     every = _walk(root)
     chosen = {Path("package.xml")} | {p for p in every if _LICENCE.match(p.name)}
+    for model in model_files(drake) if drake is not None else []:
+        text = (drake / model).read_text(encoding="utf-8", errors="replace")
+        for named in _URI.findall(text):
+            if named.startswith(_PACKAGE) and (root / named.removeprefix(_PACKAGE)).is_file():
+                chosen.add(Path(named.removeprefix(_PACKAGE)))
     for model in (p for p in every if p.name.endswith(MODEL_SUFFIXES)):
         chosen.add(model)
         text = (root / model).read_text(encoding="utf-8", errors="replace")
@@ -179,7 +185,9 @@ def main(argv: list[str] | None = None) -> int:
     if args.models is not None:
         target = args.target.parent / "drake_models"
         models = args.models.resolve()
-        count = _copy(models, models_files(models), target, args.models_commit)
+        count = _copy(
+            models, models_files(models, args.checkout.resolve()), target, args.models_commit
+        )
         print(f"vendored {count} files into {target}")
     return 0
 
