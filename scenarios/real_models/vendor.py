@@ -18,9 +18,10 @@ A data file is anything but source code and build files (see ``_CODE``).
 With ``--models``, a checkout of RobotLocomotion/models (Drake's ``drake_models``
 package, at the commit the Drake release pins) is vendored into ``drake_models/``:
 its ``package.xml``, every model file, every licence file, every file a model
-file (of it, or of Drake's checkout) names by URI (``package://drake_models/...`` or a relative path; not what a
-named glTF file names in turn: Drake reads a mesh file's contents at parse time
-only for collision geometry, whose meshes here are ``.obj`` and ``.vtk``).
+file (of it, or of Drake's checkout) names by URI (``package://drake_models/...``
+or a relative path; not what a named glTF file names in turn: Drake reads a mesh
+file's contents at parse time only for collision geometry, whose meshes here are
+``.obj`` and ``.vtk``).
 
 The copy is deterministic: run it again on the same commits and ``git diff``
 shows nothing.
