@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import enum
 import re
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol, runtime_checkable
 
@@ -31,6 +31,7 @@ __all__ = [
     "MODEL",
     "Backend",
     "BackendId",
+    "BatchingBackend",
     "Command",
     "ErrorInfo",
     "ErrorKind",
@@ -267,6 +268,17 @@ class Backend(Protocol):
     def execute(self, command: Command) -> Result: ...
 
     def observe(self) -> Observation: ...
+
+
+@runtime_checkable
+class BatchingBackend(Backend, Protocol):
+    """A backend that answers a sequence of steps in one request (a worker in its own
+    process): ``run_steps`` yields, per ``(command, observe)``, the Result (an empty one for
+    a None command) and the Observation after it if ``observe`` (else None), as they come."""
+
+    def run_steps(
+        self, steps: Sequence[tuple[Command | None, bool]]
+    ) -> Iterator[tuple[Result, Observation | None]]: ...
 
 
 def backend_id(backend: Backend) -> BackendId:
