@@ -31,6 +31,7 @@ from conformance.cli.run import NoCaseError, corpus_cases
 from conformance.corpus.loader import ScenarioError
 from conformance.policy.versions import parse_version
 from conformance.run.bisect import Bisection, By, Probe, bisect_case, run_probe
+from conformance.run.matrix import label
 
 __all__ = ["add_bisect_parser", "bisect_command"]
 
@@ -55,7 +56,7 @@ def add_bisect_parser(commands: argparse._SubParsersAction) -> None:  # type: ig
 
 def _describe(probe: Probe) -> str:
     detail = probe.cell.expected_by or probe.cell.detail
-    return probe.cell.outcome.value + (f" ({detail[:100]})" if detail else "")
+    return label(probe.cell.outcome) + (f" ({detail[:100]})" if detail else "")
 
 
 def _releases(good: str, bad: str) -> list[str]:

@@ -24,7 +24,7 @@ from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_backend_options, refuse
 from conformance.cli.run import NoCaseError, corpus_cases
 from conformance.corpus.loader import ScenarioError
-from conformance.run.matrix import Matrix, Outcome, ReleaseRun, run_matrix
+from conformance.run.matrix import MATRIX_ORDER, Matrix, ReleaseRun, label, run_matrix
 from conformance.run.matrix_report import matrix_markdown, write_report
 from conformance.run.outputs import unwritable
 
@@ -84,8 +84,8 @@ class _Progress:
             self.write(f"  drake=={run.version}: could not run: {run.error}")
             return
         counts = ", ".join(
-            f"{n} {o.value}"
-            for n, o in sorted(((run.count(o), o) for o in Outcome), key=lambda no: -no[0])
+            f"{n} {label(o)}"
+            for n, o in sorted(((run.count(o), o) for o in MATRIX_ORDER), key=lambda no: -no[0])
             if n
         )
         self.write(f"  drake=={run.version} (Python {run.python}): {counts} [{run.seconds:.1f} s]")

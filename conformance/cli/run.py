@@ -19,10 +19,11 @@ from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_backend_options, refuse
 from conformance.corpus.loader import Case, ScenarioError, load_corpus
+from conformance.engine import Outcome
 from conformance.protocol import Backend
 from conformance.run.outputs import unwritable, write_or_fall_back
 from conformance.run.report import RunReport, write_json, write_junit
-from conformance.run.runner import Status, choose_reference, run_case
+from conformance.run.runner import choose_reference, run_case
 
 __all__ = [
     "PROG",
@@ -134,7 +135,7 @@ class _LongCase:
             self.err.flush()
 
 
-def _progress(out: TextIO, index: int, total: int, name: str, statuses: dict[str, Status]) -> None:
+def _progress(out: TextIO, index: int, total: int, name: str, statuses: dict[str, Outcome]) -> None:
     marks = " ".join(f"{b}:{s.value}" for b, s in statuses.items())
     out.write(f"[{index:>{len(str(total))}}/{total}] {name}  {marks}\n")
     out.flush()
@@ -186,7 +187,7 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         return EXIT_USAGE
     if code == EXIT_OK and report.failed:
         code = EXIT_FAILURE
-    ran = sum(1 for c in report.cases for s in c.status.values() if s is not Status.SKIP)
+    ran = sum(1 for c in report.cases for s in c.status.values() if s is not Outcome.SKIP)
     if code == EXIT_OK and ran == 0:
         err.write("error: no case ran on any backend\n")
         code = EXIT_USAGE

@@ -24,8 +24,10 @@ from dataclasses import dataclass, field
 
 from conformance.backends.subprocess_backend import WorkerBackend
 from conformance.corpus.loader import Case
-from conformance.run.matrix import Cell, outcome_of
-from conformance.run.runner import Failure, Trace, run_case, trace_disagreements
+from conformance.engine import Track
+from conformance.run.case_report import Failure
+from conformance.run.matrix import Cell, label, outcome_of
+from conformance.run.runner import run_case, trace_disagreements
 
 __all__ = ["Bisection", "By", "Probe", "bisect_case"]
 
@@ -41,7 +43,7 @@ class Probe:
 
     version: str
     cell: Cell
-    trace: Trace | None
+    trace: Track | None
 
 
 @dataclass
@@ -88,8 +90,8 @@ def _differences(case: Case, by: By, good: Probe, other: Probe) -> list[Failure]
             Failure(
                 "case",
                 "outcome",
-                good.cell.outcome.value,
-                other.cell.outcome.value,
+                label(good.cell.outcome),
+                label(other.cell.outcome),
                 other.version,
                 good.version,
             )

@@ -27,7 +27,6 @@ an ``error`` in its ``ReleaseRun``; the other releases still run.
 
 from __future__ import annotations
 
-import enum
 import threading
 import time
 from collections.abc import Callable, Sequence
@@ -39,22 +38,19 @@ from conformance.backends.calls import BackendError
 from conformance.backends.environments import DrakeEnvironmentError
 from conformance.backends.subprocess_backend import WorkerBackend
 from conformance.corpus.loader import Case
+from conformance.engine import Outcome, Track
 from conformance.protocol import Backend
-from conformance.run.runner import (
-    CaseReport,
-    Failure,
-    Status,
-    Trace,
-    binding_gap,
-    run_case,
-    trace_disagreements,
-)
+from conformance.run.case_report import CaseReport, Failure
+from conformance.run.runner import run_case, trace_disagreements
+from conformance.run.verdict import binding_gap
 
 __all__ = [
+    "MATRIX_ORDER",
     "Cell",
     "Matrix",
     "Outcome",
     "ReleaseRun",
+    "label",
     "outcome_of",
     "run_backends",
     "run_column",
@@ -63,14 +59,22 @@ __all__ = [
 ]
 
 
-class Outcome(enum.Enum):
-    PASS = "pass"
-    FAIL = "fail"
-    XFAIL = "xfail"
-    UNSUPPORTED = "unsupported"
-    CRASH = "crash"
-    TIMEOUT = "timeout"
-    ERROR = "error"
+#: The outcomes in the order a matrix shows them.
+MATRIX_ORDER = (
+    Outcome.PASS,
+    Outcome.FAIL,
+    Outcome.XFAIL,
+    Outcome.SKIP,
+    Outcome.CRASH,
+    Outcome.TIMEOUT,
+    Outcome.ERROR,
+)
+
+
+def label(outcome: Outcome) -> str:
+    """How a matrix names an outcome: a skipped case is ``unsupported`` there (the release
+    lacks a feature or a binding the case needs); the others by their value."""
+    return "unsupported" if outcome is Outcome.SKIP else outcome.value
 
 
 #: Outcomes that make ``matrix`` exit 1 (a crash or timeout that a known
@@ -93,18 +97,10 @@ class Cell:
 
     def to_json(self) -> dict[str, Any]:
         return {
-            "outcome": self.outcome.value,
+            "outcome": label(self.outcome),
             "detail": self.detail,
             **({"expected_by": self.expected_by} if self.expected_by else {}),
         }
-
-
-#: How a backend that broke is shown.
-_BROKEN_OUTCOMES = {
-    Status.CRASH: Outcome.CRASH,
-    Status.TIMEOUT: Outcome.TIMEOUT,
-    Status.ERROR: Outcome.ERROR,
-}
 
 
 def _broke(report: CaseReport, backend: str) -> str:
@@ -120,7 +116,7 @@ def _broke(report: CaseReport, backend: str) -> str:
 def _failed(report: CaseReport, backend: str) -> Cell:
     gap = binding_gap(report, backend)
     if gap is not None:  # a backend not named like a Drake release (run's SKIP covers those)
-        return Cell(Outcome.UNSUPPORTED, f"no binding: {gap}")
+        return Cell(Outcome.SKIP, f"no binding: {gap}")
     first = report.failures_of(backend)[0]
     return Cell(Outcome.FAIL, f"{first.step}: {first.what}")
 
@@ -131,21 +127,21 @@ def _passed(report: CaseReport, backend: str) -> Cell:
     return Cell(Outcome.PASS)
 
 
-#: The cell of a backend that finished the case, by its status.
-_BY_STATUS: dict[Status, Callable[[CaseReport, str], Cell]] = {
-    Status.PASS: _passed,
-    Status.FAIL: _failed,
-    Status.XFAIL: lambda r, b: Cell(Outcome.XFAIL, r.xfails[b], r.xfails[b]),
-    Status.SKIP: lambda r, b: Cell(Outcome.UNSUPPORTED, r.skip_reasons.get(b, "")),
+#: The cell of a backend that finished the case, by its outcome.
+_BY_OUTCOME: dict[Outcome, Callable[[CaseReport, str], Cell]] = {
+    Outcome.PASS: _passed,
+    Outcome.FAIL: _failed,
+    Outcome.XFAIL: lambda r, b: Cell(Outcome.XFAIL, r.xfails[b], r.xfails[b]),
+    Outcome.SKIP: lambda r, b: Cell(Outcome.SKIP, r.skip_reasons.get(b, "")),
 }
 
 
 def outcome_of(report: CaseReport, backend: str) -> Cell:
     """The cell of ``backend`` in ``report`` (the module doc's table)."""
     if backend in report.broken:
-        outcome = _BROKEN_OUTCOMES[report.broken[backend]]
+        outcome = report.broken[backend]
         return Cell(outcome, _broke(report, backend), report.xfails.get(backend))
-    return _BY_STATUS[report.status.get(backend, Status.PASS)](report, backend)
+    return _BY_OUTCOME[report.status.get(backend, Outcome.PASS)](report, backend)
 
 
 @dataclass
@@ -158,7 +154,7 @@ class ReleaseRun:
     error: str | None = None
     seconds: float = 0.0
     #: What the release answered, per case (for behaviour changes; not written out).
-    traces: dict[str, Trace] = field(default_factory=dict, repr=False)
+    traces: dict[str, Track] = field(default_factory=dict, repr=False)
 
     def count(self, outcome: Outcome) -> int:
         return sum(1 for c in self.cells.values() if c.outcome is outcome)

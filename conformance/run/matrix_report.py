@@ -22,8 +22,8 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from conformance.run.matrix import Cell, Matrix, Outcome
-from conformance.run.runner import Failure
+from conformance.run.case_report import Failure
+from conformance.run.matrix import MATRIX_ORDER, Cell, Matrix, Outcome, label
 
 __all__ = [
     "COLOURS",
@@ -39,7 +39,7 @@ __all__ = [
 COLOURS: dict[Outcome, str] = {
     Outcome.PASS: "#4caf50",
     Outcome.XFAIL: "#aed581",
-    Outcome.UNSUPPORTED: "#d0d0d0",
+    Outcome.SKIP: "#d0d0d0",
     Outcome.FAIL: "#e53935",
     Outcome.CRASH: "#6a1b9a",
     Outcome.TIMEOUT: "#ff9800",
@@ -49,7 +49,7 @@ _MISSING = "#ffffff"
 
 
 def _outcome(cell: Cell | None) -> str:
-    return "—" if cell is None else cell.outcome.value
+    return "—" if cell is None else label(cell.outcome)
 
 
 def changes(matrix: Matrix) -> Iterator[tuple[str, str, list[str]]]:
@@ -103,7 +103,7 @@ def matrix_json(matrix: Matrix) -> dict[str, Any]:
     releases = {
         v: {
             "python": run.python,
-            "counts": {o.value: run.count(o) for o in Outcome},
+            "counts": {label(o): run.count(o) for o in MATRIX_ORDER},
             **({"error": run.error} if run.error else {}),
         }
         for v, run in ((v, matrix.runs[v]) for v in matrix.versions)
@@ -137,14 +137,14 @@ def _why(cell: Cell | None) -> str:
         return "—"
     detail = cell.expected_by or cell.detail
     detail = detail if len(detail) <= 140 else detail[:139] + "…"
-    return f"**{cell.outcome.value}**" + (f" ({_escape(detail)})" if detail else "")
+    return f"**{label(cell.outcome)}**" + (f" ({_escape(detail)})" if detail else "")
 
 
 def matrix_markdown(matrix: Matrix, *, title: str = "Release matrix") -> str:
     """The ``report.md`` text (see the module doc)."""
-    shown = [o for o in Outcome]
+    shown = list(MATRIX_ORDER)
     lines = [f"# {title}", "", f"{len(matrix.cases)} cases on {len(matrix.versions)} releases.", ""]
-    lines.append("| release | Python | " + " | ".join(o.value for o in shown) + " |")
+    lines.append("| release | Python | " + " | ".join(label(o) for o in shown) + " |")
     lines.append("|---|---|" + "---:|" * len(shown))
     for v in matrix.versions:
         run = matrix.runs[v]
@@ -206,7 +206,7 @@ def write_heatmap(matrix: Matrix, path: Path) -> Path:
     from matplotlib.lines import Line2D  # noqa: PLC0415
     from matplotlib.patches import Patch  # noqa: PLC0415
 
-    order = list(Outcome)
+    order = list(MATRIX_ORDER)
     index = {o: i for i, o in enumerate(order)}
     grid = [
         [
@@ -235,7 +235,7 @@ def write_heatmap(matrix: Matrix, path: Path) -> Path:
     if changed:
         axes.scatter([x for x, _ in changed], [y for _, y in changed], s=6, c="black", marker="o")
     present = {c.outcome for run in matrix.runs.values() for c in run.cells.values()}
-    handles: list[Artist] = [Patch(color=COLOURS[o], label=o.value) for o in order if o in present]
+    handles: list[Artist] = [Patch(color=COLOURS[o], label=label(o)) for o in order if o in present]
     if changed:
         handles.append(
             Line2D(

@@ -33,8 +33,8 @@ from typing import Any
 
 from conformance.compare import format_pairs
 from conformance.corpus.loader import Case
+from conformance.engine import Track
 from conformance.protocol import MODEL, Observation, Result
-from conformance.run.runner import Trace
 
 __all__ = ["Answers", "Change", "changes", "file_of"]
 
@@ -85,7 +85,7 @@ class Answers:
     broken: str | None = None
 
     @classmethod
-    def of(cls, trace: Trace) -> Answers:
+    def of(cls, trace: Track) -> Answers:
         broken = None if trace.broken is None else str(trace.broken)
         return cls(tuple(trace.results), tuple(trace.observations), broken)
 

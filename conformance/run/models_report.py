@@ -30,7 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from conformance.corpus.loader import Case
-from conformance.run.matrix import Matrix
+from conformance.run.matrix import Matrix, label
 from conformance.run.matrix_report import write_heatmap
 from conformance.run.model_changes import Answers, Change, changes, file_of
 
@@ -106,7 +106,7 @@ def _outcomes(matrix: Matrix, cases: Sequence[Case]) -> dict[str, dict[str, str]
         row = table.setdefault(file_of(case.description), {})
         for column in matrix.versions:
             cell = matrix.cell(case.qualified_name, column)
-            outcome = "—" if cell is None else cell.outcome.value
+            outcome = "—" if cell is None else label(cell.outcome)
             if row.get(column, "pass") == "pass":
                 row[column] = outcome
     return table

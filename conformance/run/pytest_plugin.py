@@ -44,10 +44,12 @@ from conformance.corpus.loader import (
     in_model_package,
     load_file,
 )
+from conformance.engine import Outcome
 from conformance.grammar.schema import scenario_schema
 from conformance.protocol import Backend
+from conformance.run.case_report import CaseReport
 from conformance.run.report import failure_lines
-from conformance.run.runner import CaseReport, Status, run_case
+from conformance.run.runner import run_case
 
 __all__ = ["FEATURE_TAGS", "SCENARIO_SUFFIXES", "ScenarioCaseItem", "ScenarioFileCollector"]
 
@@ -175,7 +177,7 @@ def _backends(config: pytest.Config) -> list[Backend]:
 
 def _not_compared(report: CaseReport, backends: Sequence[Backend]) -> str | None:
     """Why no comparison was possible (backends lacking the case's features), or None."""
-    sat_out = [b for b in backends if report.status.get(b.name) is Status.SKIP]
+    sat_out = [b for b in backends if report.status.get(b.name) is Outcome.SKIP]
     ran = [b.name for b in backends if b not in sat_out]
     if not sat_out or len(ran) >= min(2, len(backends)):
         return None

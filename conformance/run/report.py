@@ -17,8 +17,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
+from conformance.engine import Outcome
 from conformance.protocol import Backend
-from conformance.run.runner import CaseReport, Status
+from conformance.run.case_report import CaseReport
 
 __all__ = ["RunReport", "failure_lines", "write_json", "write_junit"]
 
@@ -39,7 +40,7 @@ class RunReport:
     #: Scenario files and cases left out as malformed, one message each.
     input_errors: Sequence[str] = ()
 
-    def count(self, backend: str, status: Status) -> int:
+    def count(self, backend: str, status: Outcome) -> int:
         return sum(1 for c in self.cases if c.status.get(backend) is status)
 
     @property
@@ -64,10 +65,10 @@ class RunReport:
         for file, cases in files.items():
             row = [file, str(len(cases))]
             for name in names:
-                row.append(_cell(sum(1 for c in cases if c.status.get(name) is s) for s in Status))
+                row.append(_cell(sum(1 for c in cases if c.status.get(name) is s) for s in Outcome))
             rows.append(row)
         total = ["total", str(len(self.cases))]
-        total += [_cell(self.count(n, s) for s in Status) for n in names]
+        total += [_cell(self.count(n, s) for s in Outcome) for n in names]
         rows.append(total)
         widths = [max(len(r[i]) for r in rows) for i in range(len(header))]
         for i, row in enumerate(rows):
@@ -115,7 +116,7 @@ class RunReport:
             "backends": {b.name: {"version": b.version()} for b in self.backends},
             "reference": self.reference,
             "summary": {
-                b.name: {s.value: self.count(b.name, s) for s in Status} for b in self.backends
+                b.name: {s.value: self.count(b.name, s) for s in Outcome} for b in self.backends
             },
             "aborted": self.aborted,
             "input_errors": list(self.input_errors),
@@ -137,7 +138,7 @@ def failure_lines(case: CaseReport) -> list[str]:
     """The failures of the backends that failed ``case``: what, expected (from where), actual."""
     lines = []
     for failure in case.failures:
-        if case.status.get(failure.backend) is Status.FAIL:
+        if case.status.get(failure.backend) is Outcome.FAIL:
             lines.append(f"  {failure.step}: {failure.what} [{failure.backend} failed]")
             lines.append(f"    expected: {_show(failure.expected)}  ({failure.source})")
             lines.append(f"    actual:   {_show(failure.actual)}")
@@ -145,13 +146,13 @@ def failure_lines(case: CaseReport) -> list[str]:
 
 
 #: Always shown in a table cell; the others (error, timeout) only when they occur.
-_ALWAYS_SHOWN = (Status.PASS, Status.FAIL, Status.XFAIL, Status.SKIP)
+_ALWAYS_SHOWN = (Outcome.PASS, Outcome.FAIL, Outcome.XFAIL, Outcome.SKIP)
 
 
 def _cell(counts: Any) -> str:
     return ", ".join(
         f"{count} {status.value}"
-        for status, count in zip(Status, counts, strict=True)
+        for status, count in zip(Outcome, counts, strict=True)
         if count or status in _ALWAYS_SHOWN
     )
 
@@ -181,18 +182,18 @@ def write_junit(report: RunReport, path: Path) -> None:
                 classname=case.case.file.name,
                 name=f"{case.case.description} [{backend.name}]",
             )
-            if status is Status.SKIP:
+            if status is Outcome.SKIP:
                 counts["skipped"] += 1
                 ET.SubElement(element, "skipped", message=case.skip_reasons.get(backend.name, ""))
-            elif status is Status.XFAIL:
+            elif status is Outcome.XFAIL:
                 counts["skipped"] += 1
                 divergence = case.xfails.get(backend.name, "")
                 ET.SubElement(element, "skipped", type="xfail", message=f"xfail: {divergence}")
-            elif status in (Status.ERROR, Status.TIMEOUT, Status.CRASH):
+            elif status in (Outcome.ERROR, Outcome.TIMEOUT, Outcome.CRASH):
                 counts["errors"] += 1
                 error = ET.SubElement(element, "error", type=status.value, message=status.value)
                 error.text = case.aborted or ""
-            elif status is Status.FAIL:
+            elif status is Outcome.FAIL:
                 counts["failures"] += 1
                 failures = case.failures_of(backend.name)
                 failure = ET.SubElement(element, "failure", message=failures[0].what)
