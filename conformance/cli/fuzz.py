@@ -7,8 +7,8 @@ every smaller one while Hypothesis shrinks it, and by the final one when its
 batch ends (``conformance.fuzz.findings``): a run that is killed leaves the
 best finding so far on disk. ``--shrink-time SEC`` ends shrinking SEC seconds
 after the first sighting, with the best so far. Ctrl-C and SIGTERM end the run
-with the best so far written. The final file is replayed with the scenario
-runner to confirm that ``run`` reproduces it.
+with the best so far written. The final file is replayed under ``run`` to
+confirm it (``conformance.fuzz.findings``).
 
 ``--models`` runs a ``ModelCampaign`` (``conformance.fuzz.model_campaign``):
 each example is a random model case run by the corpus runner, not a lockstep
@@ -33,10 +33,9 @@ from __future__ import annotations
 import argparse
 import json
 import signal
-import tempfile
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from types import FrameType
@@ -48,43 +47,22 @@ from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import refuse
 from conformance.cli.run import PROG
-from conformance.corpus.loader import ScenarioError, load_file
-from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult
+from conformance.corpus.loader import ScenarioError
+from conformance.engine import HarnessError
+from conformance.fuzz.campaign import Campaign, CampaignResult
 from conformance.fuzz.coverage import campaign_features
-from conformance.fuzz.findings import FindingFile
-from conformance.fuzz.lockstep import (
-    Divergence,
-    FuzzStats,
-    HarnessError,
-    LockstepMachine,
-    PosedLockstepMachine,
-    interrupt_requested,
-)
+from conformance.fuzz.findings import Findings, Origin, write_finding
+from conformance.fuzz.lockstep import LockstepMachine, PosedLockstepMachine
 from conformance.fuzz.model_campaign import MODEL_SWITCHES, ModelCampaign
 from conformance.fuzz.model_coverage import expected_model_features
 from conformance.fuzz.operations import issued_ops
-from conformance.fuzz.regression import (
-    drake_release,
-    prepare_writing,
-    write_regression,
-    write_reproducer,
-)
+from conformance.fuzz.regression import prepare_writing, write_reproducer
+from conformance.fuzz.stats import FuzzStats, interrupt_requested
 from conformance.grammar import GRAMMAR
-from conformance.protocol import Backend, backend_id
+from conformance.protocol import Backend
 from conformance.run.outputs import unwritable, unwritable_dir, write_or_fall_back
-from conformance.run.runner import run_case
 
-__all__ = [
-    "FALLBACK_FINDINGS",
-    "Progress",
-    "cross_release",
-    "fuzz_command",
-    "passes_alone",
-    "replays",
-]
-
-#: Where findings go when ``--out`` cannot be written after all.
-FALLBACK_FINDINGS = Path(tempfile.gettempdir()) / "drake-filter-conformance-findings"
+__all__ = ["Progress", "fuzz_command"]
 
 
 class Progress:
@@ -141,166 +119,10 @@ class Progress:
         return stop
 
 
-def replays(path: Path, backends: list[Backend]) -> bool:
-    """True iff the scenario file fails on ``backends`` (the last is the reference)."""
-    scenario = load_file(path, root=path.parent)
-    reference = backends[-1].name
-    return any(not run_case(case, backends, reference=reference).passed for case in scenario.cases)
-
-
-def passes_alone(path: Path, backend: Backend) -> bool:
-    """True iff ``backend`` alone meets every expectation of the scenario file for its release."""
-    scenario = load_file(path, root=path.parent)
-    return all(run_case(case, [backend]).passed for case in scenario.cases)
-
-
-def cross_release(backend: Backend, reference: Backend) -> str | None:
-    """The backend's Drake release if both backends are different Drake releases, else None.
-
-    Then a finding records both releases' answers (``since``/``until``), not
-    the reference's alone (``conformance.fuzz.regression``).
-    """
-    mine, theirs = drake_release(backend_id(backend)), drake_release(backend_id(reference))
-    return mine if mine is not None and theirs is not None and mine != theirs else None
-
-
-class _Findings:
-    """The run's findings on disk: each batch's divergence, from first sighting to report.
-
-    ``on_best`` (``Campaign.on_best``) writes a batch's first divergence at
-    once, then shorter ones over the same finding's file (at most about once
-    a second, ``FindingFile``; ``on_step`` writes one that waited);
-    ``on_batch`` writes the batch's final divergence over it, reports it and
-    replays it.
-    """
-
-    def __init__(
-        self,
-        args: argparse.Namespace,
-        backends: tuple[Backend, Backend],
-        out: TextIO,
-        progress: Progress,
-    ) -> None:
-        self.args = args
-        self.backends = backends
-        self.out = out
-        self.progress = progress
-        self.release = cross_release(*backends)
-        self.reference_version = backends[1].version()
-        #: The current batch's finding (None: no divergence seen in it yet).
-        self.current: FindingFile | None = None
-        #: The files reported (or ``--out`` for a finding that could not be written).
-        self.written: list[Path] = []
-
-    def write(self, divergence: Divergence) -> Path | None:
-        """Writes ``divergence``'s scenario into ``--out`` (or ``FALLBACK_FINDINGS``)."""
-        args = self.args
-        return _write_finding(
-            lambda folder: write_regression(
-                divergence,
-                folder,
-                backend=args.backend,
-                reference=args.against,
-                reference_version=self.reference_version,
-                seed=args.seed,
-                backend_version=self.release,
-                models=args.models,
-                poses=_posed(args),
-            ),
-            args.out,
-            self.out,
-        )
-
-    def on_best(self, divergence: Divergence) -> None:
-        """Writes a new best divergence over the batch's file; names the file the first time."""
-        first = self.current is None
-        finding = self.current = self.current or FindingFile(self.write)
-        start = time.perf_counter()
-        try:
-            landed = finding.offer(divergence)
-        except ScenarioError as exc:  # the batch's final write says so, and ends the run
-            self.progress.say(f"the divergence cannot be written as a scenario yet: {exc}")
-            return
-        if first and landed:
-            took = (time.perf_counter() - start) * 1000
-            self.progress.say(
-                f"divergence seen: {divergence.what} after step {len(divergence.trace)}; "
-                f"written in {took:.0f} ms to {finding.path} (replaced as it shrinks)"
-            )
-
-    def on_batch(self, outcome: BatchResult) -> None:
-        """Writes the batch's final divergence over its file so far, says so, replays it."""
-        divergence = outcome.divergence
-        if divergence is None:
-            self.current = None
-            return
-        self.progress.found += 1
-        args, out = self.args, self.out
-        # Kept as current until settled: an interrupt in between reports into the same file.
-        finding = self.current = self.current or FindingFile(self.write)
-        path = finding.settle(divergence)
-        self.current = None
-        if path is None:
-            out.write(f"DIVERGENCE (batch seed {outcome.seed}), not written: {divergence}\n")
-            self.written.append(args.out)
-            return
-        self.written.append(path)
-        reproduced = replays(path, list(self.backends))
-        stopped = (
-            f"  shrinking stopped by --shrink-time {_shrink_time(args):g}s: "
-            "the sequence may not be minimal\n"
-            if outcome.shrink_stopped
-            else ""
-        )
-        out.write(
-            f"DIVERGENCE (batch seed {outcome.seed}): {divergence.what} after step "
-            f"{len(divergence.trace)} of the {'partly ' if outcome.shrink_stopped else ''}"
-            f"shrunk sequence\n  {divergence.detail}\n"
-            f"{stopped}  written: {path}\n"
-            f"  replay:  {PROG} run {path} --backend {args.backend} --backend {args.against}"
-            f"  ({'reproduces' if reproduced else 'does NOT reproduce: a flaky backend?'})\n"
-        )
-        if self.release is not None:
-            alone = [b.name for b in self.backends if not passes_alone(path, b)]
-            out.write(
-                "  each release alone meets its own (since/until) expectations\n"
-                if not alone
-                else f"  NOT met alone by {', '.join(alone)}: "
-                f"see `{PROG} run {path} --backend NAME`\n"
-            )
-
-    def on_step(self, stats: FuzzStats) -> None:
-        """After every step: a progress line now and then; the pending shorter finding if due."""
-        self.progress(stats)
-        if self.current is not None and self.current.pending is not None:
-            try:
-                self.current.flush()
-            except ScenarioError as exc:  # the batch's final write says so, and ends the run
-                self.progress.say(f"the divergence cannot be written as a scenario yet: {exc}")
-
-    def kept(self, err: TextIO) -> None:
-        """Names the divergence written before the run failed, if any (it stays on disk)."""
-        if self.current is not None and self.current.path is not None:
-            err.write(f"  a divergence seen before that is kept: {self.current.path}\n")
-
-
-def _write_finding(write: Callable[[Path], Path | None], folder: Path, out: TextIO) -> Path | None:
-    """``write(folder)``; if that fails, ``write(FALLBACK_FINDINGS)``, saying so."""
-    try:
-        return write(folder)
-    except OSError as exc:
-        out.write(f"warning: cannot write into {folder} ({exc}); using {FALLBACK_FINDINGS}\n")
-    try:
-        return write(FALLBACK_FINDINGS)
-    except OSError as exc:
-        out.write(f"error: cannot write into {FALLBACK_FINDINGS} either ({exc})\n")
-        return None
-
-
 def _broken(exc: HarnessError, args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Reports a broken backend with a reproducer file; exit 2."""
     err.write(f"error: a backend broke (not a divergence): {exc}\n")
-    path = _write_finding(
+    path = write_finding(
         lambda folder: write_reproducer(
             exc,
             folder,
@@ -451,7 +273,17 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         err.write(f"error: {exc}\n")
         return EXIT_USAGE
     progress = Progress(err, quiet=args.quiet)
-    findings = _Findings(args, (backend, reference), out, progress)
+    origin = Origin(
+        backend=args.backend,
+        against=args.against,
+        out=args.out,
+        seed=args.seed,
+        models=args.models,
+        poses=_posed(args),
+        shrink_time=_shrink_time(args),
+        prog=PROG,
+    )
+    findings = Findings(origin, (backend, reference), out, progress)
 
     max_examples = args.max_examples
     if max_examples is None and args.time_budget is None:

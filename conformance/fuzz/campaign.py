@@ -31,14 +31,9 @@ from hypothesis import seed as hypothesis_seed
 from hypothesis.database import DirectoryBasedExampleDatabase
 from hypothesis.stateful import run_state_machine_as_test
 
-from conformance.fuzz.lockstep import (
-    Divergence,
-    FuzzStats,
-    HarnessAbort,
-    LockstepMachine,
-    ShrinkTimeUp,
-    lockstep_machine,
-)
+from conformance.engine import Divergence
+from conformance.fuzz.lockstep import LockstepMachine, lockstep_machine
+from conformance.fuzz.stats import FuzzStats, HarnessAbort, ShrinkTimeUp
 from conformance.protocol import Backend
 
 __all__ = [

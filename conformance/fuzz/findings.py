@@ -18,6 +18,11 @@ the cost to about a tenth of the run); else it waits as ``pending`` until
 run therefore loses at most the last ``interval`` seconds or so of shrinking,
 never the finding.
 
+``Findings`` keeps a campaign's findings on disk: each batch's divergence
+from first sighting (``on_best``) to the batch's end (``on_batch``), when it
+is reported and replayed under ``run`` to confirm it (the file holds the
+engine's trace as a case: ``Trace.to_case``).
+
 File names are a hash of the steps, so the name changes as the finding
 shrinks: ``path`` is the current one, and ``fuzz`` names the first and the
 final file on its output.
@@ -25,14 +30,35 @@ final file on its output.
 
 from __future__ import annotations
 
+import tempfile
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Protocol, TextIO
 
-from conformance.fuzz.lockstep import Divergence
+from conformance.corpus.loader import ScenarioError, load_file
+from conformance.engine import Divergence
+from conformance.fuzz.campaign import BatchResult
+from conformance.fuzz.regression import drake_release, write_regression
+from conformance.fuzz.stats import FuzzStats
+from conformance.protocol import Backend, backend_id
+from conformance.run.runner import run_case
 
-__all__ = ["FindingFile"]
+__all__ = [
+    "FALLBACK_FINDINGS",
+    "FindingFile",
+    "Findings",
+    "Origin",
+    "Progress",
+    "cross_release",
+    "passes_alone",
+    "replays",
+    "write_finding",
+]
+
+#: Where findings go when ``--out`` cannot be written after all.
+FALLBACK_FINDINGS = Path(tempfile.gettempdir()) / "drake-filter-conformance-findings"
 
 
 @dataclass
@@ -95,3 +121,187 @@ class FindingFile:
         if previous is not None and previous != path:
             previous.unlink(missing_ok=True)
         return path
+
+
+_FLAKY = "does NOT reproduce: a flaky backend?"
+
+
+@dataclass(frozen=True)
+class Origin:
+    """Where a campaign's findings come from and go: what their files and messages name."""
+
+    backend: str
+    against: str
+    out: Path
+    seed: int | None = None
+    models: bool = False
+    poses: bool = False
+    shrink_time: float | None = None
+    prog: str = "python -m conformance"
+
+
+class Progress(Protocol):
+    """What ``Findings`` reports through: a line now, progress after each step, a count."""
+
+    found: int
+
+    def say(self, text: str) -> None: ...
+
+    def __call__(self, stats: FuzzStats) -> None: ...
+
+
+def replays(path: Path, backends: list[Backend]) -> bool:
+    """True iff the scenario file fails on ``backends`` (the last is the reference)."""
+    scenario = load_file(path, root=path.parent)
+    reference = backends[-1].name
+    return any(not run_case(case, backends, reference=reference).passed for case in scenario.cases)
+
+
+def passes_alone(path: Path, backend: Backend) -> bool:
+    """True iff ``backend`` alone meets every expectation of the scenario file for its release."""
+    scenario = load_file(path, root=path.parent)
+    return all(run_case(case, [backend]).passed for case in scenario.cases)
+
+
+def cross_release(backend: Backend, reference: Backend) -> str | None:
+    """The backend's Drake release if both backends are different Drake releases, else None.
+
+    Then a finding records both releases' answers (``since``/``until``), not
+    the reference's alone (``conformance.fuzz.regression``).
+    """
+    mine, theirs = drake_release(backend_id(backend)), drake_release(backend_id(reference))
+    return mine if mine is not None and theirs is not None and mine != theirs else None
+
+
+class Findings:
+    """The run's findings on disk: each batch's divergence, from first sighting to report.
+
+    ``on_best`` (``Campaign.on_best``) writes a batch's first divergence at
+    once, then shorter ones over the same finding's file (at most about once
+    a second, ``FindingFile``; ``on_step`` writes one that waited);
+    ``on_batch`` writes the batch's final divergence over it, reports it and
+    replays it.
+    """
+
+    def __init__(
+        self,
+        origin: Origin,
+        backends: tuple[Backend, Backend],
+        out: TextIO,
+        progress: Progress,
+    ) -> None:
+        self.origin = origin
+        self.backends = backends
+        self.out = out
+        self.progress = progress
+        self.release = cross_release(*backends)
+        self.reference_version = backends[1].version()
+        #: The current batch's finding (None: no divergence seen in it yet).
+        self.current: FindingFile | None = None
+        #: The files reported (or ``--out`` for a finding that could not be written).
+        self.written: list[Path] = []
+
+    def write(self, divergence: Divergence) -> Path | None:
+        """Writes ``divergence``'s scenario into ``--out`` (or ``FALLBACK_FINDINGS``)."""
+        origin = self.origin
+        return write_finding(
+            lambda folder: write_regression(
+                divergence,
+                folder,
+                backend=origin.backend,
+                reference=origin.against,
+                reference_version=self.reference_version,
+                seed=origin.seed,
+                backend_version=self.release,
+                models=origin.models,
+                poses=origin.poses,
+            ),
+            origin.out,
+            self.out,
+        )
+
+    def on_best(self, divergence: Divergence) -> None:
+        """Writes a new best divergence over the batch's file; names the file the first time."""
+        first = self.current is None
+        finding = self.current = self.current or FindingFile(self.write)
+        start = time.perf_counter()
+        try:
+            landed = finding.offer(divergence)
+        except ScenarioError as exc:  # the batch's final write says so, and ends the run
+            self.progress.say(f"the divergence cannot be written as a scenario yet: {exc}")
+            return
+        if first and landed:
+            took = (time.perf_counter() - start) * 1000
+            self.progress.say(
+                f"divergence seen: {divergence.what} after step {len(divergence.trace)}; "
+                f"written in {took:.0f} ms to {finding.path} (replaced as it shrinks)"
+            )
+
+    def on_batch(self, outcome: BatchResult) -> None:
+        """Writes the batch's final divergence over its file so far, says so, replays it."""
+        divergence = outcome.divergence
+        if divergence is None:
+            self.current = None
+            return
+        self.progress.found += 1
+        origin, out = self.origin, self.out
+        # Kept as current until settled: an interrupt in between reports into the same file.
+        finding = self.current = self.current or FindingFile(self.write)
+        path = finding.settle(divergence)
+        self.current = None
+        if path is None:
+            out.write(f"DIVERGENCE (batch seed {outcome.seed}), not written: {divergence}\n")
+            self.written.append(origin.out)
+            return
+        self.written.append(path)
+        reproduced = replays(path, list(self.backends))
+        stopped = (
+            f"  shrinking stopped by --shrink-time {origin.shrink_time or 0:g}s: "
+            "the sequence may not be minimal\n"
+            if outcome.shrink_stopped
+            else ""
+        )
+        out.write(
+            f"DIVERGENCE (batch seed {outcome.seed}): {divergence.what} after step "
+            f"{len(divergence.trace)} of the {'partly ' if outcome.shrink_stopped else ''}"
+            f"shrunk sequence\n  {divergence.detail}\n"
+            f"{stopped}  written: {path}\n"
+            f"  replay:  {origin.prog} run {path} "
+            f"--backend {origin.backend} --backend {origin.against}"
+            f"  ({'reproduces' if reproduced else _FLAKY})\n"
+        )
+        if self.release is not None:
+            alone = [b.name for b in self.backends if not passes_alone(path, b)]
+            out.write(
+                "  each release alone meets its own (since/until) expectations\n"
+                if not alone
+                else f"  NOT met alone by {', '.join(alone)}: "
+                f"see `{origin.prog} run {path} --backend NAME`\n"
+            )
+
+    def on_step(self, stats: FuzzStats) -> None:
+        """After every step: a progress line now and then; the pending shorter finding if due."""
+        self.progress(stats)
+        if self.current is not None and self.current.pending is not None:
+            try:
+                self.current.flush()
+            except ScenarioError as exc:  # the batch's final write says so, and ends the run
+                self.progress.say(f"the divergence cannot be written as a scenario yet: {exc}")
+
+    def kept(self, err: TextIO) -> None:
+        """Names the divergence written before the run failed, if any (it stays on disk)."""
+        if self.current is not None and self.current.path is not None:
+            err.write(f"  a divergence seen before that is kept: {self.current.path}\n")
+
+
+def write_finding(write: Callable[[Path], Path | None], folder: Path, out: TextIO) -> Path | None:
+    """``write(folder)``; if that fails, ``write(FALLBACK_FINDINGS)``, saying so."""
+    try:
+        return write(folder)
+    except OSError as exc:
+        out.write(f"warning: cannot write into {folder} ({exc}); using {FALLBACK_FINDINGS}\n")
+    try:
+        return write(FALLBACK_FINDINGS)
+    except OSError as exc:
+        out.write(f"error: cannot write into {FALLBACK_FINDINGS} either ({exc})\n")
+        return None

@@ -68,18 +68,11 @@ from hypothesis import given, reject
 from hypothesis import seed as hypothesis_seed
 from hypothesis import strategies as st
 
+from conformance.compare import Difference
 from conformance.corpus.loader import Case, ScenarioFile, Step
+from conformance.engine import Divergence, HarnessError, Outcome, known_in
 from conformance.fuzz import strategies as cs
 from conformance.fuzz.campaign import BatchResult, Campaign, CampaignResult, fuzz_settings
-from conformance.fuzz.lockstep import (
-    Divergence,
-    FuzzStats,
-    HarnessAbort,
-    HarnessError,
-    ShrinkTimeUp,
-    TraceStep,
-    stop_point,
-)
 from conformance.fuzz.model_coverage import ModelCoverage
 from conformance.fuzz.model_scenes import (
     DIRECTIVES,
@@ -90,11 +83,12 @@ from conformance.fuzz.model_scenes import (
     scene_faults,
 )
 from conformance.fuzz.models import WORLD
+from conformance.fuzz.stats import FuzzStats, HarnessAbort, ShrinkTimeUp, stop_point
 from conformance.grammar import GRAMMAR, features_of
 from conformance.grammar.multibody import JOINT_TYPES
-from conformance.policy.divergences import match_step
 from conformance.protocol import Backend, Command, Result, backend_id
-from conformance.run.runner import CaseReport, Failure, Status, run_case
+from conformance.run.case_report import CaseReport
+from conformance.run.runner import run_case
 
 __all__ = [
     "ADDED_BODY",
@@ -359,17 +353,12 @@ def model_case(commands: list[Command], description: str = "a random model") -> 
 
 
 # ------------------------------------------------------------------ running
-def _step_index(failure: Failure) -> int:
-    """The 0-based step of a runner Failure (its label is ``step N``)."""
-    return int(failure.step.split()[-1]) - 1 if failure.step.startswith("step ") else 0
-
-
 def _broken(report: CaseReport, commands: list[Command]) -> HarnessError | None:
     """A HarnessError if a backend broke, skipped the case, or the case was cut short (its
     commands without ``check``, which a reproducer cannot hold without expectations)."""
     commands = [c for c in commands if c.op != "check"]
     skipped = [
-        f"{n} ({report.skip_reasons[n]})" for n, s in report.status.items() if s is Status.SKIP
+        f"{n} ({report.skip_reasons[n]})" for n, s in report.status.items() if s is Outcome.SKIP
     ]
     if skipped:
         return HarnessError(f"a backend cannot run model cases: {', '.join(skipped)}", commands)
@@ -378,42 +367,24 @@ def _broken(report: CaseReport, commands: list[Command]) -> HarnessError | None:
     return None
 
 
-def _divergence(
-    report: CaseReport, commands: list[Command], backend: str, reference: str
-) -> Divergence:
-    """The Divergence of the case's first disagreement (the steps up to it, both answers)."""
+def _divergence(report: CaseReport, backend: str) -> Divergence:
+    """The Divergence of the case's first disagreement: the steps up to it, every answer."""
+    assert report.trace is not None
     failures = report.failures_of(backend)
-    cut = min(_step_index(f) for f in failures) + 1
-    ours, theirs = report.traces[reference], report.traces[backend]
-    trace = [
-        TraceStep(command, ours.results[i], theirs.results[i])
-        for i, command in enumerate(commands[:cut])
-    ]
-    first = [f for f in failures if _step_index(f) == cut - 1]
-    detail = "; ".join(
-        f"{f.step}: {f.what}: {reference} {f.expected!r}, {backend} {f.actual!r}" for f in first
-    )
-    reference_state, backend_state = ours.observations[cut - 1], theirs.observations[cut - 1]
+    at = min(f.index for f in failures)
+    trace = replace(report.trace, records=report.trace.records[: at + 1])
+    differences = [Difference(f.what, f.expected, f.actual) for f in failures if f.index == at]
     # Every step of a case without a scene is observed.
-    assert reference_state is not None
-    assert backend_state is not None
-    return Divergence(first[0].what, detail, trace, reference_state, backend_state)
+    states = {n: o for n, o in trace.records[-1].observations.items() if o is not None}
+    return Divergence(backend, trace, differences, states=states)
 
 
 def _known(divergence: Divergence, backend: Backend, reference: Backend, stats: FuzzStats) -> bool:
     """Counts and returns True if a known divergence describes a step of ``divergence``."""
-    for item in divergence.trace:
-        known = match_step(
-            item.command,
-            item.reference,
-            item.backend,
-            blamed=backend_id(backend),
-            release=reference.version(),
-        )
-        if known is not None:
-            stats.known[known.id] = stats.known.get(known.id, 0) + 1
-            return True
-    return False
+    known = known_in(divergence.trace, backend_id(backend), reference.version())
+    if known is not None:
+        stats.known[known.id] = stats.known.get(known.id, 0) + 1
+    return known is not None
 
 
 #: The steps that report on a parse (``model_cases`` puts them after every add_models).
@@ -458,7 +429,7 @@ def run_model_case(
         raise broken
     if not report.failures_of(backend.name):
         return None
-    return _divergence(report, commands, backend.name, reference.name)
+    return _divergence(report, backend.name)
 
 
 @contextmanager

@@ -40,10 +40,10 @@ from typing import Any
 
 from conformance.backends.subprocess_backend import SPEC_PREFIX
 from conformance.corpus.loader import load_file
-from conformance.fuzz.lockstep import Divergence, HarnessError
+from conformance.engine import Divergence, HarnessError
 from conformance.grammar import GRAMMAR
 from conformance.policy.versions import parse_version
-from conformance.protocol import BackendId, Command, Observation, Result
+from conformance.protocol import BackendId, Command
 
 __all__ = [
     "DEFAULT_REGRESSIONS",
@@ -57,33 +57,6 @@ __all__ = [
 
 #: Where ``fuzz`` writes findings by default (relative to the working directory).
 DEFAULT_REGRESSIONS = Path("scenarios/regressions")
-
-
-def _result_expectation(op: str, result: Result) -> dict[str, Any]:
-    """``error``, or ``returns`` for a bool, an int, or any value of a query op (a list of
-    records, a pose) or a model op (the model instances a parse made, a group report, an
-    inventory), which ``run`` compares as the op's ``CommandSpec.compare`` says."""
-    if result.error is not None:
-        return {"error": result.error.to_json()}
-    if isinstance(result.value, bool | int) or (
-        result.value is not None and GRAMMAR[op].domain in ("queries", "model")
-    ):
-        return {"returns": result.value}
-    return {}
-
-
-def _state_expectations(state: Observation) -> list[dict[str, Any]]:
-    out = []
-    for location, where in sorted(state.locations.items()):
-        out.append(
-            {
-                "at": location,
-                "candidates": sorted([a, b] for a, b in where.candidates),
-                "history": where.has_transient_history,
-                **({"active": dict(sorted(where.active.items()))} if where.active else {}),
-            }
-        )
-    return out
 
 
 def _slug(text: str) -> str:
@@ -100,62 +73,6 @@ def drake_release(backend: BackendId) -> str | None:
     """
     real = backend.name == "pydrake" or backend.name.startswith(SPEC_PREFIX)
     return backend.version if real and parse_version(backend.version) else None
-
-
-def _step_expectations(op: str, result: Result, state: Observation | None) -> list[dict[str, Any]]:
-    """One side's expectations for a step: its result, then (last step) its whole state.
-
-    An expectation without ``error`` says the step succeeded, so when the
-    step raised, each location's expectation repeats the error.
-    """
-    expectations = [_result_expectation(op, result)]
-    if state is not None:
-        error = {"error": result.error.to_json()} if result.error is not None else {}
-        located = [{**error, **where} for where in _state_expectations(state)]
-        expectations = [{**expectations[0], **located[0]}, *located[1:]]
-    return [e for e in expectations if e]
-
-
-def _expect(
-    reference: list[dict[str, Any]],
-    backend: list[dict[str, Any]],
-    releases: tuple[str, str] | None,
-) -> list[dict[str, Any]]:
-    """The step's expectations: the reference's, or both releases' where they differ.
-
-    ``releases`` is (reference's, backend's) release when the two are
-    different Drake releases. What both answered stays unbounded; what only
-    the earlier release answered gets ``until`` it, what only the later one
-    answered ``since`` it (each keeps its ``at``).
-    """
-    if releases is None or reference == backend:
-        return reference
-    ordered = sorted(zip(releases, (reference, backend), strict=True), key=_release_key)
-    (early, early_side), (late, late_side) = ordered
-    if len(early_side) != len(late_side) or any(
-        old.get("at") != new.get("at") for old, new in zip(early_side, late_side, strict=True)
-    ):  # different locations (e.g. a context only one side has): each side whole
-        return [{"until": early, **e} for e in early_side] + [
-            {"since": late, **e} for e in late_side
-        ]
-    shared: list[dict[str, Any]] = []
-    earlier: list[dict[str, Any]] = []
-    later: list[dict[str, Any]] = []
-    for old, new in zip(early_side, late_side, strict=True):
-        common = {k: v for k, v in old.items() if k in new and new[k] == v}
-        where = {"at": old["at"]} if "at" in old else {}
-        if set(common) - {"at"}:
-            shared.append(common)
-        for side, bound, into in ((old, {"until": early}, earlier), (new, {"since": late}, later)):
-            own = {k: v for k, v in side.items() if k not in common}
-            if own:  # without its error it would say the step succeeded there
-                error = {"error": side["error"]} if "error" in side else {}
-                into.append({**bound, **where, **error, **own})
-    return shared + earlier + later
-
-
-def _release_key(side: tuple[str, list[dict[str, Any]]]) -> tuple[int, ...]:
-    return parse_version(side[0])
 
 
 def regression_scenario(
@@ -187,23 +104,26 @@ def regression_scenario(
         and parse_version(backend_version) != parse_version(reference_version)
         else None
     )
-    steps: list[dict[str, Any]] = []
-    for index, item in enumerate(divergence.trace, 1):
-        step = item.command.to_json()
-        last = index == len(divergence.trace)
-        op = item.command.op
-        expectations = _expect(
-            _step_expectations(op, item.reference, divergence.reference_state if last else None),
-            _step_expectations(op, item.backend, divergence.backend_state if last else None),
-            releases,
-        )
-        if expectations:
-            step["expect"] = expectations[0] if len(expectations) == 1 else expectations
-        steps.append(step)
-    features = _features([item.command for item in divergence.trace])
-    sides = [item.reference for item in divergence.trace]
+    trace = divergence.trace
+    case = trace.to_case(
+        "",
+        other=divergence.backend,
+        states={
+            name: state
+            for name, state in (
+                (trace.reference, divergence.reference_state),
+                (divergence.backend, divergence.backend_state),
+            )
+            if state is not None
+        },
+        releases=releases,
+    )
+    steps = case["steps"]
+    commands = trace.commands()
+    features = _features(commands)
+    sides = [r.results[trace.reference] for r in trace.records if r.command is not None]
     if releases is not None:
-        sides += [item.backend for item in divergence.trace]
+        sides += [r.results[divergence.backend] for r in trace.records if r.command is not None]
     if any(result.error is not None for result in sides):
         features.append("errors")
     seeded = f" --seed {seed}" if seed is not None else ""
