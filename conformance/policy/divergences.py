@@ -9,18 +9,26 @@ also say when a failure is *expected* (its ``xfail`` object):
 - ``backend_drake``: the releases the blamed backend must claim (its
   ``version()``), e.g. ``{"until": "1.51.1"}`` for any backend that follows
   1.51.1, reimpl and the mutants built on it alike;
-- ``cases``: ``fnmatch`` patterns of case qualified names (``file > description``);
-- ``steps``: patterns of the diverging step, for the fuzzer, which has no case
-  name: ``op`` (one of), ``reference_error`` (whether the reference raised),
-  ``reference_kinds`` (the error kinds it may have raised),
-  ``reference_message`` (a prefix of its error message), ``backend_error``
-  (whether the backend raised too);
+- ``steps``: patterns of the diverging step: ``op`` (one of),
+  ``reference_error`` (whether the reference raised), ``reference_kinds``
+  (the error kinds it may have raised), ``reference_message`` (a prefix of
+  its error message), ``backend_error`` (whether the blamed backend raised
+  too), ``backend_kinds`` (the error kinds the blamed backend may have
+  raised), ``backend_broke`` (whether the blamed backend broke at the step:
+  crashed, timed out). A field about the reference does not match where
+  no reference answered (a backend run alone); ``backend_broke`` false and
+  the backend fields do not match where the backend broke;
+- ``cases``: ``fnmatch`` patterns of case qualified names (``file > description``),
+  a narrowing filter: where a case is run (``run``), it must be one of them;
+  the fuzzer, which has no case name, matches the step patterns alone;
 - ``drake``: the releases it applies to, if narrower than the entry's.
 
 The release checked is that of the run's reference backend: the Drake
-release whose behaviour the others are held to. A case whose first failure on
-a backend matches an entry is reported as ``xfail`` with the entry's id, not
-as a failure; ``--strict-divergences`` turns it back into one.
+release whose behaviour the others are held to. Both ``run`` and ``fuzz``
+match through ``match_step`` (the engine's steps): a case whose first failure
+on a backend is at a step an entry's pattern matches is reported as
+``xfail`` with the entry's id, not as a failure; ``--strict-divergences``
+turns it back into one.
 """
 
 from __future__ import annotations
@@ -42,33 +50,56 @@ __all__ = [
     "XfailMatcher",
     "divergence",
     "known_divergences",
-    "match_case",
     "match_step",
 ]
 
 
 @dataclass(frozen=True)
 class StepPattern:
-    """A diverging step: its op is one of ``ops``; the reference's answer as given."""
+    """A diverging step: its op is one of ``ops``; the answers as given (see the module doc)."""
 
     ops: frozenset[str]
     reference_error: bool | None = None
     reference_kinds: frozenset[str] = frozenset()
     reference_message: str | None = None
     backend_error: bool | None = None
+    backend_kinds: frozenset[str] = frozenset()
+    backend_broke: bool | None = None
 
-    def matches(self, command: Command, reference: Result, backend: Result) -> bool:
+    def matches(self, command: Command, reference: Result | None, backend: Result | None) -> bool:
+        """``reference``: None where no reference answered; ``backend``: None where it broke."""
+        if command.op not in self.ops:
+            return False
+        if self.backend_broke is not None and (backend is None) != self.backend_broke:
+            return False
+        return self._reference_matches(reference) and self._backend_matches(backend)
+
+    def _reference_matches(self, reference: Result | None) -> bool:
+        asks = (self.reference_error, self.reference_kinds, self.reference_message)
+        if reference is None:
+            return asks == (None, frozenset(), None)
         error = reference.error
-        checks = (
-            command.op in self.ops,
-            self.reference_error is None or (error is not None) == self.reference_error,
-            not self.reference_kinds
-            or (error is not None and error.kind.value in self.reference_kinds),
-            self.reference_message is None
-            or (error is not None and error.message.startswith(self.reference_message)),
-            self.backend_error is None or (backend.error is not None) == self.backend_error,
+        return all(
+            (
+                self.reference_error is None or (error is not None) == self.reference_error,
+                not self.reference_kinds
+                or (error is not None and error.kind.value in self.reference_kinds),
+                self.reference_message is None
+                or (error is not None and error.message.startswith(self.reference_message)),
+            )
         )
-        return all(checks)
+
+    def _backend_matches(self, backend: Result | None) -> bool:
+        if backend is None:
+            return self.backend_error is None and not self.backend_kinds
+        error = backend.error
+        return all(
+            (
+                self.backend_error is None or (error is not None) == self.backend_error,
+                not self.backend_kinds
+                or (error is not None and error.kind.value in self.backend_kinds),
+            )
+        )
 
 
 @dataclass(frozen=True)
@@ -90,16 +121,24 @@ class XfailMatcher:
             )
         )
 
-    def matches_case(self, qualified_name: str, blamed: BackendId, release: str) -> bool:
-        return self._applies(blamed, release) and any(
-            fnmatch.fnmatchcase(qualified_name, pattern) for pattern in self.cases
-        )
-
     def matches_step(
-        self, command: Command, reference: Result, backend: Result, blamed: BackendId, release: str
+        self,
+        command: Command,
+        reference: Result | None,
+        backend: Result | None,
+        *,
+        blamed: BackendId,
+        release: str,
+        case: str | None = None,
     ) -> bool:
-        return self._applies(blamed, release) and any(
-            step.matches(command, reference, backend) for step in self.steps
+        return (
+            self._applies(blamed, release)
+            and (
+                case is None
+                or not self.cases
+                or any(fnmatch.fnmatchcase(case, pattern) for pattern in self.cases)
+            )
+            and any(step.matches(command, reference, backend) for step in self.steps)
         )
 
 
@@ -144,6 +183,8 @@ def _matcher(data: Mapping[str, Any] | None, releases: VersionRange) -> XfailMat
                 reference_kinds=frozenset(step.get("reference_kinds", ())),
                 reference_message=step.get("reference_message"),
                 backend_error=step.get("backend_error"),
+                backend_kinds=frozenset(step.get("backend_kinds", ())),
+                backend_broke=step.get("backend_broke"),
             )
             for step in data.get("steps", ())
         ),
@@ -191,24 +232,24 @@ def _first(
     return None
 
 
-def match_case(
-    qualified_name: str,
-    blamed: BackendId,
-    release: str,
-    entries: Sequence[KnownDivergence] | None = None,
-) -> KnownDivergence | None:
-    """The known divergence that a failure of ``blamed`` on this case is, if any."""
-    return _first(entries, lambda x: x.matches_case(qualified_name, blamed, release))
-
-
 def match_step(
     command: Command,
-    reference: Result,
-    backend: Result,
+    reference: Result | None,
+    backend: Result | None,
     *,
     blamed: BackendId,
     release: str,
+    case: str | None = None,
     entries: Sequence[KnownDivergence] | None = None,
 ) -> KnownDivergence | None:
-    """The known divergence that a disagreement on ``command`` is, if any (for the fuzzer)."""
-    return _first(entries, lambda x: x.matches_step(command, reference, backend, blamed, release))
+    """The known divergence that a disagreement of ``blamed`` on ``command`` is, if any.
+
+    ``reference``/``backend``: their Results (None: no reference answered; the
+    backend broke); ``case``: the case's qualified name, where a case is run.
+    """
+    return _first(
+        entries,
+        lambda x: x.matches_step(
+            command, reference, backend, blamed=blamed, release=release, case=case
+        ),
+    )
