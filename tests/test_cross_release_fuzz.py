@@ -21,15 +21,16 @@ import pytest
 
 from conformance.backends.environments import DrakeEnvironmentError, find_python
 from conformance.backends.loader import load_backend
-from conformance.cli.fuzz import cross_release
+from conformance.compare import Difference
 from conformance.corpus.loader import default_corpus_root, load_file
+from conformance.engine import Divergence, Engine, Outcome
 from conformance.fuzz.campaign import Campaign
-from conformance.fuzz.lockstep import Divergence, TraceStep
+from conformance.fuzz.findings import cross_release
 from conformance.fuzz.regression import drake_release, regression_scenario, write_regression
 from conformance.policy.divergences import match_step
 from conformance.policy.guards import arm_guards
 from conformance.protocol import Backend, BackendId, Command, backend_id
-from conformance.run.runner import Status, run_case
+from conformance.run.runner import run_case
 
 EARLY, LATE = "1.51.1", "1.58.0"
 #: The 1.51 → 1.52 change: a failing apply_transient's earlier statement reaches C up to 1.51.1.
@@ -79,10 +80,12 @@ def releases() -> Iterator[tuple[Backend, Backend]]:
 
 def _divergence(backend: Backend, reference: Backend, commands: list[Command]) -> Divergence:
     """The commands run on both backends, as the lockstep machine records them."""
-    for side in (backend, reference):
-        side.reset()
-    trace = [TraceStep(c, reference.execute(c), backend.execute(c)) for c in commands]
-    return Divergence("state", "the last step", trace, reference.observe(), backend.observe())
+    engine = Engine([backend, reference], reference.name)
+    engine.reset()
+    for command in commands:
+        engine.step(command)
+    differences = [Difference("state", "the last step", "the last step")]
+    return Divergence(backend.name, engine.trace, differences, states=engine.observe())
 
 
 # ---------------------------------------------------------------- no workers needed
@@ -116,7 +119,7 @@ def test_a_finding_against_one_release_keeps_the_reference_answers_in_every_loca
     # An expectation without `error` would say the step succeeded at that location.
     assert all(e["error"]["kind"] == "unknown_geometry" for e in expect)
     (case,) = load_file(path, root=tmp_path).cases
-    assert run_case(case, [pydrake]).status == {"pydrake": Status.PASS}
+    assert run_case(case, [pydrake]).status == {"pydrake": Outcome.PASS}
 
 
 def test_the_release_pair_picks_the_known_divergence_in_both_directions() -> None:
@@ -147,7 +150,7 @@ def test_the_release_scenarios_pass_on_reimpl_and_the_installed_pydrake() -> Non
     backends = [load_backend("reimpl"), load_backend("pydrake")]
     for case in [*releases.cases, *wording.cases]:
         report = run_case(case, backends)
-        assert set(report.status.values()) <= {Status.PASS, Status.XFAIL}, report.failures
+        assert set(report.status.values()) <= {Outcome.PASS, Outcome.XFAIL}, report.failures
 
 
 # ---------------------------------------------------------------- two releases in workers
@@ -187,9 +190,9 @@ def test_a_two_release_finding_passes_on_each_release_alone(
     )
     (case,) = load_file(path, root=tmp_path).cases
     for backend in (early, late, load_backend("reimpl")):
-        assert run_case(case, [backend]).status == {backend.name: Status.PASS}
+        assert run_case(case, [backend]).status == {backend.name: Outcome.PASS}
     both = run_case(case, [early, late], reference=late.name)
-    assert both.status[early.name] is Status.FAIL  # the releases still disagree pair by pair
+    assert both.status[early.name] is Outcome.FAIL  # the releases still disagree pair by pair
 
 
 @needs_releases

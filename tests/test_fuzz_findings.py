@@ -22,10 +22,12 @@ from pathlib import Path
 
 from conformance.backends.loader import load_backend
 from conformance.cli.main import EXIT_FAILURE, EXIT_OK, main
+from conformance.compare import Difference
 from conformance.corpus.loader import load_file
+from conformance.engine import Divergence, Trace
 from conformance.fuzz.campaign import Campaign
 from conformance.fuzz.findings import FindingFile
-from conformance.fuzz.lockstep import Divergence, TraceStep, interrupt_requested
+from conformance.fuzz.stats import interrupt_requested
 from conformance.protocol import Command, Observation, Result
 
 SLOW = "conformance.testing.mutants:allow_between_clears_within"
@@ -156,11 +158,13 @@ def test_the_shrunk_file_replaces_the_raw_one(tmp_path: Path) -> None:
 
 def divergence(steps: int) -> Divergence:
     """A divergence after ``steps`` frames were registered (only its length matters here)."""
-    trace = [
-        TraceStep(Command("register_frame", {"name": f"f{i}"}), Result(), Result())
-        for i in range(steps)
-    ]
-    return Divergence("candidates", "made up", trace, Observation({}), Observation({}))
+    trace = Trace.of(
+        "reference",
+        "backend",
+        [(Command("register_frame", {"name": f"f{i}"}), Result(), Result()) for i in range(steps)],
+    )
+    states = {"reference": Observation({}), "backend": Observation({})}
+    return Divergence("backend", trace, [Difference("candidates", "made", "up")], states=states)
 
 
 class Folder:

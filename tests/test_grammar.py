@@ -7,7 +7,8 @@ import json
 import pytest
 
 from conformance.backends.scene_graph import SceneGraphBackend
-from conformance.fuzz.lockstep import Divergence, TraceStep
+from conformance.compare import Difference
+from conformance.engine import Divergence, Trace
 from conformance.fuzz.regression import regression_scenario
 from conformance.grammar import (
     GRAMMAR,
@@ -85,13 +86,17 @@ def test_declared_names_come_from_the_new_name_arguments() -> None:
 
 
 def test_regression_files_take_their_feature_tags_from_the_grammar() -> None:
-    trace = [
-        TraceStep(Command("create_context", {"name": "c1"}), Result(), Result()),
-        TraceStep(Command("is_active", {"label": "@unknown"}), Result(value=False), Result()),
-    ]
+    trace = Trace.of(
+        "b",
+        "a",
+        [
+            (Command("create_context", {"name": "c1"}), Result(), Result()),
+            (Command("is_active", {"label": "@unknown"}), Result(value=False), Result()),
+        ],
+    )
     empty = Observation({"model": LocationState(frozenset(), False)})
     scenario = regression_scenario(
-        Divergence("x", "y", trace, empty, empty),
+        Divergence("a", trace, [Difference("x", "y", "z")], states={"a": empty, "b": empty}),
         backend="a",
         reference="b",
         reference_version="1.51.1",

@@ -9,11 +9,12 @@ import pytest
 
 from conformance.backends.loader import load_backend
 from conformance.corpus.loader import Case, load_corpus
+from conformance.engine import Outcome
 from conformance.policy.divergences import KnownDivergence, known_divergences
 from conformance.policy.guards import GUARDS
 from conformance.policy.versions import version_in_range
 from conformance.protocol import BackendId, Command, ErrorInfo, ErrorKind, Result
-from conformance.run.runner import Status, run_case
+from conformance.run.runner import run_case
 
 CASES: dict[str, Case] = {c.qualified_name: c for f in load_corpus() for c in f.cases}
 ENTRIES = known_divergences()
@@ -35,11 +36,10 @@ def test_divergence_names_existing_evidence(entry: KnownDivergence) -> None:
 
 
 @pytest.mark.parametrize("entry", [e for e in ENTRIES if e.xfail is not None], ids=lambda e: e.id)
-def test_an_xfail_matcher_names_existing_cases_and_a_diverging_step(entry: KnownDivergence) -> None:
+def test_an_xfail_matcher_names_a_diverging_step_and_existing_cases(entry: KnownDivergence) -> None:
     assert entry.xfail is not None
-    assert entry.xfail.cases
-    # A crash is expected of a case only: the fuzzer keeps its release guards armed.
-    assert bool(entry.xfail.steps) is (entry.kind != "drake_crash")
+    assert entry.xfail.steps, "every known divergence matches on the diverging step"
+    assert entry.xfail.cases, "and narrows to the cases that show it"
     for pattern in entry.xfail.cases:
         assert fnmatch.filter(CASES, pattern), f"{entry.id}: no case matches {pattern!r}"
 
@@ -49,11 +49,22 @@ def test_the_partial_apply_entry_acts_against_drake_1_52_on_for_backends_that_fo
     assert entry.xfail is not None
     case = entry.xfail.cases[0]
     reimpl, mutant = BackendId("reimpl", "1.51.1"), BackendId("mutant:x", "1.51.1")
-    assert entry.xfail.matches_case(case, reimpl, "1.58.0")
-    assert entry.xfail.matches_case(case, reimpl, "1.52.0")
-    assert entry.xfail.matches_case(case, mutant, "1.58.0")
-    assert not entry.xfail.matches_case(case, reimpl, "1.51.1")
-    assert not entry.xfail.matches_case(case, BackendId("pydrake", "1.58.0"), "1.58.0")
+
+    def matches(blamed: BackendId, release: str) -> bool:
+        assert entry.xfail is not None
+        return entry.xfail.matches_step(
+            APPLY, UNKNOWN, UNKNOWN, blamed=blamed, release=release, case=case
+        )
+
+    assert matches(reimpl, "1.58.0")
+    assert matches(reimpl, "1.52.0")
+    assert matches(mutant, "1.58.0")
+    assert not matches(reimpl, "1.51.1")
+    assert not matches(BackendId("pydrake", "1.58.0"), "1.58.0")
+
+
+APPLY = Command("apply", {"declaration": {"statements": []}})
+UNKNOWN = Result(error=ErrorInfo(ErrorKind.UNKNOWN_FRAME, "Referenced frame # has not been"))
 
 
 def test_every_release_guard_names_a_known_divergence_of_kind_drake_crash() -> None:
@@ -74,29 +85,49 @@ def test_divergence_scenario_holds_on_real_pydrake(entry: KnownDivergence, scena
     ):
         pytest.skip(f"{entry.id} concerns Drake {entry.releases}")
     report = run_case(CASES[scenario], [pydrake])
-    if report.status["pydrake"] is Status.SKIP:
+    if report.status["pydrake"] is Outcome.SKIP:
         pytest.skip(report.skip_reasons["pydrake"])
-    assert report.status["pydrake"] is Status.PASS, report.failures
+    assert report.status["pydrake"] is Outcome.PASS, report.failures
 
 
 def test_the_partial_apply_step_pattern_needs_both_sides_to_raise_an_unknown_id_error() -> None:
     entry = next(e for e in ENTRIES if e.id == "reimpl-follows-1.51-apply")
     assert entry.xfail is not None
     reimpl = BackendId("reimpl", "1.51.1")
-    apply = Command("apply", {"declaration": {"statements": []}})
-    unknown = Result(error=ErrorInfo(ErrorKind.UNKNOWN_FRAME, "Referenced frame # has not been"))
     history = Result(error=ErrorInfo(ErrorKind.TRANSIENT_HISTORY, "You cannot attempt to"))
-    assert entry.xfail.matches_step(apply, unknown, unknown, reimpl, "1.58.0")
+    on = {"blamed": reimpl, "release": "1.58.0"}
+    assert entry.xfail.matches_step(APPLY, UNKNOWN, UNKNOWN, **on)
     # A backend that does not raise where Drake refuses is a real bug, not this divergence.
-    assert not entry.xfail.matches_step(apply, unknown, Result(), reimpl, "1.58.0")
-    assert not entry.xfail.matches_step(apply, history, history, reimpl, "1.58.0")
+    assert not entry.xfail.matches_step(APPLY, UNKNOWN, Result(), **on)
+    assert not entry.xfail.matches_step(APPLY, history, history, **on)
+    # A case the entry does not name is not narrowed in; the fuzzer (no case) is not narrowed.
+    assert not entry.xfail.matches_step(APPLY, UNKNOWN, UNKNOWN, **on, case="x > y")
+    assert entry.xfail.matches_step(APPLY, UNKNOWN, UNKNOWN, **on, case=None)
 
 
 def test_a_backends_pattern_names_every_drake_worker_but_not_reimpl() -> None:
     entry = next(e for e in ENTRIES if e.id == "failed-apply-leaves-c-unchanged-since-1.52")
     assert entry.xfail is not None
     case = entry.xfail.cases[0]
+
+    def matches(blamed: BackendId) -> bool:
+        assert entry.xfail is not None
+        return entry.xfail.matches_step(
+            APPLY, UNKNOWN, UNKNOWN, blamed=blamed, release="1.58.0", case=case
+        )
+
     for blamed in (BackendId("drake==1.30.0", "1.30.0"), BackendId("pydrake", "1.51.1")):
-        assert entry.xfail.matches_case(case, blamed, "1.58.0")
-    assert not entry.xfail.matches_case(case, BackendId("reimpl", "1.51.1"), "1.58.0")
-    assert not entry.xfail.matches_case(case, BackendId("drake==1.52.0", "1.52.0"), "1.58.0")
+        assert matches(blamed)
+    assert not matches(BackendId("reimpl", "1.51.1"))
+    assert not matches(BackendId("drake==1.52.0", "1.52.0"))
+
+
+def test_a_crash_entry_matches_the_step_where_the_release_broke_or_failed_its_assertion() -> None:
+    entry = next(e for e in ENTRIES if e.id == "undefined-ignored-group-aborts")
+    assert entry.xfail is not None
+    add = Command("add_models", {"file_name": "x.urdf"})
+    blamed, abort = BackendId("drake==1.30.0", "1.30.0"), ErrorInfo(ErrorKind.ASSERTION, "Failure")
+    on = {"blamed": blamed, "release": "1.30.0"}
+    assert entry.xfail.matches_step(add, None, None, **on), "broke (crashed) at the step"
+    assert entry.xfail.matches_step(add, None, Result(error=abort), **on)
+    assert not entry.xfail.matches_step(add, None, Result(), **on)

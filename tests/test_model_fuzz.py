@@ -22,8 +22,8 @@ from conformance.backends.reimpl_api import reimpl_api
 from conformance.backends.scene_graph import SceneGraphBackend
 from conformance.cli.main import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, main
 from conformance.corpus.loader import load_file
+from conformance.engine import HarnessError
 from conformance.fuzz import models as fm
-from conformance.fuzz.lockstep import HarnessError
 from conformance.fuzz.model_campaign import ModelCampaign, model_cases
 from conformance.fuzz.model_coverage import MODEL_FEATURES
 from conformance.fuzz.models import Body, Geometry, Group, Joint, Model

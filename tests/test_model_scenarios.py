@@ -20,12 +20,13 @@ from conformance.backends.scene_graph import SceneGraphBackend
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 from conformance.cli.main import main
 from conformance.corpus.loader import Case, ScenarioError, default_corpus_root, load_corpus
+from conformance.engine import Outcome
 from conformance.grammar import GRAMMAR, ops_of
 from conformance.grammar.multibody import JOINT_TYPES, MODEL_COMMANDS
 from conformance.grammar.schema import scenario_schema
 from conformance.policy.versions import parse_version
 from conformance.protocol import Command, ErrorKind, backend_id
-from conformance.run.runner import Status, run_case
+from conformance.run.runner import run_case
 
 MODELS = default_corpus_root() / "models"
 CASES = [case for f in load_corpus([MODELS]) for case in f.cases]
@@ -68,7 +69,7 @@ def test_the_model_corpus_has_at_least_forty_cases_in_its_topics() -> None:
 @pytest.mark.parametrize("case", CASES, ids=_id)
 def test_the_model_case_holds_on_pydrake(case: Case) -> None:
     report = run_case(case, [PYDRAKE])
-    assert report.status["pydrake"] is Status.PASS, report.failures or report.aborted
+    assert report.status["pydrake"] is Outcome.PASS, report.failures or report.aborted
 
 
 @pytest.mark.parametrize("case", CASES, ids=_id)
@@ -77,7 +78,7 @@ def test_reimpl_agrees_with_pydrake_on_the_model_case(case: Case) -> None:
     if missing:
         pytest.skip(f"reimpl lacks {sorted(missing)} (reimpl.multibody has not landed)")
     report = run_case(case, [REIMPL, PYDRAKE])
-    assert report.status["reimpl"] in (Status.PASS, Status.XFAIL), report.failures
+    assert report.status["reimpl"] in (Outcome.PASS, Outcome.XFAIL), report.failures
 
 
 def test_every_model_case_needs_the_features_of_its_ops() -> None:
@@ -311,7 +312,7 @@ def test_a_worker_of_another_release_runs_the_model_ops() -> None:
     worker = load_backend("drake==1.40.0")
     case = _case("the parser reports each group's scoped members and each ignored pair once")
     report = run_case(case, [worker])
-    assert report.status["drake==1.40.0"] is Status.PASS, report.failures
+    assert report.status["drake==1.40.0"] is Outcome.PASS, report.failures
 
 
 @pytest.mark.skipif(not _cached("1.30.0"), reason="no cached environment for Drake 1.30.0")
@@ -320,7 +321,7 @@ def test_drake_1_30_aborts_on_an_undefined_ignored_group_as_a_known_divergence()
     report = run_case(
         _case("ignoring an undefined group is an error naming the scoped group"), [worker]
     )
-    assert report.broken["drake==1.30.0"] is Status.CRASH
+    assert report.broken["drake==1.30.0"] is Outcome.CRASH
     assert report.xfails == {"drake==1.30.0": "undefined-ignored-group-aborts"}
 
 
@@ -329,7 +330,7 @@ def test_a_release_without_a_binding_the_case_calls_skips_it_in_run() -> None:
     worker = load_backend("drake==1.12.0")
     case = next(c for c in CASES if "RpyFloatingJoint between two bodies" in c.description)
     report = run_case(case, [REIMPL, worker])
-    assert report.status[worker.name] is Status.SKIP
+    assert report.status[worker.name] is Outcome.SKIP
     assert report.skip_reasons[worker.name].startswith(
         "no binding: step 5 (add_joint): pydrake #.#.# has no multibody.tree.RpyFloatingJoint"
     )

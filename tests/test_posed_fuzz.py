@@ -20,9 +20,10 @@ from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
 from conformance.cli.main import _parser
 from conformance.corpus.loader import load_file
+from conformance.engine import Divergence
 from conformance.fuzz import strategies as cs
 from conformance.fuzz.campaign import Campaign
-from conformance.fuzz.lockstep import Divergence, FuzzStats, PosedLockstepMachine
+from conformance.fuzz.lockstep import PosedLockstepMachine
 from conformance.fuzz.operations import (
     QUERY_OPS,
     filter_in_clone,
@@ -30,6 +31,7 @@ from conformance.fuzz.operations import (
     register_posed_scene,
 )
 from conformance.fuzz.sequences import Recorder
+from conformance.fuzz.stats import FuzzStats
 from conformance.protocol import MODEL, Result
 
 PYDRAKE = load_backend("pydrake")
@@ -155,7 +157,7 @@ class _Recording(PosedLockstepMachine):
     backend_factory = staticmethod(lambda: REIMPL)
     reference_factory = staticmethod(lambda: PYDRAKE)
     stats = FuzzStats()
-    _pair = None
+    _shared = None
     issued: dict[str, int] = {}  # noqa: RUF012 (shared on purpose: one run's counts)
     found_pairs = 0
 

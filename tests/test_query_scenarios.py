@@ -26,11 +26,12 @@ from conformance.corpus.loader import (
     load_corpus,
     load_file,
 )
+from conformance.engine import Outcome
 from conformance.grammar import GRAMMAR, Comparison, ops_of
 from conformance.grammar.queries import QUERY_COMMANDS, SHAPES
 from conformance.protocol import Command, Result
 from conformance.run.expectations import check
-from conformance.run.runner import Status, run_case
+from conformance.run.runner import run_case
 
 QUERIES = default_corpus_root() / "queries"
 FILES = load_corpus([QUERIES])
@@ -70,7 +71,7 @@ def test_the_query_case_holds_on_pydrake(case: Case) -> None:
     if missing:
         pytest.skip(f"pydrake {PYDRAKE.version()} lacks {sorted(missing)}")
     report = run_case(case, [PYDRAKE])
-    assert report.status["pydrake"] is Status.PASS, report.failures or report.aborted
+    assert report.status["pydrake"] is Outcome.PASS, report.failures or report.aborted
 
 
 @pytest.mark.parametrize("case", CASES, ids=_id)
@@ -79,7 +80,7 @@ def test_reimpl_agrees_with_pydrake_on_the_query_case(case: Case) -> None:
     if missing:
         pytest.skip(f"reimpl lacks {sorted(missing)}")
     report = run_case(case, [REIMPL, PYDRAKE])
-    assert report.status["reimpl"] in (Status.PASS, Status.XFAIL), report.failures
+    assert report.status["reimpl"] in (Outcome.PASS, Outcome.XFAIL), report.failures
 
 
 def test_every_query_op_is_exercised_and_every_query_step_expects_something() -> None:

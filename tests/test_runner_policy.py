@@ -7,11 +7,12 @@ from pathlib import Path
 
 from conformance.backends.loader import load_backend
 from conformance.corpus.loader import Step, load_corpus, load_file
-from conformance.policy.divergences import KnownDivergence, XfailMatcher
+from conformance.engine import Outcome
+from conformance.policy.divergences import KnownDivergence, StepPattern, XfailMatcher
 from conformance.policy.guards import armed_guards
 from conformance.policy.versions import VersionRange
 from conformance.protocol import Command, ErrorInfo, ErrorKind, Observation, Result
-from conformance.run.runner import Status, _observed_steps, choose_reference, run_case
+from conformance.run.runner import _observed_steps, choose_reference, run_case
 
 MUTANT = "conformance.testing.mutants:allow_clears_invariants"
 FILE = "statements/allow_within"
@@ -19,7 +20,9 @@ CASES = {c.qualified_name: c for f in load_corpus() for c in f.cases if f.name =
 CASE = next(c for name, c in CASES.items() if "world frame" in name)
 
 
-def divergence(cases: tuple[str, ...], releases: VersionRange) -> KnownDivergence:
+def divergence(
+    cases: tuple[str, ...], releases: VersionRange, ops: frozenset[str] = frozenset({"apply"})
+) -> KnownDivergence:
     return KnownDivergence(
         id="test-entry",
         kind="reimpl_vs_drake",
@@ -28,7 +31,7 @@ def divergence(cases: tuple[str, ...], releases: VersionRange) -> KnownDivergenc
         reason="",
         scenarios=(),
         tests=(),
-        xfail=XfailMatcher(releases=releases, cases=cases),
+        xfail=XfailMatcher(releases=releases, cases=cases, steps=(StepPattern(ops=ops),)),
     )
 
 
@@ -43,7 +46,7 @@ def test_a_disagreement_fails_the_backend_and_not_the_reference() -> None:
     mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
     report = run_case(CASE, [mutant, pydrake])
     assert report.reference == "pydrake"
-    assert report.status == {mutant.name: Status.FAIL, "pydrake": Status.PASS}
+    assert report.status == {mutant.name: Outcome.FAIL, "pydrake": Outcome.PASS}
     assert {f.backend for f in report.failures} == {mutant.name}
 
 
@@ -51,23 +54,40 @@ def test_a_failure_a_known_divergence_describes_is_xfail_with_its_id() -> None:
     mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
     entries = [divergence((f"{FILE} > *world frame*",), VersionRange(since="1.12"))]
     report = run_case(CASE, [mutant, pydrake], divergences=entries)
-    assert report.status[mutant.name] is Status.XFAIL
+    assert report.status[mutant.name] is Outcome.XFAIL
     assert report.xfails == {mutant.name: "test-entry"}
     assert report.passed
+
+
+def test_a_known_divergence_whose_step_pattern_misses_the_diverging_step_does_not_act() -> None:
+    mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
+    entries = [divergence((f"{FILE} > *",), VersionRange(since="1.12"), frozenset({"finalize"}))]
+    report = run_case(CASE, [mutant, pydrake], divergences=entries)
+    assert report.status[mutant.name] is Outcome.FAIL
+
+
+def test_the_cases_of_a_known_divergence_narrow_where_its_step_pattern_acts() -> None:
+    mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
+    entries = [divergence((f"{FILE} > no such case",), VersionRange(since="1.12"))]
+    report = run_case(CASE, [mutant, pydrake], divergences=entries)
+    assert report.status[mutant.name] is Outcome.FAIL
+    entries = [divergence((), VersionRange(since="1.12"))]
+    report = run_case(CASE, [mutant, pydrake], divergences=entries)
+    assert report.xfails == {mutant.name: "test-entry"}
 
 
 def test_strict_divergences_turn_xfail_back_into_failure() -> None:
     mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
     entries = [divergence((f"{FILE} > *",), VersionRange(since="1.12"))]
     report = run_case(CASE, [mutant, pydrake], divergences=entries, strict_divergences=True)
-    assert report.status[mutant.name] is Status.FAIL
+    assert report.status[mutant.name] is Outcome.FAIL
 
 
 def test_a_known_divergence_outside_the_reference_release_does_not_act() -> None:
     mutant, pydrake = load_backend(MUTANT), load_backend("pydrake")
     entries = [divergence((f"{FILE} > *",), VersionRange(since="99.0"))]
     report = run_case(CASE, [mutant, pydrake], divergences=entries)
-    assert report.status[mutant.name] is Status.FAIL
+    assert report.status[mutant.name] is Outcome.FAIL
 
 
 def test_the_anchored_deactivation_guard_is_armed_only_by_releases_1_55_to_1_58() -> None:
@@ -129,7 +149,7 @@ def test_a_scene_is_observed_once_after_its_last_registration(tmp_path: Path) ->
     (case,) = load_file(path, root=tmp_path).cases
     counting = _CountingObserver()
     report = run_case(case, [counting, load_backend("reimpl")])
-    assert report.status == {"counting": Status.PASS, "reimpl": Status.PASS}
+    assert report.status == {"counting": Outcome.PASS, "reimpl": Outcome.PASS}
     assert counting.observed == 3
 
 
@@ -184,6 +204,6 @@ def test_a_scene_registration_that_fails_fails_the_case_even_where_state_is_not_
     (case,) = load_file(path, root=tmp_path).cases
     backend = _RefusesFirstGeometry()
     report = run_case(case, [backend])
-    assert report.status == {"counting": Status.FAIL}
+    assert report.status == {"counting": Outcome.FAIL}
     assert [f.what for f in report.failures] == ["scene register_geometry g0"]
     assert backend.observed == 2  # after the scene (g1, not g0), and after the check

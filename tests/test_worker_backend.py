@@ -19,8 +19,9 @@ from conformance.backends.environments import DrakeEnvironmentError, find_python
 from conformance.backends.loader import load_backend
 from conformance.backends.subprocess_backend import WorkerBackend
 from conformance.corpus.loader import default_corpus_root, load_corpus
+from conformance.engine import Outcome
 from conformance.protocol import Command, ErrorKind
-from conformance.run.runner import Status, run_case
+from conformance.run.runner import run_case
 
 RELEASE = "1.58.0"
 
@@ -74,7 +75,7 @@ def test_table_1_passes_on_the_worker_against_reimpl(worker: WorkerBackend) -> N
     table1 = next(f for f in load_corpus() if f.name == "transient/table1")
     for case in table1.cases:
         report = run_case(case, [load_backend("reimpl"), worker], reference=worker.name)
-        assert report.status == {"reimpl": Status.PASS, "drake==1.58.0": Status.PASS}
+        assert report.status == {"reimpl": Outcome.PASS, "drake==1.58.0": Outcome.PASS}
 
 
 @needs_312
@@ -201,6 +202,6 @@ def test_a_hang_mid_case_is_a_recoverable_timeout_and_the_other_backend_finishes
         report = run_case(case, [backend, load_backend("reimpl")], step_timeout=1.0)
     finally:
         backend.close()
-    assert report.status == {"drake==1.58.0": Status.TIMEOUT, "reimpl": Status.PASS}
+    assert report.status == {"drake==1.58.0": Outcome.TIMEOUT, "reimpl": Outcome.PASS}
     assert report.recoverable
     assert "no answer within 1 s" in (report.aborted or "")
