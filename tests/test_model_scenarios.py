@@ -338,6 +338,7 @@ def test_a_release_without_a_binding_the_case_calls_skips_it_in_run() -> None:
 
 def test_a_model_case_that_no_backend_runs_is_no_input_error() -> None:
     case = _case("the parser reports each group's scoped members and each ignored pair once")
+    from conformance.engine import Trace  # noqa: PLC0415
     from conformance.run.runner import _bad_model  # noqa: PLC0415 (the rule under test)
 
-    assert _bad_model(case, [], None) is None
+    assert _bad_model(case, Trace("pydrake"), [], "pydrake") is None
