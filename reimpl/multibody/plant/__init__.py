@@ -29,13 +29,12 @@ from __future__ import annotations
 import copy
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, NoReturn, TypeVar
+from typing import Any, TypeVar
 
 import numpy as np
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
-from reimpl.common.value import register_value_type
 from reimpl.geometry.collision_filter_declaration import (
     CollisionFilterDeclaration,
     CollisionFilterScope,
@@ -57,7 +56,6 @@ from reimpl.multibody import _link_joint_graph as graph
 from reimpl.multibody import kinematics
 from reimpl.multibody._default_filters import default_collision_filters
 from reimpl.multibody._errors import (
-    DemandFailedError,
     DuplicateNameError,
     FinalizedError,
     MultibodyPlantError,
@@ -66,6 +64,8 @@ from reimpl.multibody._errors import (
     TopologyError,
 )
 from reimpl.multibody._mobilizer_frames import mobilizer_frames
+from reimpl.multibody.plant._coulomb_friction import CoulombFriction
+from reimpl.multibody.plant._demands import demand_cc, demand_failed, demand_h, demand_tree_cc
 from reimpl.multibody.tree import (
     BodyIndex,
     FixedOffsetFrame,
@@ -119,64 +119,12 @@ _POSITIONS = "q"
 _BODY_POSES = "X_WB"
 _FRAME_POSES = "geometry_pose"
 
-#: Where pydrake 1.51.1 reports its DRAKE_DEMAND failures (SystemExit, measured).
-_PLANT_H = (
-    "bazel-out/k8-opt/bin/external/drake+/tools/install/libdrake/_virtual_includes/"
-    "drake_shared_library/drake/multibody/plant/multibody_plant.h"
-)
-_PLANT_CC = "external/drake+/multibody/plant/multibody_plant.cc"
-
-
-class CoulombFriction:
-    """Static and dynamic friction coefficients (stored only)."""
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        self._static, self._dynamic = 0.0, 0.0
-
-        def set_coefficients(static_friction: float, dynamic_friction: float) -> None:
-            if dynamic_friction > static_friction:
-                raise MultibodyPlantError(
-                    f"The given dynamic friction ({dynamic_friction:g}) is greater than the "
-                    f"given static friction ({static_friction:g}); dynamic friction must be "
-                    "less than or equal to static friction."
-                )
-            self._static, self._dynamic = float(static_friction), float(dynamic_friction)
-
-        number = instance_of(int, float)
-        dispatch(
-            "reimpl.multibody.plant.CoulombFriction",
-            "__init__",
-            (
-                Overload((), lambda: None),
-                Overload(
-                    (Param("static_friction", number), Param("dynamic_friction", number)),
-                    set_coefficients,
-                ),
-            ),
-            args,
-            kwargs,
-        )
-
-    def static_friction(self) -> float:
-        return self._static
-
-    def dynamic_friction(self) -> float:
-        return self._dynamic
-
-
-register_value_type(CoulombFriction, "drake::multibody::CoulombFriction<double>")
-
 
 def _post_finalize_error(method: str) -> FinalizedError:
     return FinalizedError(
         f"Post-finalize calls to '{method}()' are not allowed; calls to this method must "
         "happen before Finalize()."
     )
-
-
-def _demand_failed(method: str, condition: str) -> DemandFailedError:
-    """What reimpl raises where pydrake 1.51.1 prints this text and aborts."""
-    return DemandFailedError(f"Failure in {method}(): condition '{condition}' failed.")
 
 
 def _empty_instance_name() -> SystemExit:
@@ -200,7 +148,7 @@ class MultibodyPlant(LeafSystem):
 
     def __init__(self, time_step: float) -> None:
         super().__init__()
-        _demand_cc(
+        demand_cc(
             time_step >= 0, _DEMAND_LINES["MultibodyPlant"], "MultibodyPlant", "time_step >= 0"
         )
         self._time_step = float(time_step)
@@ -252,7 +200,7 @@ class MultibodyPlant(LeafSystem):
         Finalize is checked.
         """
         method = "RegisterAsSourceForSceneGraph"
-        _demand_cc(
+        demand_cc(
             self._source_id is None,
             _DEMAND_LINES[method],
             method,
@@ -281,8 +229,8 @@ class MultibodyPlant(LeafSystem):
         if self._scene_graph is None or self._source_id is None:
             condition = "geometry_source_is_registered()"
             if method in _DEMAND_LINES:
-                _demand_cc(False, _DEMAND_LINES[method], method, condition)
-            raise _demand_failed(method, condition)
+                demand_cc(False, _DEMAND_LINES[method], method, condition)
+            raise demand_failed(method, condition)
         return self._scene_graph, self._source_id
 
     def _register_body_frame(self, body: RigidBody) -> None:
@@ -373,7 +321,7 @@ class MultibodyPlant(LeafSystem):
         pydrake 1.51.1; measured)."""
         index = int(model_instance)
         if not 0 <= index < len(self._instance_names):
-            _demand_tree_cc(
+            demand_tree_cc(
                 _LISTING_DEMAND_LINES[method],
                 method,
                 "model_instances_.has_element(model_instance)",
@@ -393,7 +341,7 @@ class MultibodyPlant(LeafSystem):
         reimpl leaves the instance as it was).
         """
         if self._finalized:
-            _demand_cc(False, 1372, "RenameModelInstance", "!is_finalized()")
+            demand_cc(False, 1372, "RenameModelInstance", "!is_finalized()")
         index = self._instance(model_instance)
         old = self._instance_names[index]
         if name == old:
@@ -967,7 +915,7 @@ class MultibodyPlant(LeafSystem):
         bodies in an instance, it has no unique base body); the world instance has none.
         """
         if not 0 <= int(model_instance) < len(self._instance_names):
-            _demand_tree_cc(
+            demand_tree_cc(
                 4275, "MaybeGetUniqueBaseBodyIndex", "model_instances_.has_element(model_instance)"
             )
         if int(model_instance) == int(world_model_instance()):
@@ -1064,7 +1012,7 @@ class MultibodyPlant(LeafSystem):
         """
         method = "ExcludeCollisionGeometriesWithCollisionFilterGroupPair"
         if self._finalized:
-            raise _demand_failed(method, "!is_finalized()")
+            raise demand_failed(method, "!is_finalized()")
         scene_graph, _ = self._registered_scene_graph(method)
         (name_a, set_A), (name_b, set_B) = group_a, group_b
         declaration = CollisionFilterDeclaration(CollisionFilterScope.kAll)
@@ -1182,10 +1130,10 @@ class MultibodyPlant(LeafSystem):
         def all_positions(context: Context, q: Any) -> None:
             positions = self._context_positions(context)
             values = _positions_vector(q)
-            _demand(
+            demand_h(
                 values.size == positions.size, 2896, "SetPositions", "q.size() == num_positions()"
             )
-            _demand(bool(np.isfinite(values).all()), 2897, "SetPositions", "AllFinite(q)")
+            demand_h(bool(np.isfinite(values).all()), 2897, "SetPositions", "AllFinite(q)")
             positions[:] = values
 
         def of_instance(context: Context, model_instance: ModelInstanceIndex, q: Any) -> None:
@@ -1193,13 +1141,13 @@ class MultibodyPlant(LeafSystem):
             values = _positions_vector(q)
             slices = self._instance_slices(model_instance)
             size = sum(s.stop - s.start for s in slices)
-            _demand(
+            demand_h(
                 values.size == size,
                 2912,
                 "SetPositions",
                 "q_instance.size() == num_positions(model_instance)",
             )
-            _demand(bool(np.isfinite(values).all()), 2913, "SetPositions", "AllFinite(q_instance)")
+            demand_h(bool(np.isfinite(values).all()), 2913, "SetPositions", "AllFinite(q_instance)")
             first = 0
             for s in slices:
                 positions[s] = values[first : first + s.stop - s.start]
@@ -1253,7 +1201,7 @@ class MultibodyPlant(LeafSystem):
         def all_positions(q: Any) -> None:
             self._check_finalized("SetDefaultPositions")
             values = _positions_vector(q)
-            _demand_cc(
+            demand_cc(
                 values.size == self.num_positions(),
                 1881,
                 "SetDefaultPositions",
@@ -1267,7 +1215,7 @@ class MultibodyPlant(LeafSystem):
             self._check_finalized("SetDefaultPositions")
             values = _positions_vector(q_instance)
             joints = self._joints_in_position_order(model_instance)
-            _demand_cc(
+            demand_cc(
                 values.size == sum(j.num_positions() for j in joints),
                 1895,
                 "SetDefaultPositions",
@@ -1402,8 +1350,8 @@ class MultibodyPlant(LeafSystem):
                 continue
             count, start = getattr(joint, count_of)(), getattr(joint, start_of)()
             if model_instance is not None:
-                _demand_cc(start >= offset, line, method, f"joint.{start_of}() >= {kind}_offset")
-                _demand_cc(
+                demand_cc(start >= offset, line, method, f"joint.{start_of}() >= {kind}_offset")
+                demand_cc(
                     start + count - offset <= size,
                     line + 1,
                     method,
@@ -1639,26 +1587,6 @@ _COORDINATES = {
 _NAMES_DEMAND_LINES = {"position": 1954, "velocity": 2021}
 
 
-def _demand(condition: bool, line: int, method: str, text: str) -> None:
-    """pydrake 1.51.1's SystemExit for a failed DRAKE_DEMAND in multibody_plant.h."""
-    if not condition:
-        raise SystemExit(f"Failure at {_PLANT_H}:{line} in {method}(): condition '{text}' failed.")
-
-
-def _demand_cc(condition: bool, line: int, method: str, text: str) -> None:
-    """pydrake 1.51.1's SystemExit for a failed DRAKE_DEMAND in multibody_plant.cc."""
-    if not condition:
-        raise SystemExit(f"Failure at {_PLANT_CC}:{line} in {method}(): condition '{text}' failed.")
-
-
-def _demand_tree_cc(line: int, method: str, text: str) -> NoReturn:
-    """pydrake 1.51.1's SystemExit for a failed condition in multibody_tree.cc (measured)."""
-    raise SystemExit(
-        f"Failure at external/drake+/multibody/tree/multibody_tree.cc:{line} in {method}(): "
-        f"condition '{text}' failed."
-    )
-
-
 def _is_rgba(value: object) -> bool:
     try:
         return np.asarray(value, dtype=float).shape in {(4,), (4, 1)}
@@ -1750,3 +1678,6 @@ def AddMultibodyPlant(
 
 MultibodyPlant_ = scalar_template("reimpl.multibody.plant", "MultibodyPlant_", MultibodyPlant)
 CoulombFriction_ = scalar_template("reimpl.multibody.plant", "CoulombFriction_", CoulombFriction)
+
+# Public names report this module, as pydrake's report theirs (reprs, pickles, help).
+CoulombFriction.__module__ = __name__
