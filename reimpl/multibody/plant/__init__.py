@@ -66,6 +66,7 @@ from reimpl.multibody._errors import (
 from reimpl.multibody._mobilizer_frames import mobilizer_frames
 from reimpl.multibody.plant._coulomb_friction import CoulombFriction
 from reimpl.multibody.plant._demands import demand_cc, demand_failed, demand_h, demand_tree_cc
+from reimpl.multibody.plant._model_instances import PREDEFINED_INSTANCES, ModelInstances
 from reimpl.multibody.tree import (
     BodyIndex,
     FixedOffsetFrame,
@@ -86,7 +87,6 @@ from reimpl.systems.framework import (
     DiagramBuilder,
     InputPort,
     LeafContext,
-    LeafSystem,
     OutputPort,
 )
 
@@ -103,12 +103,7 @@ __all__ = [
 
 _OWNER = "reimpl.multibody.plant.MultibodyPlant"
 
-_WORLD_INSTANCE_NAME = "WorldModelInstance"
-_DEFAULT_INSTANCE_NAME = "DefaultModelInstance"
 _WORLD_BODY_NAME = "world"
-#: Instances below this index do not scope names (world and default).
-_FIRST_SCOPED_INSTANCE = 2
-
 _E = TypeVar("_E", RigidBody, Frame, Joint)
 
 #: Joint types a tree may model from child to parent (measured, from Finalize's message).
@@ -120,22 +115,7 @@ _BODY_POSES = "X_WB"
 _FRAME_POSES = "geometry_pose"
 
 
-def _post_finalize_error(method: str) -> FinalizedError:
-    return FinalizedError(
-        f"Post-finalize calls to '{method}()' are not allowed; calls to this method must "
-        "happen before Finalize()."
-    )
-
-
-def _empty_instance_name() -> SystemExit:
-    """What pydrake 1.51.1 raises (SystemExit, measured) naming a model instance ``""``."""
-    return SystemExit(
-        "Failure at external/drake+/multibody/tree/model_instance.cc:23 in set_name(): "
-        "condition '!name.empty()' failed."
-    )
-
-
-class MultibodyPlant(LeafSystem):
+class MultibodyPlant(ModelInstances):
     """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
 
     Finalize filters collisions, when the plant is a SceneGraph source, by
@@ -152,7 +132,6 @@ class MultibodyPlant(LeafSystem):
             time_step >= 0, _DEMAND_LINES["MultibodyPlant"], "MultibodyPlant", "time_step >= 0"
         )
         self._time_step = float(time_step)
-        self._instance_names = [_WORLD_INSTANCE_NAME, _DEFAULT_INSTANCE_NAME]
         self._bodies: list[RigidBody] = []
         self._frames: list[Frame] = []
         self._joints: list[Joint] = []
@@ -162,7 +141,6 @@ class MultibodyPlant(LeafSystem):
         self._collision_geometries: dict[int, list[GeometryId]] = {}
         self._visual_geometries: dict[int, list[GeometryId]] = {}
         self._adjacent_bodies_collision_filters = True
-        self._finalized = False
         #: body index -> X_PB given by SetDefaultFreeBodyPose.
         self._default_free_body_poses: dict[int, RigidTransform] = {}
         self._forest: kinematics.Forest | None = None
@@ -174,13 +152,6 @@ class MultibodyPlant(LeafSystem):
     # ---------------------------------------------------------------- state
     def time_step(self) -> float:
         return self._time_step
-
-    def is_finalized(self) -> bool:
-        return self._finalized
-
-    def _check_not_finalized(self, method: str) -> None:
-        if self._finalized:
-            raise _post_finalize_error(method)
 
     def _new_context(self) -> Context:
         if not self._finalized:
@@ -248,108 +219,9 @@ class MultibodyPlant(LeafSystem):
             source_id=self._source_id, frame=frame
         )
 
-    def _scoped(self, model_instance: ModelInstanceIndex, name: str) -> str:
-        """``instance::name`` for instances ≥ 2; ``name`` in the world and default ones."""
-        if int(model_instance) < _FIRST_SCOPED_INSTANCE:
-            return name
-        return f"{self._instance_names[int(model_instance)]}::{name}"
-
     # ----------------------------------------------------- model instances
-    def AddModelInstance(self, name: str) -> ModelInstanceIndex:
-        """Adds an empty model instance; an empty ``name`` ends the program as on pydrake."""
-        if self._finalized:
-            raise FinalizedError(
-                "This MultibodyTree is finalized already. Therefore adding more model "
-                "instances is not allowed. See documentation for Finalize() for details."
-            )
-        self._check_new_instance_name(name)
-        if not name:
-            raise _empty_instance_name()
-        self._instance_names.append(name)
-        return ModelInstanceIndex(len(self._instance_names) - 1)
-
-    def _check_new_instance_name(self, name: str) -> None:
-        if name in self._instance_names:
-            raise DuplicateNameError(
-                f"This model already contains a model instance named '{name}'. Model instance "
-                "names must be unique within a given model."
-            )
-
-    def num_model_instances(self) -> int:
-        return len(self._instance_names)
-
-    def HasModelInstanceNamed(self, name: str) -> bool:
-        return name in self._instance_names
-
-    def GetModelInstanceByName(self, name: str) -> ModelInstanceIndex:
-        if name not in self._instance_names:
-            known = ", ".join(f"'{n}'" for n in sorted(self._instance_names))
-            raise NotFoundError(
-                f"GetModelInstanceByName(): There is no model instance named '{name}'. The "
-                f"current model instances are {known}."
-            )
-        return ModelInstanceIndex(self._instance_names.index(name))
-
-    def GetModelInstanceName(self, model_instance: ModelInstanceIndex) -> str:
-        return self._instance_names[self._instance(model_instance)]
-
-    def _instance(self, model_instance: ModelInstanceIndex) -> int:
-        """The index; Drake's name lookup's error if no instance has it."""
-        index = int(model_instance)
-        if not 0 <= index < len(self._instance_names):
-            raise NotFoundError(f"There is no model instance id {index} in the model.")
-        return index
-
-    def _indexed_instance(self, model_instance: ModelInstanceIndex) -> int:
-        """The index; the error of Drake's per-instance tables (the counts, q and
-        its names), measured on pydrake 1.51.1 and 1.58.0."""
-        index = int(model_instance)
-        if index < 0:
-            raise NotFoundError(
-                "The given default-constructed ModelInstanceIndex() cannot be used. You must "
-                "pass a valid integer as the index."
-            )
-        if index >= len(self._instance_names):
-            raise NotFoundError(
-                f"The given ModelInstanceIndex({index}) is out of bounds (must be less than "
-                f"{len(self._instance_names)})"
-            )
-        return index
-
-    def _listed_instance(self, method: str, model_instance: ModelInstanceIndex) -> int:
-        """The index; the SystemExit of Drake's element listings (multibody_tree.cc,
-        pydrake 1.51.1; measured)."""
-        index = int(model_instance)
-        if not 0 <= index < len(self._instance_names):
-            demand_tree_cc(
-                _LISTING_DEMAND_LINES[method],
-                method,
-                "model_instances_.has_element(model_instance)",
-            )
-        return index
-
-    def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
-        """Renames the instance, and the scoped names of its SceneGraph frames and geometries.
-
-        As Drake does it: every frame of this plant's source whose frame group is
-        the instance, and every geometry on such a frame (whoever registered it),
-        named ``old::x`` becomes ``new::x``; other names (a frame the user
-        renamed, an unscoped name) are left alone. After Finalize, pydrake
-        1.51.1 raises SystemExit (a DRAKE_THROW_UNLESS at multibody_plant.cc:1372;
-        1.58.0 reports line 1320), and so does reimpl. An empty ``name``
-        raises SystemExit as on pydrake (which, measured, still registers ``""``;
-        reimpl leaves the instance as it was).
-        """
-        if self._finalized:
-            demand_cc(False, 1372, "RenameModelInstance", "!is_finalized()")
-        index = self._instance(model_instance)
-        old = self._instance_names[index]
-        if name == old:
-            return
-        if not name:
-            raise _empty_instance_name()
-        self._check_new_instance_name(name)
-        self._instance_names[index] = name
+    def _rename_instance(self, index: int, old: str, name: str) -> None:
+        super()._rename_instance(index, old, name)
         if self._scene_graph is None or self._source_id is None:
             return
         scene_graph = self._scene_graph
@@ -391,7 +263,7 @@ class MultibodyPlant(LeafSystem):
 
     def _add_rigid_body_to_default(self, name: str, M_BBo_B: SpatialInertia) -> RigidBody:
         # N.B. Measured: the instance count is checked before Finalize is.
-        if len(self._instance_names) > _FIRST_SCOPED_INSTANCE:
+        if len(self._instance_names) > PREDEFINED_INSTANCES:
             raise MultibodyPlantError(
                 "This model has more model instances than the default.  Please call "
                 "AddRigidBody with an explicit model instance."
@@ -1076,13 +948,6 @@ class MultibodyPlant(LeafSystem):
             for j in self._joints
         ]
 
-    def _check_finalized(self, method: str) -> None:
-        if not self._finalized:
-            raise NotFinalizedError(
-                f"Pre-finalize calls to '{method}()' are not allowed; you must call Finalize() "
-                "first."
-            )
-
     def _joints_in_position_order(self, model_instance: ModelInstanceIndex | None) -> list[Joint]:
         joints = self._joints_of(model_instance)
         return sorted(joints, key=lambda j: j.position_start())
@@ -1575,8 +1440,6 @@ _DEMAND_LINES = {
     "RegisterCollisionGeometry": 1139,
     "CollectRegisteredGeometries": 1178,
 }
-#: Where multibody_tree.cc (pydrake 1.51.1) demands that a listing's model instance exists.
-_LISTING_DEMAND_LINES = {"GetBodyIndices": 481, "GetJointIndices": 494, "GetFrameIndices": 521}
 #: The accessors of a joint's positions and of its velocities: count, start, suffix.
 _COORDINATES = {
     "position": ("num_positions", "position_start", "position_suffix"),

@@ -1,0 +1,155 @@
+"""Model instances: the named groups a plant's elements belong to, and scoped names.
+
+Drake counterpart: the model instances of MultibodyPlant (multibody_tree.cc,
+model_instance.cc). Measured on pydrake 1.51.1:
+
+- Instances 0 (``WorldModelInstance``) and 1 (``DefaultModelInstance``)
+  always exist; ``AddModelInstance`` appends the next index. A name is
+  unique, and never empty (an empty one ends the program: SystemExit).
+- ``scoped(x)`` is ``instance::x`` for instances ≥ 2 and plain ``x`` in the
+  world and default instances; SceneGraph frames and geometries are named so.
+- An index is checked where Drake's table for the call checks it, each with
+  its own error: a name lookup (``_instance``), a per-instance table such as
+  the counts and q (``_indexed_instance``), an element listing
+  (``_listed_instance``, SystemExit).
+- ``RenameModelInstance`` renames in ``_rename_instance``, which the
+  SceneGraph source extends to the scoped names it registered.
+"""
+
+from __future__ import annotations
+
+from reimpl.multibody._errors import DuplicateNameError, FinalizedError, NotFoundError
+from reimpl.multibody.plant._demands import demand_cc, demand_tree_cc
+from reimpl.multibody.plant._phase import PlantPhase
+from reimpl.multibody.tree import ModelInstanceIndex
+
+__all__ = ["PREDEFINED_INSTANCES", "ModelInstances"]
+
+_WORLD_INSTANCE_NAME = "WorldModelInstance"
+_DEFAULT_INSTANCE_NAME = "DefaultModelInstance"
+#: The instances every plant has (world and default); they do not scope names.
+PREDEFINED_INSTANCES = 2
+#: Where multibody_tree.cc (pydrake 1.51.1) demands that a listing's model instance exists.
+_LISTING_DEMAND_LINES = {"GetBodyIndices": 481, "GetJointIndices": 494, "GetFrameIndices": 521}
+
+
+def _empty_instance_name() -> SystemExit:
+    """What pydrake 1.51.1 raises (SystemExit, measured) naming a model instance ``""``."""
+    return SystemExit(
+        "Failure at external/drake+/multibody/tree/model_instance.cc:23 in set_name(): "
+        "condition '!name.empty()' failed."
+    )
+
+
+class ModelInstances(PlantPhase):
+    """The plant's model instances, by index: their names."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self._instance_names = [_WORLD_INSTANCE_NAME, _DEFAULT_INSTANCE_NAME]
+
+    def _scoped(self, model_instance: ModelInstanceIndex, name: str) -> str:
+        """``instance::name`` for instances ≥ 2; ``name`` in the world and default ones."""
+        if int(model_instance) < PREDEFINED_INSTANCES:
+            return name
+        return f"{self._instance_names[int(model_instance)]}::{name}"
+
+    def AddModelInstance(self, name: str) -> ModelInstanceIndex:
+        """Adds an empty model instance; an empty ``name`` ends the program as on pydrake."""
+        if self._finalized:
+            raise FinalizedError(
+                "This MultibodyTree is finalized already. Therefore adding more model "
+                "instances is not allowed. See documentation for Finalize() for details."
+            )
+        self._check_new_instance_name(name)
+        if not name:
+            raise _empty_instance_name()
+        self._instance_names.append(name)
+        return ModelInstanceIndex(len(self._instance_names) - 1)
+
+    def _check_new_instance_name(self, name: str) -> None:
+        if name in self._instance_names:
+            raise DuplicateNameError(
+                f"This model already contains a model instance named '{name}'. Model instance "
+                "names must be unique within a given model."
+            )
+
+    def num_model_instances(self) -> int:
+        return len(self._instance_names)
+
+    def HasModelInstanceNamed(self, name: str) -> bool:
+        return name in self._instance_names
+
+    def GetModelInstanceByName(self, name: str) -> ModelInstanceIndex:
+        if name not in self._instance_names:
+            known = ", ".join(f"'{n}'" for n in sorted(self._instance_names))
+            raise NotFoundError(
+                f"GetModelInstanceByName(): There is no model instance named '{name}'. The "
+                f"current model instances are {known}."
+            )
+        return ModelInstanceIndex(self._instance_names.index(name))
+
+    def GetModelInstanceName(self, model_instance: ModelInstanceIndex) -> str:
+        return self._instance_names[self._instance(model_instance)]
+
+    def _instance(self, model_instance: ModelInstanceIndex) -> int:
+        """The index; Drake's name lookup's error if no instance has it."""
+        index = int(model_instance)
+        if not 0 <= index < len(self._instance_names):
+            raise NotFoundError(f"There is no model instance id {index} in the model.")
+        return index
+
+    def _indexed_instance(self, model_instance: ModelInstanceIndex) -> int:
+        """The index; the error of Drake's per-instance tables (the counts, q and
+        its names), measured on pydrake 1.51.1 and 1.58.0."""
+        index = int(model_instance)
+        if index < 0:
+            raise NotFoundError(
+                "The given default-constructed ModelInstanceIndex() cannot be used. You must "
+                "pass a valid integer as the index."
+            )
+        if index >= len(self._instance_names):
+            raise NotFoundError(
+                f"The given ModelInstanceIndex({index}) is out of bounds (must be less than "
+                f"{len(self._instance_names)})"
+            )
+        return index
+
+    def _listed_instance(self, method: str, model_instance: ModelInstanceIndex) -> int:
+        """The index; the SystemExit of Drake's element listings (multibody_tree.cc,
+        pydrake 1.51.1; measured)."""
+        index = int(model_instance)
+        if not 0 <= index < len(self._instance_names):
+            demand_tree_cc(
+                _LISTING_DEMAND_LINES[method],
+                method,
+                "model_instances_.has_element(model_instance)",
+            )
+        return index
+
+    def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
+        """Renames the instance, and the scoped names of its SceneGraph frames and geometries.
+
+        As Drake does it: every frame of this plant's source whose frame group is
+        the instance, and every geometry on such a frame (whoever registered it),
+        named ``old::x`` becomes ``new::x``; other names (a frame the user
+        renamed, an unscoped name) are left alone. After Finalize, pydrake
+        1.51.1 raises SystemExit (a DRAKE_THROW_UNLESS at multibody_plant.cc:1372;
+        1.58.0 reports line 1320), and so does reimpl. An empty ``name``
+        raises SystemExit as on pydrake (which, measured, still registers ``""``;
+        reimpl leaves the instance as it was).
+        """
+        if self._finalized:
+            demand_cc(False, 1372, "RenameModelInstance", "!is_finalized()")
+        index = self._instance(model_instance)
+        old = self._instance_names[index]
+        if name == old:
+            return
+        if not name:
+            raise _empty_instance_name()
+        self._check_new_instance_name(name)
+        self._rename_instance(index, old, name)
+
+    def _rename_instance(self, index: int, old: str, name: str) -> None:
+        """Gives instance ``index`` its new name (the SceneGraph source renames more)."""
+        self._instance_names[index] = name
