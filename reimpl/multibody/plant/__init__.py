@@ -64,18 +64,17 @@ from reimpl.multibody._errors import (
 )
 from reimpl.multibody._mobilizer_frames import mobilizer_frames
 from reimpl.multibody.plant._coulomb_friction import CoulombFriction
-from reimpl.multibody.plant._demands import demand_cc, demand_failed, demand_h, demand_tree_cc
+from reimpl.multibody.plant._demands import demand_cc, demand_failed, demand_h
 from reimpl.multibody.plant._element_names import ElementNames
+from reimpl.multibody.plant._topology import Topology
 from reimpl.multibody.tree import (
     BodyIndex,
     FixedOffsetFrame,
     Frame,
     Joint,
-    JointIndex,
     ModelInstanceIndex,
     QuaternionFloatingJoint,
     RigidBody,
-    WeldJoint,
     world_model_instance,
 )
 from reimpl.systems.framework import (
@@ -110,7 +109,7 @@ _BODY_POSES = "X_WB"
 _FRAME_POSES = "geometry_pose"
 
 
-class MultibodyPlant(ElementNames):
+class MultibodyPlant(Topology, ElementNames):
     """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
 
     Finalize filters collisions, when the plant is a SceneGraph source, by
@@ -135,7 +134,6 @@ class MultibodyPlant(ElementNames):
         self._adjacent_bodies_collision_filters = True
         #: body index -> X_PB given by SetDefaultFreeBodyPose.
         self._default_free_body_poses: dict[int, RigidTransform] = {}
-        self._forest: kinematics.Forest | None = None
         self._geometry_query_port = InputPort(self, "geometry_query", 0)
         self._geometry_pose_port = OutputPort(self, "geometry_pose", 0, self._calc_frame_poses)
         world = RigidBody(_WORLD_BODY_NAME, world_model_instance())
@@ -454,99 +452,6 @@ class MultibodyPlant(ElementNames):
         return GeometrySet(frame_ids=[self._body_frame_ids[b] for b in bodies])
 
     # --------------------------------------------------------------- welds
-    def _edges(self) -> list[graph.Edge]:
-        return [
-            graph.Edge(
-                int(j.parent_body().index()),
-                int(j.child_body().index()),
-                is_weld=j.type_name() == WeldJoint.kTypeName,
-            )
-            for j in self._joints
-        ]
-
-    def GetBodiesWeldedTo(self, body: RigidBody) -> list[RigidBody]:
-        """The bodies of ``body``'s welded subgraph (itself included), by index."""
-        index = int(body.index())
-        for bodies in graph.welded_subgraphs(len(self._bodies), self._edges()):
-            if index in bodies:
-                return [self._bodies[b] for b in bodies]
-        raise NotFoundError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
-
-    def IsAnchored(self, body: RigidBody) -> bool:
-        """Whether only welds join ``body`` to the world (its welded set is the world's)."""
-        self._check_finalized("IsAnchored")
-        return any(b.index() == body.index() for b in self.GetBodiesWeldedTo(self.world_body()))
-
-    def GetFloatingBaseBodies(self) -> set[BodyIndex]:
-        """The bodies Finalize gave a floating joint (a set, as pydrake returns it)."""
-        self._check_finalized("GetFloatingBaseBodies")
-        return {b.index() for b in self._bodies if b.is_floating_base_body()}
-
-    def _unique_base_body(self, model_instance: ModelInstanceIndex) -> RigidBody | None:
-        """The one body of ``model_instance`` the forest joins directly to the world, if one.
-
-        A body welded to the world counts (measured: with one welded and two free
-        bodies in an instance, it has no unique base body); the world instance has none.
-        """
-        if not 0 <= int(model_instance) < len(self._instance_names):
-            demand_tree_cc(
-                4275, "MaybeGetUniqueBaseBodyIndex", "model_instances_.has_element(model_instance)"
-            )
-        if int(model_instance) == int(world_model_instance()):
-            return None
-        assert self._forest is not None
-        bases = [
-            self._bodies[m.outboard]
-            for m in self._forest.mobilizers
-            if m.inboard == graph.WORLD
-            and int(self._bodies[m.outboard].model_instance()) == int(model_instance)
-        ]
-        return bases[0] if len(bases) == 1 else None
-
-    def HasUniqueFloatingBaseBody(self, model_instance: ModelInstanceIndex) -> bool:
-        self._check_finalized("HasUniqueFloatingBaseBody")
-        base = self._unique_base_body(model_instance)
-        return base is not None and base.is_floating_base_body()
-
-    def GetUniqueFloatingBaseBodyOrThrow(self, model_instance: ModelInstanceIndex) -> RigidBody:
-        self._check_finalized("GetUniqueFloatingBaseBodyOrThrow")
-        base = self._unique_base_body(model_instance)
-        name = self.GetModelInstanceName(model_instance)
-        if base is None:
-            raise MultibodyPlantError(f"Model {name} does not have a unique base body.")
-        if not base.is_floating_base_body():
-            raise MultibodyPlantError(
-                f"Model {name} has a unique base body, but it is not a floating base body."
-            )
-        return base
-
-    def GetBodiesKinematicallyAffectedBy(
-        self, joint_indexes: Sequence[JointIndex]
-    ) -> list[BodyIndex]:
-        """The bodies outboard of each joint that moves (welds skipped), sorted, unique."""
-        self._check_finalized("GetBodiesKinematicallyAffectedBy")
-        for joint_index in joint_indexes:
-            if not self.has_joint(joint_index):
-                raise NotFoundError(
-                    f"GetBodiesKinematicallyAffectedBy: No joint with index {int(joint_index)} "
-                    "has been registered or it has been removed."
-                )
-        assert self._forest is not None
-        outboard: dict[int, list[int]] = {}
-        placed_by: dict[int, int] = {}
-        for mobilizer in self._forest.mobilizers:
-            outboard.setdefault(mobilizer.inboard, []).append(mobilizer.outboard)
-            placed_by[mobilizer.joint] = mobilizer.outboard
-        affected: set[int] = set()
-        for joint_index in joint_indexes:
-            if self._joints[int(joint_index)].num_velocities() == 0:
-                continue
-            stack = [placed_by[int(joint_index)]]
-            while stack:
-                body = stack.pop()
-                affected.add(body)
-                stack.extend(outboard.get(body, ()))
-        return [BodyIndex(b) for b in sorted(affected)]
 
     def EvalSceneGraphInspector(self, context: Context) -> Any:
         """The inspector of the QueryObject on the ``geometry_query`` port."""
@@ -622,29 +527,6 @@ class MultibodyPlant(ElementNames):
         return poses
 
     # ---------------------------------------------------------- positions
-    def _lay_out_positions(self) -> None:
-        """Walks the finalized tree: each joint's position and velocity start, and
-        the fixed poses X_PF, X_MC kinematics composes."""
-        edges = [
-            (
-                int(j.parent_body().index()),
-                int(j.child_body().index()),
-                j.num_positions(),
-                j.num_velocities(),
-            )
-            for j in self._joints
-        ]
-        self._forest = kinematics.build_forest(len(self._bodies), edges)
-        for index, joint in enumerate(self._joints):
-            joint._starts = (
-                self._forest.position_start[index],
-                self._forest.velocity_start[index],
-            )
-        self._X_PF = [_pose(j.frame_on_parent().GetFixedPoseInBodyFrame()) for j in self._joints]
-        self._X_MC = [
-            kinematics.invert(_pose(j.frame_on_child().GetFixedPoseInBodyFrame()))
-            for j in self._joints
-        ]
 
     def _joints_in_position_order(self, model_instance: ModelInstanceIndex | None) -> list[Joint]:
         joints = self._joints_of(model_instance)
@@ -931,6 +813,15 @@ class MultibodyPlant(ElementNames):
         return result
 
     # -------------------------------------------------------------- poses
+    def _lay_out_positions(self) -> None:
+        """And the fixed poses X_PF, X_MC kinematics composes."""
+        super()._lay_out_positions()
+        self._X_PF = [_pose(j.frame_on_parent().GetFixedPoseInBodyFrame()) for j in self._joints]
+        self._X_MC = [
+            kinematics.invert(_pose(j.frame_on_child().GetFixedPoseInBodyFrame()))
+            for j in self._joints
+        ]
+
     def _body_poses(self, context: Context) -> list[kinematics.Pose]:
         """X_WB of every body at the context's q (cached while q is unchanged)."""
         q = self._context_positions(context)
