@@ -58,14 +58,14 @@ from reimpl.multibody._default_filters import default_collision_filters
 from reimpl.multibody._errors import (
     FinalizedError,
     MultibodyPlantError,
-    NotFinalizedError,
     NotFoundError,
     TopologyError,
 )
 from reimpl.multibody._mobilizer_frames import mobilizer_frames
 from reimpl.multibody.plant._coulomb_friction import CoulombFriction
-from reimpl.multibody.plant._demands import demand_cc, demand_failed, demand_h
+from reimpl.multibody.plant._demands import demand_cc, demand_failed
 from reimpl.multibody.plant._element_names import ElementNames
+from reimpl.multibody.plant._positions import Positions
 from reimpl.multibody.plant._topology import Topology
 from reimpl.multibody.tree import (
     BodyIndex,
@@ -81,7 +81,6 @@ from reimpl.systems.framework import (
     Context,
     DiagramBuilder,
     InputPort,
-    LeafContext,
     OutputPort,
 )
 
@@ -103,13 +102,12 @@ _WORLD_BODY_NAME = "world"
 #: Joint types a tree may model from child to parent (measured, from Finalize's message).
 _REVERSIBLE_JOINT_TYPES = frozenset({"prismatic", "revolute", "weld"})
 
-#: Where a plant context keeps its positions q and its cached body poses (Context._values).
-_POSITIONS = "q"
+#: Where a plant context keeps its cached body poses and frame poses (Context._values).
 _BODY_POSES = "X_WB"
 _FRAME_POSES = "geometry_pose"
 
 
-class MultibodyPlant(Topology, ElementNames):
+class MultibodyPlant(Positions, Topology, ElementNames):
     """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
 
     Finalize filters collisions, when the plant is a SceneGraph source, by
@@ -142,16 +140,6 @@ class MultibodyPlant(Topology, ElementNames):
     # ---------------------------------------------------------------- state
     def time_step(self) -> float:
         return self._time_step
-
-    def _new_context(self) -> Context:
-        if not self._finalized:
-            raise NotFinalizedError(
-                "MultibodyPlant cannot SetDefaultParameters or CreateDefaultContext until "
-                "after MultibodyPlant::Finalize() has been called."
-            )
-        context = LeafContext._for(self)
-        context._values[_POSITIONS] = self.GetDefaultPositions()
-        return context
 
     # --------------------------------------------------------- SceneGraph
     def RegisterAsSourceForSceneGraph(self, scene_graph: SceneGraph) -> SourceId:
@@ -497,10 +485,6 @@ class MultibodyPlant(Topology, ElementNames):
             declaration.ExcludeBetween(set_A, set_B)
         scene_graph.collision_filter_manager().Apply(declaration=declaration)
 
-    def SetDefaultContext(self, context: Context) -> None:
-        """Resets the context's q to the joints' default positions."""
-        self._context_positions(context)[:] = self.GetDefaultPositions()
-
     # ------------------------------------------------------------- ports
     def get_geometry_query_input_port(self) -> InputPort:
         return self._geometry_query_port
@@ -527,166 +511,6 @@ class MultibodyPlant(Topology, ElementNames):
         return poses
 
     # ---------------------------------------------------------- positions
-
-    def _joints_in_position_order(self, model_instance: ModelInstanceIndex | None) -> list[Joint]:
-        joints = self._joints_of(model_instance)
-        return sorted(joints, key=lambda j: j.position_start())
-
-    def _context_positions(self, context: Context) -> Any:
-        """The q held by ``context`` (mutable), after Drake's context check."""
-        self.ValidateContext(context)
-        return context._values[_POSITIONS]
-
-    def _instance_slices(self, model_instance: ModelInstanceIndex) -> list[slice]:
-        return [
-            slice(j.position_start(), j.position_start() + j.num_positions())
-            for j in self._joints_in_position_order(model_instance)
-        ]
-
-    def GetPositions(self, *args: Any, **kwargs: Any) -> Any:
-        """q, or the positions of one model instance's joints in position order."""
-
-        def all_positions(context: Context) -> Any:
-            return self._context_positions(context).copy()
-
-        def of_instance(context: Context, model_instance: ModelInstanceIndex) -> Any:
-            q = self._context_positions(context)
-            slices = self._instance_slices(model_instance)
-            return np.concatenate([q[s] for s in slices]) if slices else np.zeros(0)
-
-        context = Param("context", instance_of(Context))
-        return dispatch(
-            _OWNER,
-            "GetPositions",
-            (
-                Overload((context,), all_positions),
-                Overload(
-                    (context, Param("model_instance", instance_of(ModelInstanceIndex))),
-                    of_instance,
-                ),
-            ),
-            args,
-            kwargs,
-        )
-
-    def SetPositions(self, *args: Any, **kwargs: Any) -> None:
-        """Sets q, or one model instance's positions; sizes and finiteness as Drake demands."""
-
-        def all_positions(context: Context, q: Any) -> None:
-            positions = self._context_positions(context)
-            values = _positions_vector(q)
-            demand_h(
-                values.size == positions.size, 2896, "SetPositions", "q.size() == num_positions()"
-            )
-            demand_h(bool(np.isfinite(values).all()), 2897, "SetPositions", "AllFinite(q)")
-            positions[:] = values
-
-        def of_instance(context: Context, model_instance: ModelInstanceIndex, q: Any) -> None:
-            positions = self._context_positions(context)
-            values = _positions_vector(q)
-            slices = self._instance_slices(model_instance)
-            size = sum(s.stop - s.start for s in slices)
-            demand_h(
-                values.size == size,
-                2912,
-                "SetPositions",
-                "q_instance.size() == num_positions(model_instance)",
-            )
-            demand_h(bool(np.isfinite(values).all()), 2913, "SetPositions", "AllFinite(q_instance)")
-            first = 0
-            for s in slices:
-                positions[s] = values[first : first + s.stop - s.start]
-                first += s.stop - s.start
-
-        context = Param("context", instance_of(Context))
-        q = Param("q", _is_vector)
-        dispatch(
-            _OWNER,
-            "SetPositions",
-            (
-                Overload((context, q), all_positions),
-                Overload(
-                    (context, Param("model_instance", instance_of(ModelInstanceIndex)), q),
-                    of_instance,
-                ),
-            ),
-            args,
-            kwargs,
-        )
-
-    def GetDefaultPositions(self, *args: Any, **kwargs: Any) -> Any:
-        """The joints' default positions, laid out as q (after Finalize)."""
-
-        def of(model_instance: ModelInstanceIndex | None = None) -> Any:
-            self._check_finalized("GetDefaultPositions")
-            joints = self._joints_in_position_order(model_instance)
-            if model_instance is None:
-                q = np.zeros(self.num_positions())
-                for joint in joints:
-                    start = joint.position_start()
-                    q[start : start + joint.num_positions()] = joint.default_positions()
-                return q
-            parts = [j.default_positions() for j in joints]
-            return np.concatenate(parts) if parts else np.zeros(0)
-
-        return dispatch(
-            _OWNER,
-            "GetDefaultPositions",
-            (
-                Overload((), of),
-                Overload((Param("model_instance", instance_of(ModelInstanceIndex)),), of),
-            ),
-            args,
-            kwargs,
-        )
-
-    def SetDefaultPositions(self, *args: Any, **kwargs: Any) -> None:
-        """Sets every joint's default positions from q (or one instance's, in position order)."""
-
-        def all_positions(q: Any) -> None:
-            self._check_finalized("SetDefaultPositions")
-            values = _positions_vector(q)
-            demand_cc(
-                values.size == self.num_positions(),
-                1881,
-                "SetDefaultPositions",
-                "q.size() == num_positions()",
-            )
-            for joint in self._joints:
-                start = joint.position_start()
-                joint._set_default(0, values[start : start + joint.num_positions()])
-
-        def of_instance(model_instance: ModelInstanceIndex, q_instance: Any) -> None:
-            self._check_finalized("SetDefaultPositions")
-            values = _positions_vector(q_instance)
-            joints = self._joints_in_position_order(model_instance)
-            demand_cc(
-                values.size == sum(j.num_positions() for j in joints),
-                1895,
-                "SetDefaultPositions",
-                "q_instance.size() == num_positions(model_instance)",
-            )
-            first = 0
-            for joint in joints:
-                joint._set_default(0, values[first : first + joint.num_positions()])
-                first += joint.num_positions()
-
-        dispatch(
-            _OWNER,
-            "SetDefaultPositions",
-            (
-                Overload((Param("q", _is_vector),), all_positions),
-                Overload(
-                    (
-                        Param("model_instance", instance_of(ModelInstanceIndex)),
-                        Param("q_instance", _is_vector),
-                    ),
-                    of_instance,
-                ),
-            ),
-            args,
-            kwargs,
-        )
 
     def GetPositionNames(self, *args: Any, **kwargs: Any) -> list[str]:
         """``[instance_]joint[_suffix]`` for each position, in q's order (see ``_names``)."""
@@ -999,20 +823,6 @@ def _pose(X: RigidTransform) -> kinematics.Pose:
 
 def _transform(X: kinematics.Pose) -> RigidTransform:
     return RigidTransform(RotationMatrix(X[0]), X[1])
-
-
-def _is_vector(value: object) -> bool:
-    try:
-        return np.asarray(value, dtype=float).ndim in {1, 2}
-    except (TypeError, ValueError):
-        return False
-
-
-_is_vector.__name__ = "numpy.ndarray[numpy.float64[m, 1]]"
-
-
-def _positions_vector(q: Any) -> Any:
-    return np.asarray(q, dtype=float).reshape(-1)
 
 
 #: Where multibody_plant.cc (pydrake 1.51.1) demands what the public methods check
