@@ -66,13 +66,13 @@ from reimpl.multibody.plant._coulomb_friction import CoulombFriction
 from reimpl.multibody.plant._demands import demand_cc, demand_failed
 from reimpl.multibody.plant._element_names import ElementNames
 from reimpl.multibody.plant._positions import Positions
+from reimpl.multibody.plant._state_names import StateNames
 from reimpl.multibody.plant._topology import Topology
 from reimpl.multibody.tree import (
     BodyIndex,
     FixedOffsetFrame,
     Frame,
     Joint,
-    ModelInstanceIndex,
     QuaternionFloatingJoint,
     RigidBody,
     world_model_instance,
@@ -107,7 +107,7 @@ _BODY_POSES = "X_WB"
 _FRAME_POSES = "geometry_pose"
 
 
-class MultibodyPlant(Positions, Topology, ElementNames):
+class MultibodyPlant(StateNames, Positions, Topology, ElementNames):
     """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
 
     Finalize filters collisions, when the plant is a SceneGraph source, by
@@ -512,130 +512,6 @@ class MultibodyPlant(Positions, Topology, ElementNames):
 
     # ---------------------------------------------------------- positions
 
-    def GetPositionNames(self, *args: Any, **kwargs: Any) -> list[str]:
-        """``[instance_]joint[_suffix]`` for each position, in q's order (see ``_names``)."""
-        return self._dispatch_names("position", args, kwargs)
-
-    def GetVelocityNames(self, *args: Any, **kwargs: Any) -> list[str]:
-        """``[instance_]joint[_suffix]`` for each velocity, in v's order (see ``_names``)."""
-        return self._dispatch_names("velocity", args, kwargs)
-
-    def GetStateNames(self, *args: Any, **kwargs: Any) -> list[str]:
-        """The position names, then the velocity names, always with their suffixes."""
-
-        def names(
-            model_instance: ModelInstanceIndex | None = None,
-            add_model_instance_prefix: bool = True,
-        ) -> list[str]:
-            return [
-                *self._names("position", model_instance, add_model_instance_prefix, True),
-                *self._names("velocity", model_instance, add_model_instance_prefix, True),
-            ]
-
-        flag = instance_of(bool)
-        return dispatch(  # type: ignore[no-any-return]
-            _OWNER,
-            "GetStateNames",
-            (
-                Overload((Param("add_model_instance_prefix", flag, True),), names),
-                Overload(
-                    (
-                        Param("model_instance", instance_of(ModelInstanceIndex)),
-                        Param("add_model_instance_prefix", flag, False),
-                    ),
-                    names,
-                ),
-            ),
-            args,
-            kwargs,
-        )
-
-    def _dispatch_names(self, kind: str, args: Any, kwargs: Any) -> list[str]:
-        """Binds GetPositionNames' or GetVelocityNames' two overloads."""
-
-        def names(
-            model_instance: ModelInstanceIndex | None = None,
-            add_model_instance_prefix: bool = True,
-            always_add_suffix: bool = True,
-        ) -> list[str]:
-            return self._names(kind, model_instance, add_model_instance_prefix, always_add_suffix)
-
-        flag = instance_of(bool)
-        return dispatch(  # type: ignore[no-any-return]
-            _OWNER,
-            f"Get{kind.capitalize()}Names",
-            (
-                Overload(
-                    (
-                        Param("add_model_instance_prefix", flag, True),
-                        Param("always_add_suffix", flag, True),
-                    ),
-                    names,
-                ),
-                Overload(
-                    (
-                        Param("model_instance", instance_of(ModelInstanceIndex)),
-                        Param("add_model_instance_prefix", flag, False),
-                        Param("always_add_suffix", flag, True),
-                    ),
-                    names,
-                ),
-            ),
-            args,
-            kwargs,
-        )
-
-    def _names(
-        self,
-        kind: str,
-        model_instance: ModelInstanceIndex | None,
-        add_model_instance_prefix: bool,
-        always_add_suffix: bool,
-    ) -> list[str]:
-        """Drake's names of q (``kind`` "position") or v ("velocity").
-
-        Joint J's names go at ``start(J) + i``; for one model instance at
-        ``start(J) + i − min_J start(J)`` (the minimum over all the instance's
-        joints, welds included), which Drake demands fit: an instance whose
-        coordinates are not contiguous (a free tree's quaternion after another
-        instance's joints) ends the program (SystemExit, measured on pydrake
-        1.51.1). Without ``always_add_suffix``, a one-coordinate joint's name
-        has no suffix. Welds are skipped.
-        """
-        method = f"Get{kind.capitalize()}Names"
-        self._check_finalized(method)
-        count_of, start_of, suffix_of = _COORDINATES[kind]
-        joints = self._joints_of(model_instance)
-        size = sum(getattr(j, count_of)() for j in joints)
-        offset = 0
-        if model_instance is not None:
-            offset = min(
-                (getattr(j, start_of)() for j in joints), default=getattr(self, count_of)()
-            )
-        result = [""] * size
-        line = _NAMES_DEMAND_LINES[kind]
-        for joint in joints:
-            if joint.num_positions() == 0:
-                continue
-            count, start = getattr(joint, count_of)(), getattr(joint, start_of)()
-            if model_instance is not None:
-                demand_cc(start >= offset, line, method, f"joint.{start_of}() >= {kind}_offset")
-                demand_cc(
-                    start + count - offset <= size,
-                    line + 1,
-                    method,
-                    f"joint.{start_of}() + joint.{count_of}() - {kind}_offset <= ssize(names)",
-                )
-            prefix = ""
-            if add_model_instance_prefix:
-                prefix = f"{self.GetModelInstanceName(joint.model_instance())}_"
-            for i in range(count):
-                name = f"{prefix}{joint.name()}"
-                if always_add_suffix or count > 1:
-                    name = f"{name}_{getattr(joint, suffix_of)(i)}"
-                result[start + i - offset] = name
-        return result
-
     # -------------------------------------------------------------- poses
     def _lay_out_positions(self) -> None:
         """And the fixed poses X_PF, X_MC kinematics composes."""
@@ -835,14 +711,6 @@ _DEMAND_LINES = {
     "RegisterCollisionGeometry": 1139,
     "CollectRegisteredGeometries": 1178,
 }
-#: The accessors of a joint's positions and of its velocities: count, start, suffix.
-_COORDINATES = {
-    "position": ("num_positions", "position_start", "position_suffix"),
-    "velocity": ("num_velocities", "velocity_start", "velocity_suffix"),
-}
-#: Where GetPositionNames and GetVelocityNames demand that a joint's names fit
-#: (multibody_plant.cc, pydrake 1.51.1): this line and the next.
-_NAMES_DEMAND_LINES = {"position": 1954, "velocity": 2021}
 
 
 def _is_rgba(value: object) -> bool:
