@@ -51,9 +51,8 @@ from reimpl.geometry.query_object import FramePoseVector
 from reimpl.geometry.rgba import Rgba
 from reimpl.geometry.scene_graph import SceneGraph
 from reimpl.geometry.shape import Shape
-from reimpl.math import RigidTransform, RotationMatrix
+from reimpl.math import RigidTransform
 from reimpl.multibody import _link_joint_graph as graph
-from reimpl.multibody import kinematics
 from reimpl.multibody._default_filters import default_collision_filters
 from reimpl.multibody._errors import (
     FinalizedError,
@@ -65,13 +64,11 @@ from reimpl.multibody._mobilizer_frames import mobilizer_frames
 from reimpl.multibody.plant._coulomb_friction import CoulombFriction
 from reimpl.multibody.plant._demands import demand_cc, demand_failed
 from reimpl.multibody.plant._element_names import ElementNames
-from reimpl.multibody.plant._positions import Positions
+from reimpl.multibody.plant._poses import Poses, as_rigid_transform
 from reimpl.multibody.plant._state_names import StateNames
-from reimpl.multibody.plant._topology import Topology
 from reimpl.multibody.tree import (
     BodyIndex,
     FixedOffsetFrame,
-    Frame,
     Joint,
     QuaternionFloatingJoint,
     RigidBody,
@@ -102,12 +99,11 @@ _WORLD_BODY_NAME = "world"
 #: Joint types a tree may model from child to parent (measured, from Finalize's message).
 _REVERSIBLE_JOINT_TYPES = frozenset({"prismatic", "revolute", "weld"})
 
-#: Where a plant context keeps its cached body poses and frame poses (Context._values).
-_BODY_POSES = "X_WB"
+#: Where a plant context caches its frame poses (Context._values).
 _FRAME_POSES = "geometry_pose"
 
 
-class MultibodyPlant(StateNames, Positions, Topology, ElementNames):
+class MultibodyPlant(Poses, StateNames, ElementNames):
     """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
 
     Finalize filters collisions, when the plant is a SceneGraph source, by
@@ -130,8 +126,6 @@ class MultibodyPlant(StateNames, Positions, Topology, ElementNames):
         self._collision_geometries: dict[int, list[GeometryId]] = {}
         self._visual_geometries: dict[int, list[GeometryId]] = {}
         self._adjacent_bodies_collision_filters = True
-        #: body index -> X_PB given by SetDefaultFreeBodyPose.
-        self._default_free_body_poses: dict[int, RigidTransform] = {}
         self._geometry_query_port = InputPort(self, "geometry_query", 0)
         self._geometry_pose_port = OutputPort(self, "geometry_pose", 0, self._calc_frame_poses)
         world = RigidBody(_WORLD_BODY_NAME, world_model_instance())
@@ -506,113 +500,13 @@ class MultibodyPlant(StateNames, Positions, Topology, ElementNames):
         world_poses = self._body_poses(context)
         for index, frame_id in self._body_frame_ids.items():
             if index != graph.WORLD:
-                poses.set_value(frame_id, _transform(world_poses[index]))
+                poses.set_value(frame_id, as_rigid_transform(world_poses[index]))
         context._values[_FRAME_POSES] = (key, poses)
         return poses
 
     # ---------------------------------------------------------- positions
 
     # -------------------------------------------------------------- poses
-    def _lay_out_positions(self) -> None:
-        """And the fixed poses X_PF, X_MC kinematics composes."""
-        super()._lay_out_positions()
-        self._X_PF = [_pose(j.frame_on_parent().GetFixedPoseInBodyFrame()) for j in self._joints]
-        self._X_MC = [
-            kinematics.invert(_pose(j.frame_on_child().GetFixedPoseInBodyFrame()))
-            for j in self._joints
-        ]
-
-    def _body_poses(self, context: Context) -> list[kinematics.Pose]:
-        """X_WB of every body at the context's q (cached while q is unchanged)."""
-        q = self._context_positions(context)
-        key = q.tobytes()
-        cached = context._values.get(_BODY_POSES)
-        if cached is not None and cached[0] == key:
-            return cached[1]  # type: ignore[no-any-return]
-        assert self._forest is not None
-        joints = self._joints
-
-        def joint_X_FM(j: int) -> kinematics.Pose:
-            joint = joints[j]
-            start = joint.position_start()
-            return kinematics.X_FM(joint, q[start : start + joint.num_positions()])
-
-        poses = kinematics.body_poses(
-            self._forest, len(self._bodies), joint_X_FM, self._X_PF, self._X_MC
-        )
-        context._values[_BODY_POSES] = (key, poses)
-        return poses
-
-    def EvalBodyPoseInWorld(self, context: Context, body_B: RigidBody) -> RigidTransform:
-        """X_WB at the context's positions."""
-        return _transform(self._body_poses(context)[int(body_B.index())])
-
-    def CalcRelativeTransform(
-        self, context: Context, frame_A: Frame, frame_B: Frame
-    ) -> RigidTransform:
-        """X_AB = X_WA⁻¹ · X_WB."""
-        return frame_A.CalcPoseInWorld(context).inverse() @ frame_B.CalcPoseInWorld(context)
-
-    def CalcRelativeRotationMatrix(
-        self, context: Context, frame_A: Frame, frame_B: Frame
-    ) -> RotationMatrix:
-        """R_AB, the rotation part of X_AB."""
-        return self.CalcRelativeTransform(context, frame_A, frame_B).rotation()
-
-    def _free_body_joint(self, body: RigidBody) -> Any:
-        """The floating joint that places ``body`` (Drake's error if none)."""
-        assert self._forest is not None
-        index = self._forest.inboard_joint(int(body.index()))
-        if index is None or self._joints[index].type_name() not in kinematics.FLOATING_TYPES:
-            raise MultibodyPlantError(f"Body '{body.name()}' is not a free body.")
-        return self._joints[index]
-
-    def SetFreeBodyPose(self, *args: Any, **kwargs: Any) -> None:
-        """Sets X_JpJc, the pose of ``body``'s floating joint (X_WB for a free body).
-
-        N.B. pydrake 1.51.1 also takes the deprecated keyword ``X_PB``.
-        """
-
-        def set_pose(context: Context, body: RigidBody, **pose: RigidTransform) -> None:
-            self._context_positions(context)
-            self._free_body_joint(body).SetPose(context, *pose.values())
-
-        context = Param("context", instance_of(Context))
-        body = Param("body", instance_of(RigidBody))
-        return dispatch(  # type: ignore[no-any-return]
-            _OWNER,
-            "SetFreeBodyPose",
-            tuple(
-                Overload((context, body, Param(name, instance_of(RigidTransform))), set_pose)
-                for name in ("X_JpJc", "X_PB")
-            ),
-            args,
-            kwargs,
-        )
-
-    def GetFreeBodyPose(self, context: Context, body: RigidBody) -> RigidTransform:
-        self._context_positions(context)
-        return self._free_body_joint(body).GetPose(context)  # type: ignore[no-any-return]
-
-    def SetDefaultFreeBodyPose(self, body: RigidBody, X_PB: RigidTransform) -> None:
-        """The default X_WB of a free body: its floating joint's default positions."""
-        self._default_free_body_poses[int(body.index())] = RigidTransform(X_PB)
-        if self._forest is not None:
-            index = self._forest.inboard_joint(int(body.index()))
-            joint: Any = None if index is None else self._joints[index]
-            if joint is not None and joint.type_name() in kinematics.FLOATING_TYPES:
-                joint._set_default_pose(X_PB)
-
-    def GetDefaultFreeBodyPose(self, body: RigidBody) -> RigidTransform:
-        return RigidTransform(
-            self._default_free_body_poses.get(int(body.index()), RigidTransform())
-        )
-
-    def SetDefaultFloatingBaseBodyPose(self, body: RigidBody, X_WB: RigidTransform) -> None:
-        self.SetDefaultFreeBodyPose(body, X_WB)
-
-    def GetDefaultFloatingBaseBodyPose(self, body: RigidBody) -> RigidTransform:
-        return self.GetDefaultFreeBodyPose(body)
 
     # ------------------------------------------------------------ Finalize
     def Finalize(self) -> None:
@@ -691,14 +585,6 @@ class MultibodyPlant(StateNames, Positions, Topology, ElementNames):
         if X_WB is not None:
             joint._set_default_pose(X_WB)
         self.AddJoint(joint)
-
-
-def _pose(X: RigidTransform) -> kinematics.Pose:
-    return X.rotation().matrix(), X.translation()
-
-
-def _transform(X: kinematics.Pose) -> RigidTransform:
-    return RigidTransform(RotationMatrix(X[0]), X[1])
 
 
 #: Where multibody_plant.cc (pydrake 1.51.1) demands what the public methods check
