@@ -26,12 +26,8 @@ need:
 
 from __future__ import annotations
 
-import copy
-from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
-
-import numpy as np
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
@@ -39,35 +35,22 @@ from reimpl.geometry.collision_filter_declaration import (
     CollisionFilterDeclaration,
     CollisionFilterScope,
 )
-from reimpl.geometry.geometry_instance import GeometryFrame, GeometryInstance
-from reimpl.geometry.geometry_roles import (
-    IllustrationProperties,
-    PerceptionProperties,
-    ProximityProperties,
-)
 from reimpl.geometry.geometry_set import GeometrySet
-from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
-from reimpl.geometry.query_object import FramePoseVector
-from reimpl.geometry.rgba import Rgba
 from reimpl.geometry.scene_graph import SceneGraph
-from reimpl.geometry.shape import Shape
-from reimpl.math import RigidTransform
 from reimpl.multibody import _link_joint_graph as graph
 from reimpl.multibody._default_filters import default_collision_filters
 from reimpl.multibody._errors import (
     FinalizedError,
-    MultibodyPlantError,
-    NotFoundError,
     TopologyError,
 )
 from reimpl.multibody._mobilizer_frames import mobilizer_frames
 from reimpl.multibody.plant._coulomb_friction import CoulombFriction
 from reimpl.multibody.plant._demands import demand_cc, demand_failed
 from reimpl.multibody.plant._element_names import ElementNames
-from reimpl.multibody.plant._poses import Poses, as_rigid_transform
+from reimpl.multibody.plant._geometry_ports import GeometryPorts
+from reimpl.multibody.plant._geometry_registration import GeometryRegistration
 from reimpl.multibody.plant._state_names import StateNames
 from reimpl.multibody.tree import (
-    BodyIndex,
     FixedOffsetFrame,
     Joint,
     QuaternionFloatingJoint,
@@ -75,10 +58,7 @@ from reimpl.multibody.tree import (
     world_model_instance,
 )
 from reimpl.systems.framework import (
-    Context,
     DiagramBuilder,
-    InputPort,
-    OutputPort,
 )
 
 __all__ = [
@@ -99,11 +79,8 @@ _WORLD_BODY_NAME = "world"
 #: Joint types a tree may model from child to parent (measured, from Finalize's message).
 _REVERSIBLE_JOINT_TYPES = frozenset({"prismatic", "revolute", "weld"})
 
-#: Where a plant context caches its frame poses (Context._values).
-_FRAME_POSES = "geometry_pose"
 
-
-class MultibodyPlant(Poses, StateNames, ElementNames):
+class MultibodyPlant(GeometryPorts, GeometryRegistration, StateNames, ElementNames):
     """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
 
     Finalize filters collisions, when the plant is a SceneGraph source, by
@@ -116,18 +93,10 @@ class MultibodyPlant(Poses, StateNames, ElementNames):
 
     def __init__(self, time_step: float) -> None:
         super().__init__()
-        demand_cc(
-            time_step >= 0, _DEMAND_LINES["MultibodyPlant"], "MultibodyPlant", "time_step >= 0"
-        )
+        # N.B. pydrake 1.51.1 demands this at multibody_plant.cc:323 (SystemExit, measured).
+        demand_cc(time_step >= 0, 323, "MultibodyPlant", "time_step >= 0")
         self._time_step = float(time_step)
-        self._scene_graph: SceneGraph | None = None
-        self._source_id: SourceId | None = None
-        self._body_frame_ids: dict[int, FrameId] = {}
-        self._collision_geometries: dict[int, list[GeometryId]] = {}
-        self._visual_geometries: dict[int, list[GeometryId]] = {}
         self._adjacent_bodies_collision_filters = True
-        self._geometry_query_port = InputPort(self, "geometry_query", 0)
-        self._geometry_pose_port = OutputPort(self, "geometry_pose", 0, self._calc_frame_poses)
         world = RigidBody(_WORLD_BODY_NAME, world_model_instance())
         self._add_body(world)
 
@@ -136,93 +105,8 @@ class MultibodyPlant(Poses, StateNames, ElementNames):
         return self._time_step
 
     # --------------------------------------------------------- SceneGraph
-    def RegisterAsSourceForSceneGraph(self, scene_graph: SceneGraph) -> SourceId:
-        """Registers this plant (by its name) as a source; every body so far gets a frame.
-
-        Measured on pydrake 1.51.1: a second registration fails its demand before
-        Finalize is checked.
-        """
-        method = "RegisterAsSourceForSceneGraph"
-        demand_cc(
-            self._source_id is None,
-            _DEMAND_LINES[method],
-            method,
-            "!geometry_source_is_registered()",
-        )
-        if self._finalized:
-            raise FinalizedError(
-                "This MultibodyPlant is finalized already; RegisterAsSourceForSceneGraph() "
-                "must be called before Finalize()."
-            )
-        self._source_id = scene_graph.RegisterSource(name=self.get_name())
-        self._scene_graph = scene_graph
-        for body in self._bodies:
-            self._register_body_frame(body)
-        return self._source_id
-
-    def geometry_source_is_registered(self) -> bool:
-        return self._source_id is not None
-
-    def get_source_id(self) -> SourceId | None:
-        return self._source_id
-
-    def _registered_scene_graph(self, method: str) -> tuple[SceneGraph, SourceId]:
-        """The SceneGraph and source id; pydrake's SystemExit (measured) for a public
-        ``method`` of a plant that is no source, DemandFailedError for an internal one."""
-        if self._scene_graph is None or self._source_id is None:
-            condition = "geometry_source_is_registered()"
-            if method in _DEMAND_LINES:
-                demand_cc(False, _DEMAND_LINES[method], method, condition)
-            raise demand_failed(method, condition)
-        return self._scene_graph, self._source_id
-
-    def _register_body_frame(self, body: RigidBody) -> None:
-        index = int(body.index())
-        if self._scene_graph is None or self._source_id is None:
-            return
-        if index == graph.WORLD:
-            self._body_frame_ids[index] = self._scene_graph.world_frame_id()
-            return
-        frame = GeometryFrame(
-            frame_name=self._scoped(body.model_instance(), body.name()),
-            frame_group_id=int(body.model_instance()),
-        )
-        self._body_frame_ids[index] = self._scene_graph.RegisterFrame(
-            source_id=self._source_id, frame=frame
-        )
 
     # ----------------------------------------------------- model instances
-    def _add_body(self, body: RigidBody) -> RigidBody:
-        super()._add_body(body)
-        index = int(body.index())
-        self._collision_geometries[index] = []
-        self._visual_geometries[index] = []
-        self._register_body_frame(body)
-        return body
-
-    def _rename_instance(self, index: int, old: str, name: str) -> None:
-        super()._rename_instance(index, old, name)
-        if self._scene_graph is None or self._source_id is None:
-            return
-        scene_graph = self._scene_graph
-        inspector = scene_graph.model_inspector()
-        old_prefix = f"{old}::"
-
-        def renamed(current: str) -> str | None:
-            return (
-                f"{name}::{current[len(old_prefix) :]}" if current.startswith(old_prefix) else None
-            )
-
-        for frame_id in inspector.FramesForSource(source_id=self._source_id):
-            if inspector.GetFrameGroup(frame_id=frame_id) != index:
-                continue
-            new_name = renamed(inspector.GetName(frame_id=frame_id))
-            if new_name is not None:
-                scene_graph.RenameFrame(frame_id=frame_id, name=new_name)
-            for geometry_id in inspector.GetGeometryIds(GeometrySet(frame_id=frame_id)):
-                new_name = renamed(inspector.GetName(geometry_id=geometry_id))
-                if new_name is not None:
-                    scene_graph.RenameGeometry(geometry_id=geometry_id, name=new_name)
 
     # ---------------------------------------------------------------- bodies
 
@@ -233,220 +117,8 @@ class MultibodyPlant(Poses, StateNames, ElementNames):
     # ------------------------------------------------------- lookup by name
 
     # -------------------------------------------------------------- geometry
-    def RegisterCollisionGeometry(self, *args: Any, **kwargs: Any) -> GeometryId:
-        """Registers ``shape`` on ``body``'s frame with the proximity role.
-
-        N.B. As in Drake, a duplicate name fails at the role assignment, after
-        the geometry was registered: it stays in SceneGraph with no role, and
-        is not listed by GetCollisionGeometriesForBody.
-        """
-
-        def with_properties(
-            body: RigidBody,
-            X_BG: RigidTransform,
-            shape: Shape,
-            name: str,
-            properties: ProximityProperties,
-        ) -> GeometryId:
-            return self._register_collision(
-                body, X_BG, shape, name, ProximityProperties(properties)
-            )
-
-        def with_friction(
-            body: RigidBody,
-            X_BG: RigidTransform,
-            shape: Shape,
-            name: str,
-            coulomb_friction: CoulombFriction,
-        ) -> GeometryId:
-            properties = ProximityProperties()
-            properties.AddProperty("material", "coulomb_friction", coulomb_friction)
-            return self._register_collision(body, X_BG, shape, name, properties)
-
-        placement = (
-            Param("body", instance_of(RigidBody)),
-            Param("X_BG", instance_of(RigidTransform)),
-            Param("shape", instance_of(Shape)),
-            Param("name", instance_of(str)),
-        )
-        return dispatch(  # type: ignore[no-any-return]
-            _OWNER,
-            "RegisterCollisionGeometry",
-            (
-                Overload(
-                    (*placement, Param("properties", instance_of(ProximityProperties))),
-                    with_properties,
-                ),
-                Overload(
-                    (*placement, Param("coulomb_friction", instance_of(CoulombFriction))),
-                    with_friction,
-                ),
-            ),
-            args,
-            kwargs,
-        )
-
-    def _register_collision(
-        self,
-        body: RigidBody,
-        X_BG: RigidTransform,
-        shape: Shape,
-        name: str,
-        properties: ProximityProperties,
-    ) -> GeometryId:
-        self._check_not_finalized("RegisterCollisionGeometry")
-        scene_graph, source_id = self._registered_scene_graph("RegisterCollisionGeometry")
-        instance = GeometryInstance(X_PG=X_BG, shape=shape, name=name)
-        geometry_id = self._register_geometry(body, instance)
-        scene_graph.AssignRole(source_id=source_id, geometry_id=geometry_id, properties=properties)
-        self._collision_geometries[int(body.index())].append(geometry_id)
-        return geometry_id
-
-    def RegisterVisualGeometry(self, *args: Any, **kwargs: Any) -> GeometryId:
-        """Registers geometry on ``body``'s frame with the illustration and perception roles."""
-
-        def with_color(
-            body: RigidBody, X_BG: RigidTransform, shape: Shape, name: str, diffuse_color: Any
-        ) -> GeometryId:
-            # N.B. Measured: an out-of-range color raises before anything registers.
-            r, g, b, a = (float(v) for v in np.asarray(diffuse_color, dtype=float).reshape(4))
-            diffuse = Rgba(r, g, b, a)
-            illustration, perception = IllustrationProperties(), PerceptionProperties()
-            for properties in (illustration, perception):
-                properties.AddProperty("phong", "diffuse", diffuse)
-            instance = GeometryInstance(X_PG=X_BG, shape=shape, name=name)
-            return self._register_visual(body, instance, illustration, perception)
-
-        def with_instance(body: RigidBody, geometry_instance: GeometryInstance) -> GeometryId:
-            """Registers a copy of the instance (same id) with the roles it carries.
-
-            Without any visual role it gets both, with default properties. As in
-            pydrake (which copies the instance), the caller's instance is unchanged.
-            """
-            instance = copy.copy(geometry_instance)
-            if instance.illustration_properties() is None and (
-                instance.perception_properties() is None
-            ):
-                instance.set_illustration_properties(IllustrationProperties())
-                instance.set_perception_properties(PerceptionProperties())
-            return self._register_visual(body, instance, None, None)
-
-        body = Param("body", instance_of(RigidBody))
-        return dispatch(  # type: ignore[no-any-return]
-            _OWNER,
-            "RegisterVisualGeometry",
-            (
-                Overload(
-                    (
-                        body,
-                        Param("X_BG", instance_of(RigidTransform)),
-                        Param("shape", instance_of(Shape)),
-                        Param("name", instance_of(str)),
-                        Param("diffuse_color", _is_rgba),
-                    ),
-                    with_color,
-                ),
-                Overload(
-                    (body, Param("geometry_instance", instance_of(GeometryInstance))),
-                    with_instance,
-                ),
-            ),
-            args,
-            kwargs,
-        )
-
-    def _register_visual(
-        self,
-        body: RigidBody,
-        instance: GeometryInstance,
-        illustration: IllustrationProperties | None,
-        perception: PerceptionProperties | None,
-    ) -> GeometryId:
-        """Registers ``instance`` with its roles, then ``illustration``, then ``perception``.
-
-        N.B. Measured: a duplicate name fails on the illustration role and leaves
-        the geometry registered with no role.
-        """
-        self._check_not_finalized("RegisterVisualGeometry")
-        scene_graph, source_id = self._registered_scene_graph("RegisterVisualGeometry")
-        geometry_id = self._register_geometry(body, instance)
-        for properties in (illustration, perception):
-            if properties is not None:
-                scene_graph.AssignRole(
-                    source_id=source_id, geometry_id=geometry_id, properties=properties
-                )
-        self._visual_geometries[int(body.index())].append(geometry_id)
-        return geometry_id
-
-    def _register_geometry(self, body: RigidBody, instance: GeometryInstance) -> GeometryId:
-        """Registers ``instance`` (renamed to its scoped name) on F(body); no role yet."""
-        scene_graph, source_id = self._registered_scene_graph("RegisterGeometry")
-        if body._plant is not self:
-            raise NotFoundError(f"Body '{body.name()}' does not belong to this MultibodyPlant.")
-        instance.set_name(self._scoped(body.model_instance(), instance.name()))
-        index = int(body.index())
-        if index == graph.WORLD:
-            return scene_graph.RegisterAnchoredGeometry(source_id=source_id, geometry=instance)
-        return scene_graph.RegisterGeometry(
-            source_id=source_id, frame_id=self._body_frame_ids[index], geometry=instance
-        )
-
-    def num_collision_geometries(self) -> int:
-        """How many collision geometries the plant registered, on all its bodies."""
-        return sum(len(ids) for ids in self._collision_geometries.values())
-
-    def GetCollisionGeometriesForBody(self, body: RigidBody) -> list[GeometryId]:
-        return list(self._collision_geometries[int(body.index())])
-
-    def GetVisualGeometriesForBody(self, body: RigidBody) -> list[GeometryId]:
-        return list(self._visual_geometries[int(body.index())])
-
-    def GetBodyFromFrameId(self, frame_id: FrameId, /) -> RigidBody | None:
-        """The body whose SceneGraph frame is ``frame_id``, else None.
-
-        N.B. pydrake binds the parameter without a name: it is positional only.
-        """
-        for index, body_frame_id in self._body_frame_ids.items():
-            if body_frame_id == frame_id:
-                return self._bodies[index]
-        return None
-
-    def GetBodyFrameIdIfExists(self, body_index: BodyIndex) -> FrameId | None:
-        return self._body_frame_ids.get(int(body_index))
-
-    def GetBodyFrameIdOrThrow(self, body_index: BodyIndex) -> FrameId:
-        body = self.get_body(body_index)
-        frame_id = self._body_frame_ids.get(int(body_index))
-        if frame_id is None:
-            raise NotFoundError(f"Body '{body.name()}' does not have geometry registered with it.")
-        return frame_id
-
-    def CollectRegisteredGeometries(self, bodies: Sequence[RigidBody]) -> GeometrySet:
-        """GeometrySet({F(B) : B ∈ bodies}); F(world) is the world frame.
-
-        It holds frames, not geometries, so it resolves when a declaration is
-        applied: F(world) then means every anchored proximity geometry.
-        """
-        self._registered_scene_graph("CollectRegisteredGeometries")
-        return self._collect([int(body.index()) for body in bodies])
-
-    def _collect(self, bodies: Sequence[int]) -> GeometrySet:
-        return GeometrySet(frame_ids=[self._body_frame_ids[b] for b in bodies])
 
     # --------------------------------------------------------------- welds
-
-    def EvalSceneGraphInspector(self, context: Context) -> Any:
-        """The inspector of the QueryObject on the ``geometry_query`` port."""
-        port = self.get_geometry_query_input_port()
-        if not port.HasValue(context):
-            raise MultibodyPlantError(
-                "EvalSceneGraphInspector\n\nThe provided context doesn't show a connection for "
-                "the plant's query input port (see "
-                "MultibodyPlant::get_geometry_query_input_port()). See "
-                "https://drake.mit.edu/troubleshooting.html#mbp-unconnected-query-object-port "
-                "for help."
-            )
-        return port.Eval(context).inspector()
 
     # -------------------------------------------------------------- filters
     def set_adjacent_bodies_collision_filters(self, value: bool) -> None:
@@ -480,29 +152,6 @@ class MultibodyPlant(Poses, StateNames, ElementNames):
         scene_graph.collision_filter_manager().Apply(declaration=declaration)
 
     # ------------------------------------------------------------- ports
-    def get_geometry_query_input_port(self) -> InputPort:
-        return self._geometry_query_port
-
-    def get_geometry_pose_output_port(self) -> OutputPort:
-        return self._geometry_pose_port
-
-    def _calc_frame_poses(self, context: Context) -> FramePoseVector:
-        """{F(B): X_WB} for every body B but the world that has a SceneGraph frame.
-
-        Like Drake's cached output, the same vector is returned while q is
-        unchanged (so SceneGraph need not re-pose).
-        """
-        key = self._context_positions(context).tobytes()
-        cached = context._values.get(_FRAME_POSES)
-        if cached is not None and cached[0] == key:
-            return cached[1]  # type: ignore[no-any-return]
-        poses = FramePoseVector()
-        world_poses = self._body_poses(context)
-        for index, frame_id in self._body_frame_ids.items():
-            if index != graph.WORLD:
-                poses.set_value(frame_id, as_rigid_transform(world_poses[index]))
-        context._values[_FRAME_POSES] = (key, poses)
-        return poses
 
     # ---------------------------------------------------------- positions
 
@@ -585,28 +234,6 @@ class MultibodyPlant(Poses, StateNames, ElementNames):
         if X_WB is not None:
             joint._set_default_pose(X_WB)
         self.AddJoint(joint)
-
-
-#: Where multibody_plant.cc (pydrake 1.51.1) demands what the public methods check
-#: with DRAKE_DEMAND / DRAKE_THROW_UNLESS: a plant that is (not) a SceneGraph source, a
-#: nonnegative time step. pydrake raises SystemExit (measured; 1.58.0 reports other lines).
-_DEMAND_LINES = {
-    "MultibodyPlant": 323,
-    "RegisterAsSourceForSceneGraph": 1036,
-    "RegisterVisualGeometry": 1074,
-    "RegisterCollisionGeometry": 1139,
-    "CollectRegisteredGeometries": 1178,
-}
-
-
-def _is_rgba(value: object) -> bool:
-    try:
-        return np.asarray(value, dtype=float).shape in {(4,), (4, 1)}
-    except (TypeError, ValueError):
-        return False
-
-
-_is_rgba.__name__ = "numpy.ndarray[numpy.float64[4, 1]]"
 
 
 def AddMultibodyPlantSceneGraph(*args: Any, **kwargs: Any) -> tuple[MultibodyPlant, SceneGraph]:
