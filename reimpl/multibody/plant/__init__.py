@@ -31,29 +31,14 @@ from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
-from reimpl.geometry.collision_filter_declaration import (
-    CollisionFilterDeclaration,
-    CollisionFilterScope,
-)
-from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.scene_graph import SceneGraph
-from reimpl.multibody import _link_joint_graph as graph
-from reimpl.multibody._default_filters import default_collision_filters
-from reimpl.multibody._errors import (
-    FinalizedError,
-    TopologyError,
-)
-from reimpl.multibody._mobilizer_frames import mobilizer_frames
 from reimpl.multibody.plant._coulomb_friction import CoulombFriction
-from reimpl.multibody.plant._demands import demand_cc, demand_failed
-from reimpl.multibody.plant._element_names import ElementNames
+from reimpl.multibody.plant._demands import demand_cc
+from reimpl.multibody.plant._finalize import Finalization
 from reimpl.multibody.plant._geometry_ports import GeometryPorts
 from reimpl.multibody.plant._geometry_registration import GeometryRegistration
 from reimpl.multibody.plant._state_names import StateNames
 from reimpl.multibody.tree import (
-    FixedOffsetFrame,
-    Joint,
-    QuaternionFloatingJoint,
     RigidBody,
     world_model_instance,
 )
@@ -76,11 +61,8 @@ _OWNER = "reimpl.multibody.plant.MultibodyPlant"
 
 _WORLD_BODY_NAME = "world"
 
-#: Joint types a tree may model from child to parent (measured, from Finalize's message).
-_REVERSIBLE_JOINT_TYPES = frozenset({"prismatic", "revolute", "weld"})
 
-
-class MultibodyPlant(GeometryPorts, GeometryRegistration, StateNames, ElementNames):
+class MultibodyPlant(Finalization, GeometryPorts, GeometryRegistration, StateNames):
     """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
 
     Finalize filters collisions, when the plant is a SceneGraph source, by
@@ -96,7 +78,6 @@ class MultibodyPlant(GeometryPorts, GeometryRegistration, StateNames, ElementNam
         # N.B. pydrake 1.51.1 demands this at multibody_plant.cc:323 (SystemExit, measured).
         demand_cc(time_step >= 0, 323, "MultibodyPlant", "time_step >= 0")
         self._time_step = float(time_step)
-        self._adjacent_bodies_collision_filters = True
         world = RigidBody(_WORLD_BODY_NAME, world_model_instance())
         self._add_body(world)
 
@@ -121,35 +102,6 @@ class MultibodyPlant(GeometryPorts, GeometryRegistration, StateNames, ElementNam
     # --------------------------------------------------------------- welds
 
     # -------------------------------------------------------------- filters
-    def set_adjacent_bodies_collision_filters(self, value: bool) -> None:
-        """Whether Finalize filters adjacent bodies (rule (a)); welds are filtered anyway."""
-        self._check_not_finalized("set_adjacent_bodies_collision_filters")
-        self._adjacent_bodies_collision_filters = bool(value)
-
-    def get_adjacent_bodies_collision_filters(self) -> bool:
-        return self._adjacent_bodies_collision_filters
-
-    def _exclude_collision_geometries_with_collision_filter_group_pair(
-        self, group_a: tuple[str, GeometrySet], group_b: tuple[str, GeometrySet]
-    ) -> None:
-        """A collision filter group pair, for the parser (C++ only; pydrake binds none).
-
-        Same name: C ← C − {(g, h) : g, h ∈ set_A, g ≠ h} (ExcludeWithin);
-        else C ← C − {(g, h) : g ∈ set_A, h ∈ set_B} (ExcludeBetween). Scope
-        kAll, applied to the SceneGraph model; allowed only before Finalize
-        and with a registered SceneGraph (Drake demands both).
-        """
-        method = "ExcludeCollisionGeometriesWithCollisionFilterGroupPair"
-        if self._finalized:
-            raise demand_failed(method, "!is_finalized()")
-        scene_graph, _ = self._registered_scene_graph(method)
-        (name_a, set_A), (name_b, set_B) = group_a, group_b
-        declaration = CollisionFilterDeclaration(CollisionFilterScope.kAll)
-        if name_a == name_b:
-            declaration.ExcludeWithin(set_A)
-        else:
-            declaration.ExcludeBetween(set_A, set_B)
-        scene_graph.collision_filter_manager().Apply(declaration=declaration)
 
     # ------------------------------------------------------------- ports
 
@@ -158,82 +110,6 @@ class MultibodyPlant(GeometryPorts, GeometryRegistration, StateNames, ElementNam
     # -------------------------------------------------------------- poses
 
     # ------------------------------------------------------------ Finalize
-    def Finalize(self) -> None:
-        """Adds the floating joints, then the default collision filters; seals the model."""
-        if self._finalized:
-            raise FinalizedError("MultibodyTreeSystem::Finalize(): repeated calls not allowed.")
-        n = len(self._bodies)
-        if graph.has_loop(n, self._edges()):
-            raise TopologyError(
-                "The bodies and joints of this system form one or more loops in the system "
-                "graph. Drake currently does not support automatic modeling of such systems; "
-                "however, they can be modeled with some input changes. See "
-                "https://drake.mit.edu/troubleshooting.html#mbp-loops-in-graph for advice on how "
-                "to model systems with loops."
-            )
-        bases = graph.floating_bases(n, self._edges())
-        for index in graph.reversed_joints(n, self._edges(), bases):
-            self._check_reversible(self._joints[index])
-        for base in bases:
-            self._add_floating_joint(self._bodies[base])
-        self._lay_out_positions()
-        self._add_mobilizer_frames()
-        # N.B. Measured: the plant is finalized before its filters are applied, so
-        # an Apply that raises (transient history active) leaves it finalized,
-        # unfiltered, and refusing a second Finalize.
-        self._finalized = True
-        if self._scene_graph is not None:
-            declaration = default_collision_filters(
-                self._joints,
-                graph.welded_subgraphs(n, self._edges()),
-                self._collect,
-                adjacent=self._adjacent_bodies_collision_filters,
-            )
-            self._scene_graph.collision_filter_manager().Apply(declaration=declaration)
-
-    def _add_mobilizer_frames(self) -> None:
-        """The ephemeral frames of ``_mobilizer_frames``, in the order the tree is walked."""
-        assert self._forest is not None
-        for mobilizer in self._forest.mobilizers:
-            joint = self._joints[mobilizer.joint]
-            for suffix, base, X in mobilizer_frames(joint, mobilizer.reversed):
-                instance = joint.model_instance()
-                name = f"{joint.name()}_{base.name()}_{suffix}"
-                while self._named(self._frames, name, instance):
-                    name = f"_{name}"
-                frame = FixedOffsetFrame(name, base, X, instance)
-                frame._ephemeral = True
-                self.AddFrame(frame)
-
-    def _check_reversible(self, joint: Joint) -> None:
-        """Raises Drake's error unless a tree may model ``joint`` from child to parent."""
-        if joint.type_name() in _REVERSIBLE_JOINT_TYPES:
-            return
-        kind = joint.type_name()
-        raise TopologyError(
-            f"MultibodyPlant::Finalize(): parent/child ordering for {kind} joint "
-            f"{joint.name()} in model instance {self.GetModelInstanceName(joint.model_instance())} "
-            "would have to be reversed to make a tree-structured model for this system. "
-            f"Currently Drake does not support reversed {kind} joints. The joints that can be "
-            f"reversed are: {', '.join(sorted(_REVERSIBLE_JOINT_TYPES))}. Reverse the ordering in "
-            "your joint definition so that its parent body is closer to World in the tree."
-        )
-
-    def _add_floating_joint(self, body: RigidBody) -> None:
-        """A QuaternionFloatingJoint world → body, named after the body.
-
-        The name gets leading underscores until no joint of the body's
-        instance has it (measured: ``X`` taken, ``_X`` taken → ``__X``).
-        """
-        name = body.name()
-        while self._named(self._joints, name, body.model_instance()):
-            name = f"_{name}"
-        joint = QuaternionFloatingJoint(name, self.world_frame(), body.body_frame())
-        joint._ephemeral = True
-        X_WB = self._default_free_body_poses.get(int(body.index()))
-        if X_WB is not None:
-            joint._set_default_pose(X_WB)
-        self.AddJoint(joint)
 
 
 def AddMultibodyPlantSceneGraph(*args: Any, **kwargs: Any) -> tuple[MultibodyPlant, SceneGraph]:

@@ -1,0 +1,109 @@
+"""Finalize: what it refuses, the joints and frames it adds, then the filters.
+
+Drake counterpart: MultibodyPlant::Finalize (multibody_plant.cc) and the
+topology it builds (LinkJointGraph, SpanningForest). Measured on pydrake
+1.51.1, in this order:
+
+1. A second Finalize: ``MultibodyTreeSystem::Finalize(): repeated calls not
+   allowed.``; a loop of bodies and joints (welds included): Drake's loop
+   error.
+2. Every tree not joined to the world gets a QuaternionFloatingJoint
+   world → its base body (see _link_joint_graph.floating_bases), named after
+   the body with leading ``_`` until unique in its instance, ephemeral, with
+   the body's default free pose.
+3. A joint a tree meets from its child must be prismatic, revolute or weld.
+4. q and v are laid out (see plant._topology), and each mobilizer gets the
+   frames Drake adds (see _mobilizer_frames).
+5. The plant is finalized, then the default collision filters are applied
+   (see plant._collision_filters): an Apply that raises leaves the plant
+   finalized and unfiltered.
+"""
+
+from __future__ import annotations
+
+from reimpl.multibody import _link_joint_graph as graph
+from reimpl.multibody._errors import FinalizedError, TopologyError
+from reimpl.multibody._mobilizer_frames import mobilizer_frames
+from reimpl.multibody.plant._collision_filters import CollisionFilters
+from reimpl.multibody.plant._element_names import ElementNames
+from reimpl.multibody.plant._poses import Poses
+from reimpl.multibody.tree import FixedOffsetFrame, Joint, QuaternionFloatingJoint, RigidBody
+
+__all__ = ["Finalization"]
+
+#: Joint types a tree may model from child to parent (measured, from Finalize's message).
+_REVERSIBLE_JOINT_TYPES = frozenset({"prismatic", "revolute", "weld"})
+
+
+class Finalization(CollisionFilters, Poses, ElementNames):
+    """Finalize and the steps it takes."""
+
+    def Finalize(self) -> None:
+        """Adds the floating joints, then the default collision filters; seals the model."""
+        if self._finalized:
+            raise FinalizedError("MultibodyTreeSystem::Finalize(): repeated calls not allowed.")
+        n = len(self._bodies)
+        if graph.has_loop(n, self._edges()):
+            raise TopologyError(
+                "The bodies and joints of this system form one or more loops in the system "
+                "graph. Drake currently does not support automatic modeling of such systems; "
+                "however, they can be modeled with some input changes. See "
+                "https://drake.mit.edu/troubleshooting.html#mbp-loops-in-graph for advice on how "
+                "to model systems with loops."
+            )
+        bases = graph.floating_bases(n, self._edges())
+        for index in graph.reversed_joints(n, self._edges(), bases):
+            self._check_reversible(self._joints[index])
+        for base in bases:
+            self._add_floating_joint(self._bodies[base])
+        self._lay_out_positions()
+        self._add_mobilizer_frames()
+        # N.B. Measured: the plant is finalized before its filters are applied, so
+        # an Apply that raises (transient history active) leaves it finalized,
+        # unfiltered, and refusing a second Finalize.
+        self._finalized = True
+        self._apply_default_collision_filters()
+
+    def _check_reversible(self, joint: Joint) -> None:
+        """Raises Drake's error unless a tree may model ``joint`` from child to parent."""
+        if joint.type_name() in _REVERSIBLE_JOINT_TYPES:
+            return
+        kind = joint.type_name()
+        raise TopologyError(
+            f"MultibodyPlant::Finalize(): parent/child ordering for {kind} joint "
+            f"{joint.name()} in model instance {self.GetModelInstanceName(joint.model_instance())} "
+            "would have to be reversed to make a tree-structured model for this system. "
+            f"Currently Drake does not support reversed {kind} joints. The joints that can be "
+            f"reversed are: {', '.join(sorted(_REVERSIBLE_JOINT_TYPES))}. Reverse the ordering in "
+            "your joint definition so that its parent body is closer to World in the tree."
+        )
+
+    def _add_floating_joint(self, body: RigidBody) -> None:
+        """A QuaternionFloatingJoint world → body, named after the body.
+
+        The name gets leading underscores until no joint of the body's
+        instance has it (measured: ``X`` taken, ``_X`` taken → ``__X``).
+        """
+        name = body.name()
+        while self._named(self._joints, name, body.model_instance()):
+            name = f"_{name}"
+        joint = QuaternionFloatingJoint(name, self.world_frame(), body.body_frame())
+        joint._ephemeral = True
+        X_WB = self._default_free_body_poses.get(int(body.index()))
+        if X_WB is not None:
+            joint._set_default_pose(X_WB)
+        self.AddJoint(joint)
+
+    def _add_mobilizer_frames(self) -> None:
+        """The ephemeral frames of ``_mobilizer_frames``, in the order the tree is walked."""
+        assert self._forest is not None
+        for mobilizer in self._forest.mobilizers:
+            joint = self._joints[mobilizer.joint]
+            for suffix, base, X in mobilizer_frames(joint, mobilizer.reversed):
+                instance = joint.model_instance()
+                name = f"{joint.name()}_{base.name()}_{suffix}"
+                while self._named(self._frames, name, instance):
+                    name = f"_{name}"
+                frame = FixedOffsetFrame(name, base, X, instance)
+                frame._ephemeral = True
+                self.AddFrame(frame)
