@@ -24,27 +24,37 @@ need:
   SceneGraph's QueryObject. ``AddMultibodyPlantSceneGraph`` connects both.
 """
 
+# The rooms of this package, each one concept (its docstring states its rule):
+#
+#   _multibody_plant      MultibodyPlant: the bases below, composed; its construction
+#   _phase                building, then finalized: the checks of each phase
+#   _model_instances      model instances and scoped names
+#   _elements             bodies, frames and joints: adding them, by index
+#   _element_names        bodies, frames and joints by name
+#   _topology             welds, floating and base bodies, the forest Finalize builds
+#   _positions            a context's q, the joints' defaults as q
+#   _state_names          the names of q and v
+#   _poses                kinematics: body and frame poses, free bodies
+#   _scene_graph_source   the plant as a SceneGraph source: a frame per body
+#   _geometry_registration  collision and visual geometry
+#   _geometry_ports       the geometry_pose and geometry_query ports
+#   _collision_filters    the filters the plant declares (Finalize's, group pairs)
+#   _finalize             Finalize's steps
+#   _coulomb_friction     CoulombFriction
+#   _diagram              AddMultibodyPlantSceneGraph, MultibodyPlantConfig, ...
+#   _demands              Drake's failed preconditions as pydrake reports them
+
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
-
-from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
-from reimpl.geometry.scene_graph import SceneGraph
 from reimpl.multibody.plant._coulomb_friction import CoulombFriction
-from reimpl.multibody.plant._demands import demand_cc
-from reimpl.multibody.plant._finalize import Finalization
-from reimpl.multibody.plant._geometry_ports import GeometryPorts
-from reimpl.multibody.plant._geometry_registration import GeometryRegistration
-from reimpl.multibody.plant._state_names import StateNames
-from reimpl.multibody.tree import (
-    RigidBody,
-    world_model_instance,
+from reimpl.multibody.plant._diagram import (
+    AddMultibodyPlant,
+    AddMultibodyPlantSceneGraph,
+    ApplyMultibodyPlantConfig,
+    MultibodyPlantConfig,
 )
-from reimpl.systems.framework import (
-    DiagramBuilder,
-)
+from reimpl.multibody.plant._multibody_plant import MultibodyPlant
 
 __all__ = [
     "AddMultibodyPlant",
@@ -57,142 +67,18 @@ __all__ = [
     "MultibodyPlant_",
 ]
 
-_OWNER = "reimpl.multibody.plant.MultibodyPlant"
-
-_WORLD_BODY_NAME = "world"
-
-
-class MultibodyPlant(Finalization, GeometryPorts, GeometryRegistration, StateNames):
-    """Bodies joined by joints, grouped in model instances, with geometry in a SceneGraph.
-
-    Finalize filters collisions, when the plant is a SceneGraph source, by
-    ``C ← C − {(g,h) : frame(g)=F(child), frame(h)=F(parent)}`` for adjacent
-    bodies and ``C ← C − {(g,h) : frame(g), frame(h) ∈ F(S)}`` for each welded
-    set S (see reimpl.multibody._default_filters).
-    """
-
-    _cpp_type = "drake::multibody::MultibodyPlant<double>"
-
-    def __init__(self, time_step: float) -> None:
-        super().__init__()
-        # N.B. pydrake 1.51.1 demands this at multibody_plant.cc:323 (SystemExit, measured).
-        demand_cc(time_step >= 0, 323, "MultibodyPlant", "time_step >= 0")
-        self._time_step = float(time_step)
-        world = RigidBody(_WORLD_BODY_NAME, world_model_instance())
-        self._add_body(world)
-
-    # ---------------------------------------------------------------- state
-    def time_step(self) -> float:
-        return self._time_step
-
-    # --------------------------------------------------------- SceneGraph
-
-    # ----------------------------------------------------- model instances
-
-    # ---------------------------------------------------------------- bodies
-
-    # ---------------------------------------------------------------- frames
-
-    # ---------------------------------------------------------------- joints
-
-    # ------------------------------------------------------- lookup by name
-
-    # -------------------------------------------------------------- geometry
-
-    # --------------------------------------------------------------- welds
-
-    # -------------------------------------------------------------- filters
-
-    # ------------------------------------------------------------- ports
-
-    # ---------------------------------------------------------- positions
-
-    # -------------------------------------------------------------- poses
-
-    # ------------------------------------------------------------ Finalize
-
-
-def AddMultibodyPlantSceneGraph(*args: Any, **kwargs: Any) -> tuple[MultibodyPlant, SceneGraph]:
-    """Adds a plant (given, or made with ``time_step``) and a SceneGraph to ``builder``.
-
-    The plant is named ``plant``, the SceneGraph ``scene_graph``, and the
-    plant is registered as its source; the plant's ``geometry_pose`` output
-    feeds the source's pose port and the SceneGraph's ``query`` output feeds
-    the plant's ``geometry_query`` input. Returns ``(plant, scene_graph)``.
-
-    N.B. pydrake also connects the deformable configuration ports; reimpl has
-    no deformable bodies and does not.
-    """
-
-    def add(
-        builder: DiagramBuilder, plant: MultibodyPlant, scene_graph: SceneGraph | None
-    ) -> tuple[MultibodyPlant, SceneGraph]:
-        if scene_graph is None:
-            scene_graph = SceneGraph()
-            scene_graph.set_name("scene_graph")
-        # N.B. Measured: a given plant is renamed; a given SceneGraph keeps its name.
-        plant.set_name("plant")
-        builder.AddSystem(plant)
-        builder.AddSystem(scene_graph)
-        source_id = plant.RegisterAsSourceForSceneGraph(scene_graph)
-        builder.Connect(
-            plant.get_geometry_pose_output_port(), scene_graph.get_source_pose_port(source_id)
-        )
-        builder.Connect(scene_graph.get_query_output_port(), plant.get_geometry_query_input_port())
-        return plant, scene_graph
-
-    def with_time_step(
-        builder: DiagramBuilder, time_step: float, scene_graph: SceneGraph | None
-    ) -> tuple[MultibodyPlant, SceneGraph]:
-        return add(builder, MultibodyPlant(time_step), scene_graph)
-
-    builder = Param("builder", instance_of(DiagramBuilder))
-    scene_graph = Param("scene_graph", instance_of(SceneGraph), None)
-    return dispatch(  # type: ignore[no-any-return]
-        "reimpl.multibody.plant",
-        "AddMultibodyPlantSceneGraph",
-        (
-            Overload((builder, Param("plant", instance_of(MultibodyPlant)), scene_graph), add),
-            Overload(
-                (builder, Param("time_step", instance_of(int, float)), scene_graph), with_time_step
-            ),
-        ),
-        args,
-        kwargs,
-    )
-
-
-@dataclass(kw_only=True)
-class MultibodyPlantConfig:
-    """Plant settings with pydrake's defaults; reimpl reads ``time_step`` and the flag only."""
-
-    time_step: float = 0.001
-    use_sampled_output_ports: bool = True
-    penetration_allowance: float = 0.001
-    stiction_tolerance: float = 0.0001
-    contact_model: str = "hydroelastic_with_fallback"
-    discrete_contact_approximation: str = "lagged"
-    sap_near_rigid_threshold: float = 1.0
-    contact_surface_representation: str = "polygon"
-    adjacent_bodies_collision_filters: bool = True
-
-
-def ApplyMultibodyPlantConfig(config: MultibodyPlantConfig, plant: MultibodyPlant) -> None:
-    """Applies every setting but ``time_step`` (which only construction sets)."""
-    plant.set_adjacent_bodies_collision_filters(config.adjacent_bodies_collision_filters)
-
-
-def AddMultibodyPlant(
-    config: MultibodyPlantConfig, builder: DiagramBuilder
-) -> tuple[MultibodyPlant, SceneGraph]:
-    """AddMultibodyPlantSceneGraph with ``config.time_step``, then the rest of ``config``."""
-    plant, scene_graph = AddMultibodyPlantSceneGraph(builder=builder, time_step=config.time_step)
-    ApplyMultibodyPlantConfig(config, plant)
-    return plant, scene_graph
-
-
 MultibodyPlant_ = scalar_template("reimpl.multibody.plant", "MultibodyPlant_", MultibodyPlant)
 CoulombFriction_ = scalar_template("reimpl.multibody.plant", "CoulombFriction_", CoulombFriction)
 
-# Public names report this module, as pydrake's report theirs (reprs, pickles, help).
-CoulombFriction.__module__ = __name__
+# Public names report this package as their module, as pydrake's report theirs
+# (reprs, pickles, help).
+for _public in (
+    AddMultibodyPlant,
+    AddMultibodyPlantSceneGraph,
+    ApplyMultibodyPlantConfig,
+    CoulombFriction,
+    MultibodyPlant,
+    MultibodyPlantConfig,
+):
+    _public.__module__ = __name__
+del _public
