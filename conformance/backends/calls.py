@@ -15,6 +15,7 @@ raises anything else, ``SystemExit`` too    ``BackendError``
 returns a value not of type ``returns``     ``BackendError``
 takes longer than ``timeout`` seconds       ``StepTimeoutError`` (a ``BackendError``)
 dies in its own process                     ``BackendCrashError``, naming the step
+breaks the worker protocol (``exec:``)       ``BackendProtocolError``, naming the step
 ==========================================  ===================================
 
 The timeout is a ``SIGALRM`` timer, so it works in the main thread of a
@@ -37,6 +38,7 @@ __all__ = [
     "DEFAULT_STEP_TIMEOUT",
     "BackendCrashError",
     "BackendError",
+    "BackendProtocolError",
     "StepTimeoutError",
     "Where",
     "call",
@@ -69,6 +71,11 @@ class StepTimeoutError(BackendError):
 
 class BackendCrashError(BackendError):
     """The backend's own process died (a signal, or an exit) during a call."""
+
+
+class BackendProtocolError(BackendError):
+    """A backend in its own process answered what the worker protocol does not allow: not
+    JSON, another protocol version, a response that fails its schema (docs/protocol.md)."""
 
 
 class _Alarm:
@@ -172,10 +179,8 @@ def call_function(
             value = function()
     except _PASS_THROUGH:
         raise
-    except StepTimeoutError as exc:  # the deadline's, or a worker's own (naming its call)
-        raise StepTimeoutError(name, _text(where), exc.message) from exc
-    except BackendCrashError as exc:
-        raise BackendCrashError(name, _text(where), exc.message) from exc
+    except BackendError as exc:  # the deadline's, or a worker's own (naming its call)
+        raise type(exc)(name, _text(where), exc.message) from exc
     except BaseException as exc:
         raise BackendError(name, _text(where), f"{method}() raised {_describe(exc)}") from exc
     if not isinstance(value, returns):

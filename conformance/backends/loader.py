@@ -10,6 +10,12 @@ from typing import Any, cast
 
 from conformance.backends.calls import BackendError
 from conformance.backends.environments import DrakeEnvironmentError
+from conformance.backends.exec_backend import (
+    EXEC_PREFIX,
+    ExecBackend,
+    ExecSpecError,
+    exec_spec_command,
+)
 from conformance.backends.releases import ReleaseSpecError, check_release
 from conformance.backends.subprocess_backend import worker_spec_version
 from conformance.protocol import Backend
@@ -116,10 +122,22 @@ def _worker(
         raise BackendLoadError(f"backend {spec!r}: {exc}") from None
 
 
+def _exec(spec: str, step_timeout: float | None) -> Backend:
+    """An ``exec:CMD`` backend: CMD speaks the worker protocol (docs/protocol.md); a
+    command that cannot run, or that breaks the protocol at its ``hello``, is refused."""
+    try:
+        return ExecBackend(exec_spec_command(spec) or [], spec=spec, step_timeout=step_timeout)
+    except ExecSpecError as exc:
+        raise BackendLoadError(f"backend {spec!r}: {exc}") from None
+    except BackendError as exc:
+        raise BackendLoadError(f"backend {spec!r} at {exc.where}: {exc.message}") from None
+
+
 def load_backend(
     spec: str, *, python: Sequence[str] | None = None, step_timeout: float | None = None
 ) -> Backend:
-    """``reimpl``, ``pydrake``, ``drake==X`` (release X in a worker process), or
+    """``reimpl``, ``pydrake``, ``drake==X`` (release X in a worker process),
+    ``exec:CMD ARGS`` (any program that speaks the worker protocol), or
     ``package.module:attribute`` (a class or factory).
 
     For ``drake==X``: ``python`` are the interpreters to choose from (``--python``;
@@ -142,11 +160,13 @@ def load_backend(
         except ReleaseSpecError as exc:
             raise BackendLoadError(f"backend {spec!r}: {exc}") from None
         return _worker(spec, release, python, step_timeout)
+    if spec.startswith(EXEC_PREFIX):
+        return _exec(spec, step_timeout)
     if ":" not in spec:
         known = ", ".join(sorted(BUILTIN_BACKENDS))
         raise BackendLoadError(
             f"unknown backend {spec!r}: use one of {known}, drake==X.Y.Z, "
-            "or package.module:attribute"
+            "exec:'CMD ARGS', or package.module:attribute"
         )
     module_name, _, attribute = spec.partition(":")
     module = _import(spec, module_name)

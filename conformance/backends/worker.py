@@ -1,24 +1,29 @@
 """``python -m conformance.backends.worker``: a backend in its own process, over JSON lines.
 
-Run by ``WorkerBackend`` in an environment holding one Drake release. It
-drives that release's pydrake through ``SceneGraphBackend`` and answers one
-request per line on stdin with one response per line on stdout:
+Run by ``WorkerBackend`` in an environment holding one Drake release (it is
+``drake==X``: an exec backend whose command the harness knows). It drives
+that release's pydrake through ``SceneGraphBackend`` and speaks the worker
+protocol (``docs/protocol.md``, ``backends.wire``): one request per line on
+stdin, one response per line on stdout:
 
-========================================  ==================================
-request                                   response
-========================================  ==================================
-``{"call": "hello"}``                     ``{"value": {"version", "features"}}``
-``{"call": "reset"}``                     ``{"value": null}``
-``{"call": "arm_guards", "ids": [...]}``  ``{"value": null}``
-``{"call": "execute", "command": C}``     ``{"value": Result.to_json()}``
-``{"call": "observe"}``                   ``{"value": Observation.to_json()}``
-``{"call": "steps", "steps": [S, ...]}``  one line per step (a *batch*), each
-                                          ``{"value": {"result", "observation"}}``
-anything that raises                      ``{"raised": "Type: message", "type": "Type"}``
-========================================  ==================================
+==================================================  ==================================
+request                                             response
+==================================================  ==================================
+``{"call": "hello", "protocol": 1}``                ``{"value": {"protocol", "name",
+                                                    "version", "features"}}``
+``{"call": "reset"}``                               ``{"value": null}``
+``{"call": "arm_guards", "ids": [...]}``            ``{"value": null}``
+``{"call": "execute", "command": C}``               ``{"value": Result.to_json()}``
+``{"call": "observe"}``                             ``{"value": Observation.to_json()}``
+``{"call": "steps", "steps": [S, ...]}``            one line per step (a *batch*), each
+                                                    ``{"value": {"result", "observation"}}``
+anything that raises                                ``{"raised": "Type: message",
+                                                    "type": "Type"}``
+==================================================  ==================================
 
-Any request may carry ``"reset": true``: the backend is reset before it is
-answered (the host's ``reset()`` costs no round trip of its own).
+Its name is ``drake==<the release>``. Any request may carry ``"reset": true``:
+the backend is reset before it is answered (the host's ``reset()`` costs no
+round trip of its own).
 
 A batch step ``S`` is ``{"command": C or null, "observe": bool}``: a null
 command runs nothing (a ``check`` step) and answers an empty Result; the
@@ -41,14 +46,17 @@ from typing import Any, TextIO
 
 from conformance.backends.pydrake_api import pydrake_api
 from conformance.backends.scene_graph import SceneGraphBackend
-from conformance.protocol import Command, Result, UnknownNameError
+from conformance.backends.wire import hello_value, raised_answer
+from conformance.protocol import Command, Result
 
 __all__ = ["serve"]
 
 
 def _handlers(backend: SceneGraphBackend) -> dict[str, Callable[[dict[str, Any]], Any]]:
     return {
-        "hello": lambda r: {"version": backend.version(), "features": sorted(backend.features())},
+        "hello": lambda r: hello_value(
+            f"drake=={backend.version()}", backend.version(), backend.features()
+        ),
         "reset": lambda r: backend.reset(),
         "arm_guards": lambda r: backend.arm_guards(frozenset(r["ids"])),
         "execute": lambda r: backend.execute(Command.from_json(r["command"])).to_json(),
@@ -61,13 +69,6 @@ def _step(backend: SceneGraphBackend, step: dict[str, Any]) -> dict[str, Any]:
     result = Result() if command is None else backend.execute(Command.from_json(command))
     observation = backend.observe().to_json() if step["observe"] else None
     return {"result": result.to_json(), "observation": observation}
-
-
-def _raised(exc: Exception) -> dict[str, Any]:
-    raised: dict[str, Any] = {"raised": f"{type(exc).__name__}: {exc}", "type": type(exc).__name__}
-    if isinstance(exc, UnknownNameError):  # the input's fault: the host raises it again
-        raised["unknown"] = [exc.kind, exc.name]
-    return raised
 
 
 def serve(requests: TextIO, responses: TextIO) -> None:
@@ -88,13 +89,13 @@ def serve(requests: TextIO, responses: TextIO) -> None:
                 try:
                     send({"value": _step(backend, step)})
                 except Exception as exc:
-                    send(_raised(exc))
+                    send(raised_answer(exc))
                     break
             continue
         try:
             send({"value": handlers[request["call"]](request)})
         except Exception as exc:
-            send(_raised(exc))
+            send(raised_answer(exc))
 
 
 if __name__ == "__main__":

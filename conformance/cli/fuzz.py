@@ -51,7 +51,7 @@ from conformance.corpus.loader import ScenarioError
 from conformance.engine import HarnessError
 from conformance.fuzz.campaign import Campaign, CampaignResult
 from conformance.fuzz.coverage import campaign_features
-from conformance.fuzz.findings import Findings, Origin, write_finding
+from conformance.fuzz.findings import Findings, Origin, replay_command, write_finding
 from conformance.fuzz.lockstep import LockstepMachine, PosedLockstepMachine
 from conformance.fuzz.model_campaign import MODEL_SWITCHES, ModelCampaign
 from conformance.fuzz.model_coverage import expected_model_features
@@ -137,7 +137,7 @@ def _broken(exc: HarnessError, args: argparse.Namespace, out: TextIO, err: TextI
     if path is not None:
         err.write(
             f"  reproducer: {path} ({len(exc.commands)} commands)\n"
-            f"  replay:     {PROG} run {path} --backend {args.backend} --backend {args.against}\n"
+            f"  replay:     {replay_command(PROG, path, args.backend, args.against)}\n"
         )
     return EXIT_USAGE
 

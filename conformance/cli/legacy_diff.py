@@ -31,7 +31,8 @@ def add_legacy_diff_parser(commands: argparse._SubParsersAction) -> None:  # typ
         "--backend",
         default="pydrake",
         metavar="SPEC",
-        help="the modern side: pydrake (default), reimpl, drake==X.Y.Z or package.module:attribute",
+        help="the modern side: pydrake (default), reimpl, drake==X.Y.Z, exec:'CMD ARGS' "
+        "or package.module:attribute",
     )
     parser.add_argument("--json", action="store_true", help="print JSON instead of text")
     parser.add_argument(

@@ -35,6 +35,7 @@ from conformance.cli.run import PROG, add_run_parser, run_command
 from conformance.fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
 from conformance.fuzz.regression import DEFAULT_REGRESSIONS
 from conformance.grammar.schema import scenario_schema, write_schema
+from conformance.protocol_schemas import write_command_schema
 
 __all__ = ["EXIT_FAILURE", "EXIT_OK", "EXIT_USAGE", "main", "main_console"]
 
@@ -60,7 +61,10 @@ def _parser() -> argparse.ArgumentParser:
         "schema", help="print the scenario schema (its step rules come from the grammar)"
     )
     schema.add_argument(
-        "--write", action="store_true", help="write it to scenarios/scenario.schema.json"
+        "--write",
+        action="store_true",
+        help="write it to scenarios/scenario.schema.json, and the worker protocol's Command "
+        "schema (generated from it) to conformance/protocol_schemas/command.json",
     )
     return parser
 
@@ -100,7 +104,11 @@ def _add_fuzz(commands: Any) -> None:
     fuzz = commands.add_parser(
         "fuzz", help="differential fuzzing of two backends; findings become scenario files"
     )
-    fuzz.add_argument("--backend", default="reimpl", help="the backend under test (reimpl)")
+    fuzz.add_argument(
+        "--backend",
+        default="reimpl",
+        help="the backend under test (reimpl; any SPEC run takes, e.g. exec:'CMD ARGS')",
+    )
     fuzz.add_argument("--against", default="pydrake", help="the reference backend (pydrake)")
     fuzz.add_argument("--seed", type=int, default=0, help="the same seed gives the same run (0)")
     budget = fuzz.add_mutually_exclusive_group()
@@ -186,6 +194,7 @@ def main(
 def _schema(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     if args.write:
         out.write(f"wrote {write_schema()}\n")
+        out.write(f"wrote {write_command_schema()}\n")
     else:
         out.write(json.dumps(scenario_schema(), indent=2) + "\n")
     return EXIT_OK

@@ -82,8 +82,8 @@ def add_models_parser(commands: argparse._SubParsersAction) -> None:  # type: ig
         action="append",
         dest="backends",
         metavar="SPEC",
-        help="an implementation: reimpl, pydrake, drake==X.Y.Z or package.module:attribute "
-        "(repeatable; default: reimpl and pydrake)",
+        help="an implementation: reimpl, pydrake, drake==X.Y.Z, exec:'CMD ARGS' or "
+        "package.module:attribute (repeatable; default: reimpl and pydrake)",
     )
     columns.add_argument(
         "--drake",

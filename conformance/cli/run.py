@@ -48,7 +48,8 @@ def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignor
         action="append",
         dest="backends",
         metavar="SPEC",
-        help="reimpl, pydrake, or package.module:attribute (repeatable; default: both built-ins)",
+        help="reimpl, pydrake, drake==X.Y.Z, exec:'CMD ARGS' (a program that speaks "
+        "docs/protocol.md), or package.module:attribute (repeatable; default: reimpl and pydrake)",
     )
     run.add_argument(
         "--reference",

@@ -30,6 +30,7 @@ final file on its output.
 
 from __future__ import annotations
 
+import shlex
 import tempfile
 import time
 from collections.abc import Callable
@@ -53,6 +54,8 @@ __all__ = [
     "Progress",
     "cross_release",
     "passes_alone",
+    "replay",
+    "replay_command",
     "replays",
     "write_finding",
 ]
@@ -152,9 +155,26 @@ class Progress(Protocol):
 
 def replays(path: Path, backends: list[Backend]) -> bool:
     """True iff the scenario file fails on ``backends`` (the last is the reference)."""
+    return replay(path, backends)[0]
+
+
+def replay(path: Path, backends: list[Backend]) -> tuple[bool, str | None]:
+    """Whether the scenario file fails on ``backends`` (the last is the reference), and why
+    a backend sat a case out (it lacks a feature the file's cases need), if one did."""
     scenario = load_file(path, root=path.parent)
     reference = backends[-1].name
-    return any(not run_case(case, backends, reference=reference).passed for case in scenario.cases)
+    reports = [run_case(case, backends, reference=reference) for case in scenario.cases]
+    skipped = next(
+        (f"{name} {why}" for report in reports for name, why in report.skip_reasons.items()),
+        None,
+    )
+    return any(not report.passed for report in reports), skipped
+
+
+def replay_command(prog: str, path: Path, backend: str, against: str) -> str:
+    """The ``run`` command that replays ``path`` on the two backends, quoted for a shell
+    (an ``exec:'CMD ARGS'`` spec holds spaces)."""
+    return shlex.join([*prog.split(), "run", str(path), "--backend", backend, "--backend", against])
 
 
 def passes_alone(path: Path, backend: Backend) -> bool:
@@ -254,7 +274,8 @@ class Findings:
             self.written.append(origin.out)
             return
         self.written.append(path)
-        reproduced = replays(path, list(self.backends))
+        reproduced, skipped = replay(path, list(self.backends))
+        verdict = "reproduces" if reproduced else f"not replayed: {skipped}" if skipped else _FLAKY
         stopped = (
             f"  shrinking stopped by --shrink-time {origin.shrink_time or 0:g}s: "
             "the sequence may not be minimal\n"
@@ -266,9 +287,8 @@ class Findings:
             f"{len(divergence.trace)} of the {'partly ' if outcome.shrink_stopped else ''}"
             f"shrunk sequence\n  {divergence.detail}\n"
             f"{stopped}  written: {path}\n"
-            f"  replay:  {origin.prog} run {path} "
-            f"--backend {origin.backend} --backend {origin.against}"
-            f"  ({'reproduces' if reproduced else _FLAKY})\n"
+            f"  replay:  {replay_command(origin.prog, path, origin.backend, origin.against)}"
+            f"  ({verdict})\n"
         )
         if self.release is not None:
             alone = [b.name for b in self.backends if not passes_alone(path, b)]

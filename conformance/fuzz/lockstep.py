@@ -82,9 +82,17 @@ from conformance.fuzz.step_draws import (
     scenes_of,
     step_plans,
 )
+from conformance.grammar import features_of
 from conformance.protocol import Backend, Command, Observation, Result, UnknownNameError
 
 __all__ = ["LockstepMachine", "PosedLockstepMachine", "lockstep_machine"]
+
+
+def _supported(operations: dict[str, ops.Operation], shared: frozenset[str]) -> frozenset[str]:
+    """The operations whose grammar ops (``issues``) need only features in ``shared``."""
+    return frozenset(
+        name for name, op in operations.items() if features_of(op.issues or {name}) <= shared
+    )
 
 
 class LockstepMachine(NameBook, RuleBasedStateMachine):
@@ -129,6 +137,9 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         #: How many steps of the trace the last state comparison covered.
         self._agreed_upto = 0
         shared = self.backend.features() & self.reference.features()
+        #: The operations whose grammar ops need only features both backends have (a backend
+        #: with fewer features, such as an ``exec:`` one, is fuzzed on what it has).
+        self.supported = _supported(type(self).OPERATIONS, shared)
         #: Both backends have Activate/Deactivate.
         self.activation = "activation" in shared
         #: Both backends have the posed queries.
@@ -170,7 +181,11 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
 
     def enabled_operations(self) -> list[str]:
         """The operations that can run now and are not switched off (all that can, if none)."""
-        ready = [name for name, op in self.OPERATIONS.items() if op.enabled(self)]
+        ready = [
+            name
+            for name, op in self.OPERATIONS.items()
+            if name in self.supported and op.enabled(self)
+        ]
         if not ready:
             raise HarnessError(f"{type(self).__name__}: no operation is enabled")
         return [name for name in ready if name not in self.switched_off] or ready

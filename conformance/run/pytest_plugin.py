@@ -70,7 +70,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         action="append",
         dest="conformance_backends",
         metavar="NAME",
-        help="backend for scenario items: reimpl, pydrake or module:attribute (repeatable)",
+        help="backend for scenario items: reimpl, pydrake, drake==X.Y.Z, exec:'CMD ARGS' or "
+        "module:attribute (repeatable)",
     )
     parser.addini(
         "conformance_paths",
