@@ -11,6 +11,7 @@ fault                     what the process does
 ``hang``                  stops answering after the first step of batch ``N``
 ``malformed``             answers the first step of batch ``N`` with a Result that has
                           neither ``value`` nor ``error``
+``arm-crash``             exits (status 3) when asked ``arm_guards`` (before the first batch)
 ``protocol-2``            answers ``hello`` with protocol 2
 ``garbage``               answers ``hello`` with a line that is not JSON
 ========================  ==================================================================
@@ -85,7 +86,7 @@ class Fake:
     def faulty_step(self) -> None:
         if self.args.once is not None:
             self.args.once.touch()
-        if self.fault == "crash":
+        if self.fault in ("crash", "arm-crash"):
             os._exit(3)
         if self.fault == "hang":
             time.sleep(3600)
@@ -119,6 +120,8 @@ class Fake:
                 send({"value": self.execute(request["command"]).to_json()})
             elif call == "observe":
                 send({"value": self.backend.observe().to_json()})
+            elif call == "arm_guards" and self.fault == "arm-crash":
+                self.faulty_step()
             else:  # reset, arm_guards
                 send({"value": None})
         except Exception as exc:

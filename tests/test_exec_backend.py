@@ -204,6 +204,23 @@ def test_a_process_that_dies_mid_case_is_a_crash_at_that_step_and_a_new_one_take
     assert process.stderr.count("(a new worker takes over)") == 1
 
 
+def test_a_process_that_dies_arming_guards_is_a_crash_of_the_first_case_not_a_traceback(
+    tmp_path: Path,
+) -> None:
+    """arm_guards travels just before the case's batch, so a death there is that step's."""
+    spec = fake_spec("--fault", "arm-crash", "--once", str(tmp_path / "crashed"))
+    process = cli("run", str(ALLOW_WITHIN), "--backend", spec, "--backend", "pydrake",
+                  "--json", str(tmp_path / "report.json"))  # fmt: skip
+    assert_clean_exit(process, EXIT_FAILURE)
+    report = json.loads((tmp_path / "report.json").read_text())
+    statuses = [case["status"]["fake-reimpl"] for case in report["cases"]]
+    assert statuses == ["crash"] + ["pass"] * (len(statuses) - 1)
+    step = load_file(ALLOW_WITHIN, root=ROOT).cases[0].steps[0]
+    assert report["cases"][0]["aborted"] == (
+        f"backend 'fake-reimpl' at {step.label} ({step.op}): the worker exited with status 3"
+    )
+
+
 def test_a_process_that_hangs_mid_case_is_a_timeout_at_that_step_and_is_replaced(
     tmp_path: Path,
 ) -> None:

@@ -27,7 +27,8 @@ message's JSON Schema (``conformance.protocol_schemas``); one that fails, or
 a line that is not JSON, is a ``BackendProtocolError`` naming the call,
 where the response is wrong and why. ``run_steps`` sends a whole case in one
 request (a *batch*) and reads the answers as they come; ``reset`` travels
-with the next request, so a case costs one round trip. ``transcript``, if a
+with the next request (and changed guards just before it), so a case costs
+one round trip. ``transcript``, if a
 list, receives every request and response as ``(direction, message)``.
 """
 
@@ -139,6 +140,7 @@ class ExecBackend:
         self._reset_pending = False  # reset() was called: the next request resets first
         #: The guards the host armed (None: the backend's own default).
         self._armed: list[str] | None = None
+        self._arm_pending = False  # arm_guards() changed them: sent before the next request
         self._hello: dict[str, Any] | None = None
         weakref.finalize(self, ExecBackend.close, self)
         self._start()
@@ -276,17 +278,22 @@ class ExecBackend:
     def _send(self, request: dict[str, Any], *, fresh: bool = False) -> subprocess.Popen[bytes]:
         """Writes ``request`` to the process; see ``_request`` for ``fresh``.
 
-        A pending reset travels with it (``"reset": true``), and allows a new process.
+        A pending reset travels with it (``"reset": true``), and allows a new process;
+        guards armed since the last request (or for a new process) go first.
         """
         if self._reset_pending and request["call"] != "arm_guards":
             request, fresh, self._reset_pending = {**request, "reset": True}, True, False
         process = self._process
-        if process is None or (fresh and process.poll() is not None):
+        started = process is None or (fresh and process.poll() is not None)
+        if started:
             process = self._start()
-            if self._armed is not None and request["call"] != "arm_guards":
-                self._request({"call": "arm_guards", "ids": self._armed})
-        elif process.poll() is not None:
+        elif process is not None and process.poll() is not None:
             raise self._crash(process, request["call"])
+        assert process is not None
+        if (started or self._arm_pending) and request["call"] != "arm_guards":
+            self._arm_pending = False
+            if self._armed is not None:
+                self._request({"call": "arm_guards", "ids": self._armed})
         try:
             self._write(process, request)
         except BackendCrashError:
@@ -374,11 +381,14 @@ class ExecBackend:
         self._reset_pending = True
 
     def arm_guards(self, ids: frozenset[str]) -> None:
-        """Arms release guards in the process (and in every process that replaces it)."""
-        if sorted(ids) == self._armed and self._process is not None:
-            return  # already armed in the running process
-        self._armed = sorted(ids)
-        self._request({"call": "arm_guards", "ids": self._armed})
+        """Arms release guards in the process (and in every process that replaces it).
+
+        Like ``reset``, the ``arm_guards`` request travels just before the next
+        request, so a process that dies answering it is a crash of that step
+        (recorded, and replaced), not of the engine's setup."""
+        if sorted(ids) != self._armed:
+            self._armed = sorted(ids)
+            self._arm_pending = True
 
     def execute(self, command: Command) -> Result:
         return Result.from_json(self._request({"call": "execute", "command": command.to_json()}))

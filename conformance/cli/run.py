@@ -15,6 +15,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TextIO
 
+from conformance.backends.calls import BackendError
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_backend_options, refuse
@@ -254,5 +255,9 @@ def run_cases(
     except KeyboardInterrupt:
         report.aborted = "interrupted"
         err.write("interrupted: reporting the cases finished so far\n")
+        return EXIT_USAGE
+    except BackendError as exc:  # broke outside a step's call (the engine records those)
+        report.aborted = str(exc)
+        err.write(f"error: {exc}\nstopped; reporting the cases finished so far\n")
         return EXIT_USAGE
     return code
