@@ -30,6 +30,7 @@ from conformance.corpus.loader import default_corpus_root, load_corpus, load_fil
 from conformance.engine import Outcome
 from conformance.fuzz import operations
 from conformance.fuzz.lockstep import _supported
+from conformance.grammar import GRAMMAR, features_of
 from conformance.protocol import Command, ErrorKind
 from conformance.protocol_schemas import (
     command_schema,
@@ -392,3 +393,48 @@ def test_the_pytest_plugin_takes_an_exec_backend() -> None:
     )  # fmt: skip
     assert process.returncode == 0, process.stdout + process.stderr
     assert "2 passed" in process.stdout
+
+
+# ------------------------------------------------------- docs/protocol.md
+PROTOCOL_DOC = REPO / "docs" / "protocol.md"
+
+
+def _doc_section(title: str) -> str:
+    text = PROTOCOL_DOC.read_text(encoding="utf-8")
+    return text.split(f"\n## {title}\n", 1)[1].split("\n## ", 1)[0]
+
+
+def test_the_feature_table_of_the_protocol_doc_is_the_grammars() -> None:
+    rows = [
+        line.split(" | ")
+        for line in _doc_section("Features").splitlines()
+        if line.startswith("| `")
+    ]
+    documented = {
+        feature.strip("| `"): [op.strip("` |") for op in ops.split(", ")] for feature, ops in rows
+    }
+    grammar: dict[str, list[str]] = {}
+    for op in GRAMMAR:
+        (feature,) = features_of([op])
+        grammar.setdefault(feature, []).append(op)
+    assert documented == grammar
+
+
+@needs_node
+def test_the_example_session_of_the_protocol_doc_is_what_the_node_backend_says(
+    at_repo: None,
+) -> None:
+    """The first block of "An example session", line for line, is a fresh run of its case."""
+    block = _doc_section("An example session").split("```\n", 2)[1]
+    documented = [line for line in block.splitlines() if line[:2] in ("> ", "< ")]
+    scenario = load_file(ROOT / "transient" / "history.json", root=ROOT)
+    (case,) = [c for c in scenario.cases if c.description.startswith("an id that was never")]
+    transcript: list[tuple[str, Any]] = []
+    node = ExecBackend(["node", str(NODE_BACKEND)], transcript=transcript)
+    try:
+        report = run_case(case, [node, load_backend("pydrake")], reference="pydrake")
+    finally:
+        node.close()
+    assert report.status == {"node-filter": Outcome.PASS, "pydrake": Outcome.PASS}
+    said = [("> " if way == "request" else "< ") + json.dumps(m) for way, m in transcript]
+    assert said == documented
