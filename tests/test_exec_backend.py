@@ -22,6 +22,8 @@ from typing import Any
 import jsonschema
 import pytest
 
+from conformance.backends import exec_backend
+from conformance.backends.calls import StepTimeoutError
 from conformance.backends.exec_backend import ExecBackend, ExecSpecError, exec_spec_command
 from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.backends.wire import CALLS, PROTOCOL_VERSION
@@ -438,3 +440,15 @@ def test_the_example_session_of_the_protocol_doc_is_what_the_node_backend_says(
     assert report.status == {"node-filter": Outcome.PASS, "pydrake": Outcome.PASS}
     said = [("> " if way == "request" else "< ") + json.dumps(m) for way, m in transcript]
     assert said == documented
+
+
+def test_a_process_that_never_answers_hello_times_out_saying_how_long_it_waited(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A new process's hello may take STARTUP_SECONDS (longer than --step-timeout)."""
+    monkeypatch.setattr(exec_backend, "STARTUP_SECONDS", 1.0)
+    with pytest.raises(StepTimeoutError) as raised:
+        ExecBackend(["sleep", "60"], step_timeout=0.2)
+    assert str(raised.value) == (
+        "backend 'exec:sleep 60' at hello: no answer within 1 s (a new process's hello)"
+    )

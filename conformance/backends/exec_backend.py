@@ -254,9 +254,8 @@ class ExecBackend:
         while (end := self._pending.find(b"\n")) < 0:
             wait = None if limit is None else limit - time.monotonic()
             if wait is not None and (wait <= 0 or not select.select([fd], [], [], wait)[0]):
-                raise StepTimeoutError(
-                    self.name, call, f"no answer within {self.step_timeout:g} s (--step-timeout)"
-                )
+                why = "--step-timeout" if seconds == self.step_timeout else "a new process's hello"
+                raise StepTimeoutError(self.name, call, f"no answer within {seconds:g} s ({why})")
             chunk = os.read(fd, 1 << 16)
             if not chunk:
                 return b""
