@@ -140,7 +140,7 @@ def test_sigterm_mid_shrink_exits_1_with_the_finding_named_on_disk(tmp_path: Pat
 
 
 def test_the_shrunk_file_replaces_the_raw_one(tmp_path: Path) -> None:
-    code, out, err = fuzz("--backend", QUICK, "--shrink-time", "5", "--out", str(tmp_path))
+    code, out, err = fuzz("--backend", QUICK, "--shrink-time", "60", "--out", str(tmp_path))
     assert code == EXIT_FAILURE, out + err
     seen = SEEN.search(err)
     assert seen is not None, err
