@@ -23,6 +23,7 @@ from reimpl.geometry.geometry_roles import (
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FilterId, FrameId, GeometryId, SourceId
 from reimpl.geometry.mesh import Convex, Mesh, MeshSource
+from reimpl.geometry.polygon_surface_mesh import PolygonSurfaceMesh, SurfacePolygon
 from reimpl.geometry.query_object import (
     FramePoseVector,
     FramePoseVector_,
@@ -34,6 +35,8 @@ from reimpl.geometry.query_results import (
     PenetrationAsPointPair_,
     SignedDistancePair,
     SignedDistancePair_,
+    SignedDistanceToPoint,
+    SignedDistanceToPoint_,
 )
 from reimpl.geometry.rgba import Rgba
 from reimpl.geometry.scene_graph import SceneGraph, SceneGraph_
@@ -77,6 +80,7 @@ __all__ = [
     "PenetrationAsPointPair",
     "PenetrationAsPointPair_",
     "PerceptionProperties",
+    "PolygonSurfaceMesh",
     "ProximityProperties",
     "QueryObject",
     "QueryObject_",
@@ -90,6 +94,9 @@ __all__ = [
     "Shape",
     "SignedDistancePair",
     "SignedDistancePair_",
+    "SignedDistanceToPoint",
+    "SignedDistanceToPoint_",
     "SourceId",
     "Sphere",
+    "SurfacePolygon",
 ]

@@ -35,29 +35,41 @@ A visual (illustration or perception) mesh is never read, as on pydrake 1.51.1
   ``Clone``/``copy`` keep the stored text, pickling stores
   ``(MeshSource, scale3)`` and ``{'path': Path}``.
 
-Out of scope, because they need the file's contents: in-memory meshes
-(``InMemoryMesh``, ``mesh_data=``, ``MeshSource(mesh=...)``), ``Convex(points=...)``
-and ``GetConvexHull()`` are absent (AttributeError / TypeError from the overload
-set); ``CalcVolume`` of a Mesh or Convex raises NotImplementedError.
+``GetConvexHull()`` is Drake's hull of the file's vertices (``_convex_hull``), as a
+PolygonSurfaceMesh, made at the first call and kept by the shape and its clones
+(Drake keeps it too); a file Drake cannot hull raises Drake's message
+(``_proximity_mesh``). Its vertices and faces are pydrake's; their numbering is the
+file's order, not Qhull's (see ``_convex_hull``).
+
+Out of scope: in-memory meshes (``InMemoryMesh``, ``mesh_data=``,
+``MeshSource(mesh=...)``) and ``Convex(points=...)`` are absent (AttributeError /
+TypeError from the overload set); ``CalcVolume`` of a Mesh or Convex raises
+NotImplementedError.
 ``MeshSource.in_memory()`` raises pydrake's own error for a path source, the
 only kind reimpl has.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 import pathlib
 import string
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.geometry._convex_hull import Hull, convex_hull
 from reimpl.geometry._drake_text import eigen_row
+from reimpl.geometry._mesh_files import mesh_vertices, obj_triangles, vtk_boundary
 from reimpl.geometry._proximity_mesh import check_proximity_mesh
 from reimpl.geometry._shape_args import is_float, is_path_like, is_vector, path_text
+from reimpl.geometry.polygon_surface_mesh import PolygonSurfaceMesh
+from reimpl.geometry.proximity.distance_to_mesh import MeshBoundary
 from reimpl.geometry.shape import Shape
 
 __all__ = ["Convex", "Mesh", "MeshSource"]
@@ -145,9 +157,11 @@ class MeshSource:
 class _MeshShape(Shape):
     """What Mesh and Convex share: a MeshSource and a per-axis scale."""
 
-    __slots__ = ("_scale3", "_source")
+    __slots__ = ("_boundary", "_hull", "_scale3", "_source")
     _source: MeshSource
     _scale3: tuple[float, float, float]
+    _hull: Hull | None
+    _boundary: MeshBoundary | None
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         def from_file(filename: Any, scale: Any = None, scale3: Any = None) -> None:
@@ -182,7 +196,7 @@ class _MeshShape(Shape):
                 f"{type(self).__name__} |scale| cannot be < 1e-8 on any axis, "
                 f"given {eigen_row((x, y, z))}."
             )
-        self._source, self._scale3 = source, (x, y, z)
+        self._source, self._scale3, self._hull, self._boundary = source, (x, y, z), None, None
 
     def source(self) -> MeshSource:
         return MeshSource(other=self._source)
@@ -198,6 +212,27 @@ class _MeshShape(Shape):
             self._scale3,
             is_convex=isinstance(self, Convex),
         )
+
+    def _hull_data(self) -> Hull:
+        """Drake's convex hull of the file's scaled vertices (made once, then kept)."""
+        if self._hull is None:
+            path = self._source.description()
+            check_proximity_mesh(path, self.extension(), self._scale3, is_convex=True)
+            self._hull = convex_hull(mesh_vertices(path, self.extension(), self._scale3))
+        return self._hull
+
+    def _boundary_data(self) -> MeshBoundary | None:
+        """The surface ComputeSignedDistanceToPoint measures to (Drake's mesh_sdf_data_): a
+        Convex's hull, fanned into triangles; a Mesh's ``.obj`` faces or ``.vtk`` boundary;
+        None for a Mesh's ``.gltf`` (Drake skips it)."""
+        if self._boundary is None:
+            self._boundary = _BOUNDARY[type(self), self.extension()](self)
+        return self._boundary
+
+    def GetConvexHull(self) -> PolygonSurfaceMesh:
+        """The convex hull as a PolygonSurfaceMesh (see the module doc)."""
+        hull = self._hull_data()
+        return PolygonSurfaceMesh(hull.face_data, hull.vertices)
 
     def scale(self) -> float:
         x, y, z = self._scale3
@@ -237,3 +272,33 @@ class Convex(_MeshShape):
     """A mesh that Drake treats as its convex hull, by file path."""
 
     __slots__ = ()
+
+
+def _hull_boundary(shape: _MeshShape) -> MeshBoundary:
+    """Drake's MakeTriangleFromPolygonMesh: each polygon fanned from its first vertex."""
+    hull = shape._hull_data()
+    triangles = [
+        (polygon[0], b, c) for polygon in hull.polygons for b, c in itertools.pairwise(polygon[1:])
+    ]
+    return MeshBoundary(hull.vertices, np.array(triangles, dtype=np.intp))
+
+
+def _obj_boundary(shape: _MeshShape) -> MeshBoundary:
+    """The ``.obj``'s triangles; an odd number of negative scale factors reverses them."""
+    vertices, triangles = obj_triangles(shape._source.description(), shape._scale3)
+    if sum(s < 0 for s in shape._scale3) % 2:
+        triangles = triangles[:, ::-1]
+    return MeshBoundary(vertices, triangles)
+
+
+def _vtk_boundary(shape: _MeshShape) -> MeshBoundary:
+    return MeshBoundary(*vtk_boundary(shape._source.description(), shape._scale3))
+
+
+#: (shape class, extension) → its distance surface; a Mesh's ``.gltf`` has none.
+_BOUNDARY: dict[tuple[type[_MeshShape], str], Callable[[_MeshShape], MeshBoundary | None]] = {
+    **{(Convex, ext): _hull_boundary for ext in (".obj", ".vtk", ".gltf")},
+    (Mesh, ".obj"): _obj_boundary,
+    (Mesh, ".vtk"): _vtk_boundary,
+    (Mesh, ".gltf"): lambda shape: None,
+}

@@ -37,7 +37,11 @@ from typing import Any, NamedTuple, cast
 import fcl
 import numpy as np
 
+from reimpl.geometry._convex_hull import Hull
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
+from reimpl.geometry.mesh import Convex, Mesh
+from reimpl.geometry.proximity.distance_to_mesh import MeshBoundary
+from reimpl.geometry.proximity.distance_to_point import PointDistance
 from reimpl.geometry.proximity.narrowphase import (
     DISTANCE_UNSUPPORTED,
     PairResult,
@@ -45,6 +49,7 @@ from reimpl.geometry.proximity.narrowphase import (
     pair_collides,
     pair_penetration,
     pair_signed_distance,
+    point_signed_distance,
 )
 from reimpl.geometry.proximity.sphere_sphere import sphere_sphere
 from reimpl.geometry.proximity.transforms import EPS, Array, Pose, Vec, compose_poses
@@ -55,37 +60,66 @@ __all__ = ["PairResult", "PoseInput", "ProximityEngine", "WorldPoses", "compose_
 
 # ===================================================================== shapes
 class _ShapeInfo(NamedTuple):
-    """How Drake's engine sees a shape: FCL's name for it, its measures, an FCL geometry."""
+    """How Drake's engine sees a shape: FCL's name for it, its measures, an FCL geometry,
+    and a Mesh's or Convex's convex hull."""
 
     name: str
     measures: tuple[float, ...]
     make: Callable[[], Any]
+    hull: Hull | None = None
+    boundary: Callable[[], MeshBoundary | None] | None = None
+
+
+def _convex(hull: Hull) -> Callable[[], Any]:
+    """An ``fcl.Convex`` of the hull: its vertices, and its polygons as Drake's face data."""
+    return lambda: fcl.Convex(hull.vertices, len(hull.polygons), hull.face_data)
+
+
+def _mesh_info(shape: Mesh | Convex) -> _ShapeInfo:
+    hull = shape._hull_data()
+    return _ShapeInfo("Convex", (), _convex(hull), hull, shape._boundary_data)
+
+
+def _box_info(shape: Box) -> _ShapeInfo:
+    w, d, h = shape.width(), shape.depth(), shape.height()
+    return _ShapeInfo("Box", (w / 2.0, d / 2.0, h / 2.0), lambda: fcl.Box(w, d, h))
+
+
+def _half_space_info(shape: HalfSpace) -> _ShapeInfo:
+    # Drake's half space is {z ≤ 0} in its frame: fcl::Halfspace(n = +z, d = 0).
+    return _ShapeInfo("Halfspace", (), lambda: fcl.Halfspace(np.array([0.0, 0.0, 1.0]), 0.0))
+
+
+#: Shape class → its FCL view (Drake's ProximityEngine::ImplementGeometry): FCL's name,
+#: the measures the narrowphase reads (a box's half sizes, radius and half length), the
+#: FCL geometry; a Mesh or Convex is its convex hull, an FCL Convex.
+_SHAPE_INFO: dict[type[Shape], Callable[[Any], _ShapeInfo]] = {
+    Sphere: lambda s: _ShapeInfo("Sphere", (s.radius(),), lambda: fcl.Sphere(s.radius())),
+    Box: _box_info,
+    Cylinder: lambda s: _ShapeInfo(
+        "Cylinder", (s.radius(), s.length() / 2), lambda: fcl.Cylinder(s.radius(), s.length())
+    ),
+    Capsule: lambda s: _ShapeInfo(
+        "Capsule", (s.radius(), s.length() / 2), lambda: fcl.Capsule(s.radius(), s.length())
+    ),
+    Ellipsoid: lambda s: _ShapeInfo(
+        "Ellipsoid", (s.a(), s.b(), s.c()), lambda: fcl.Ellipsoid(s.a(), s.b(), s.c())
+    ),
+    HalfSpace: _half_space_info,
+    Mesh: _mesh_info,
+    Convex: _mesh_info,
+}
 
 
 def _shape_info(shape: Shape) -> _ShapeInfo:
-    """The FCL view of a supported shape (Drake's ProximityEngine::ImplementGeometry)."""
-    if isinstance(shape, Sphere):
-        r = shape.radius()
-        return _ShapeInfo("Sphere", (r,), lambda: fcl.Sphere(r))
-    if isinstance(shape, Box):
-        w, d, h = shape.width(), shape.depth(), shape.height()
-        return _ShapeInfo("Box", (w / 2.0, d / 2.0, h / 2.0), lambda: fcl.Box(w, d, h))
-    if isinstance(shape, Cylinder):
-        r, length = shape.radius(), shape.length()
-        return _ShapeInfo("Cylinder", (r, length / 2), lambda: fcl.Cylinder(r, length))
-    if isinstance(shape, Capsule):
-        r, length = shape.radius(), shape.length()
-        return _ShapeInfo("Capsule", (r, length / 2), lambda: fcl.Capsule(r, length))
-    if isinstance(shape, Ellipsoid):
-        abc = (shape.a(), shape.b(), shape.c())
-        return _ShapeInfo("Ellipsoid", abc, lambda: fcl.Ellipsoid(*abc))
-    if isinstance(shape, HalfSpace):
-        # Drake's half space is {z ≤ 0} in its frame: fcl::Halfspace(n = +z, d = 0).
-        return _ShapeInfo("Halfspace", (), lambda: fcl.Halfspace(np.array([0.0, 0.0, 1.0]), 0.0))
-    raise NotImplementedError(
-        f"reimpl's proximity engine supports Sphere, Box, Cylinder, Capsule, Ellipsoid and "
-        f"HalfSpace; got {type(shape).__name__}"
-    )
+    """The FCL view of a supported shape (``_SHAPE_INFO``)."""
+    info = _SHAPE_INFO.get(type(shape))
+    if info is None:
+        raise NotImplementedError(
+            f"reimpl's proximity engine supports Sphere, Box, Cylinder, Capsule, Ellipsoid, "
+            f"HalfSpace, Mesh and Convex; got {type(shape).__name__}"
+        )
+    return info(shape)
 
 
 # ============================================================ the geometries
@@ -105,13 +139,27 @@ class _Poses:
 class _Body:
     """One proximity geometry as the engine holds it (a ``narrowphase.PosedGeometry``)."""
 
-    __slots__ = ("dynamic", "frame", "geometry", "id", "kind", "m", "obj", "poses", "slot", "value")
+    __slots__ = (
+        "boundary_of",
+        "dynamic",
+        "frame",
+        "geometry",
+        "hull",
+        "id",
+        "kind",
+        "m",
+        "obj",
+        "poses",
+        "slot",
+        "value",
+    )
 
     def __init__(
         self, slot: int, geometry_id: GeometryId, info: _ShapeInfo, dynamic: bool, poses: _Poses
     ):
         self.slot, self.id, self.dynamic = slot, geometry_id, dynamic
-        self.kind, self.m = info.name, info.measures
+        self.kind, self.m, self.hull = info.name, info.measures, info.hull
+        self.boundary_of = info.boundary
         self.value = geometry_id.get_value()
         self.geometry: Any = info.make()
         self.obj: Any = fcl.CollisionObject(self.geometry, fcl.Transform())
@@ -170,6 +218,19 @@ class _Body:
             (float(a[0]), float(a[1]), float(a[2])),
             (float(b[0]), float(b[1]), float(b[2])),
         )
+
+    def fcl_point_distance(self, p_WQ: Vec) -> tuple[float, Vec]:
+        """FCL's signed distance to a sphere of radius 0 at Q (libccd, tolerance 1e-6) and
+        the witness p_WN on self."""
+        point = fcl.CollisionObject(fcl.Sphere(0.0), fcl.Transform(np.array(p_WQ)))
+        request = fcl.DistanceRequest(enable_nearest_points=True, enable_signed_distance=True)
+        answer = fcl.DistanceResult()
+        fcl.distance(self.fcl_object(), point, request, answer)
+        a = answer.nearest_points[0]
+        return float(answer.min_distance), (float(a[0]), float(a[1]), float(a[2]))
+
+    def boundary(self) -> MeshBoundary | None:
+        return None if self.boundary_of is None else self.boundary_of()
 
 
 # ================================================================== the poses
@@ -431,7 +492,7 @@ class ProximityEngine:
         ]
         if len(same) == 1:
             return same[0]
-        shapes = {(self._bodies[s].kind, self._bodies[s].m) for s in same}
+        shapes = {(self._bodies[s].kind, self._bodies[s].m, id(self._bodies[s].hull)) for s in same}
         if len(shapes) == 1:
             return tuple(same)
         return self._identify_by_geometry(obj, same)
@@ -623,6 +684,37 @@ class ProximityEngine:
 
         self._traverse(check)
         return found[0]
+
+    def point_distances(self, p_WQ: Vec, threshold: float) -> list[tuple[Slot, PointDistance]]:
+        """φ_G(Q) of every geometry FCL's distance traversal from a point at Q visits (it
+        prunes at ``max(threshold, ε/10)``, as Drake's callback sets), dynamic then anchored,
+        kept where ``φ ≤ threshold``; a Mesh Drake skips is left out."""
+        point = fcl.CollisionObject(fcl.Sphere(0.0), fcl.Transform(np.array(p_WQ)))
+        prune = max(threshold, EPS / 10)
+        visited: list[Slot] = []
+        failure: list[BaseException] = []
+
+        def callback(o1: Any, _o2: Any, _data: Any) -> tuple[bool, float]:
+            # FCL hands the tree's object first, the query point second.
+            try:
+                found = self._identify(o1)
+                visited.extend((found,) if isinstance(found, int) else found)
+            except BaseException as error:
+                failure.append(error)
+                return True, prune
+            return False, prune
+
+        self._balance()
+        for manager in (self._dynamic, self._anchored):
+            manager.distance(point, None, callback)
+            if failure:
+                raise failure[0]
+        found = []
+        for slot in dict.fromkeys(visited):
+            distance = point_signed_distance(self._bodies[slot], p_WQ)
+            if distance is not None and distance.distance <= threshold:
+                found.append((slot, distance))
+        return found
 
     def body_id(self, slot: Slot) -> GeometryId:
         return self._bodies[slot].id

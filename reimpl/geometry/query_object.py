@@ -9,7 +9,7 @@ and ordering:
 
 * ComputePointPairPenetration, ComputeSignedDistancePairwiseClosestPoints:
   sorted by (id_A, id_B) values; FindCollisionCandidates: sorted pairs
-  ``(id_lo, id_hi)`` as tuples.
+  ``(id_lo, id_hi)`` as tuples; ComputeSignedDistanceToPoint: sorted by id_G.
 * Every query first validates the pose ports (Drake's FullPoseUpdate), so a
   missing pose raises before an unknown id does (measured).
 """
@@ -31,13 +31,18 @@ from reimpl.common.value import register_value_type
 from reimpl.geometry.geometry_roles import Role
 from reimpl.geometry.geometry_state import WORLD_FRAME_ID
 from reimpl.geometry.identifier import FrameId, GeometryId
+from reimpl.geometry.proximity.transforms import Vec
 from reimpl.geometry.proximity_engine import (
     PairResult,
     PoseInput,
     ProximityEngine,
     compose_poses,
 )
-from reimpl.geometry.query_results import PenetrationAsPointPair, SignedDistancePair
+from reimpl.geometry.query_results import (
+    PenetrationAsPointPair,
+    SignedDistancePair,
+    SignedDistanceToPoint,
+)
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
 from reimpl.math import RigidTransform, RotationMatrix
 
@@ -60,6 +65,7 @@ class _Posed(Protocol):
     def collision_candidates(self) -> list[tuple[GeometryId, GeometryId]]: ...
     def pairwise_distances(self, max_distance: float) -> list[SignedDistancePair]: ...
     def pair_distance(self, id_A: GeometryId, id_B: GeometryId) -> SignedDistancePair: ...
+    def point_distances(self, p_WQ: Vec, threshold: float) -> list[SignedDistanceToPoint]: ...
     def frame_pose_in_world(self, frame_id: FrameId) -> RigidTransform: ...
     def frame_pose_in_parent(self, frame_id: FrameId) -> RigidTransform: ...
     def geometry_pose_in_world(self, geometry_id: GeometryId) -> RigidTransform: ...
@@ -139,6 +145,29 @@ class QueryObject:
                     f"Invoked with: <{_OWNER} object>, {geometry_id_A!r}, {geometry_id_B!r}"
                 )
         return self._posed_of().pair_distance(geometry_id_A, geometry_id_B)
+
+    def ComputeSignedDistanceToPoint(
+        self, p_WQ: Any, threshold: float = math.inf
+    ) -> list[SignedDistanceToPoint]:
+        """φ_G(Q) for every proximity geometry G with ``φ ≤ threshold``, sorted by id_G;
+        filters do not apply (a point has none)."""
+        point = np.asarray(p_WQ, dtype=float) if _is_vector3(p_WQ) else None
+        if (
+            point is None
+            or isinstance(threshold, bool)
+            or not isinstance(threshold, int | float | np.floating)
+        ):
+            raise TypeError(
+                "ComputeSignedDistanceToPoint(): incompatible function arguments. The following "
+                "argument types are supported:\n"
+                f"    1. (self: {_OWNER}, p_WQ: numpy.ndarray[numpy.float64[3, 1]], "
+                "threshold: float = inf) -> list[reimpl.geometry.SignedDistanceToPoint]\n\n"
+                f"Invoked with: <{_OWNER} object>, {p_WQ!r}, {threshold!r}"
+            )
+        p = point.reshape(3)
+        return self._posed_of().point_distances(
+            (float(p[0]), float(p[1]), float(p[2])), float(threshold)
+        )
 
     # -------------------------------------------------------------- poses
     def GetPoseInWorld(self, *args: Any, **kwargs: Any) -> RigidTransform:
@@ -238,6 +267,15 @@ class FramePoseVector:
         other._poses, other._matrices = dict(self._poses), dict(self._matrices)
         other._stamp, other._stacked = self._stamp, self._stacked
         return other
+
+
+def _is_vector3(value: object) -> bool:
+    """Whether pybind11 would take ``value`` as a float 3-vector."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return False
+    return array.shape in {(3,), (3, 1)}
 
 
 def _rigid_transform(R: npt.NDArray[np.float64], p: npt.NDArray[np.float64]) -> RigidTransform:
@@ -413,6 +451,17 @@ class PosedState:
             slots.append(slot)
         r = self.engine.signed_distance(slots[0], slots[1])
         return SignedDistancePair._make(r.id_A, r.id_B, r.value, r.vectors)
+
+    def point_distances(self, p_WQ: Vec, threshold: float) -> list[SignedDistanceToPoint]:
+        """φ_G(Q) of every proximity geometry within ``threshold``, sorted by id (Drake's order)."""
+        found = self.engine.point_distances(p_WQ, threshold)
+        found.sort(key=lambda item: self.engine.body_id(item[0]).get_value())
+        return [
+            SignedDistanceToPoint._make(
+                self.engine.body_id(slot), np.array(d.p_GN), d.distance, np.array(d.grad_W)
+            )
+            for slot, d in found
+        ]
 
     # -------------------------------------------------------------- poses
     def frame_pose_in_world(self, frame_id: FrameId) -> RigidTransform:

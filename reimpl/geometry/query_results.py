@@ -1,13 +1,15 @@
-"""What QueryObject's proximity queries return: PenetrationAsPointPair and SignedDistancePair.
+"""What QueryObject's proximity queries return: PenetrationAsPointPair, SignedDistancePair and
+SignedDistanceToPoint.
 
-Drake counterparts: drake/geometry/query_results/penetration_as_point_pair.h
-and signed_distance_pair.h, as pydrake 1.51.1 binds them (measured):
+Drake counterparts: drake/geometry/query_results/penetration_as_point_pair.h,
+signed_distance_pair.h and signed_distance_to_point.h, as pydrake 1.51.1 binds
+them (measured):
 
 * The constructor takes keyword arguments only, one per attribute
   (``PenetrationAsPointPair(depth=0.5)``); an unknown keyword raises
   AttributeError, a positional argument TypeError.
 * Defaults: ids of value 0 (invalid), ``depth = -1`` for a penetration and
-  ``distance = 0`` for a signed distance, zero vectors.
+  ``distance = 0`` for a signed distance (to a shape or a point), zero vectors.
 * The vector attributes read as numpy copies (changing the array read does
   not change the object) and are written from anything of shape (3,).
 * Neither pickles nor copies (pydrake: "cannot pickle").
@@ -31,6 +33,8 @@ __all__ = [
     "PenetrationAsPointPair_",
     "SignedDistancePair",
     "SignedDistancePair_",
+    "SignedDistanceToPoint",
+    "SignedDistanceToPoint_",
 ]
 
 Vector3 = npt.NDArray[np.float64]
@@ -65,6 +69,7 @@ class _QueryResult:
     """Keyword-only construction, copied vectors, no pickling: the shared pydrake surface."""
 
     __slots__ = ()
+    _ids: ClassVar[tuple[str, ...]] = ("id_A", "id_B")
     _vectors: ClassVar[tuple[str, ...]] = ()
     _scalar: ClassVar[str] = ""
 
@@ -78,7 +83,7 @@ class _QueryResult:
             )
         self._reset()
         for key, value in kwargs.items():
-            if key not in {"id_A", "id_B", self._scalar, *self._vectors}:
+            if key not in {*self._ids, self._scalar, *self._vectors}:
                 raise AttributeError(f"'reimpl.geometry.{name}' object has no attribute '{key}'")
             setattr(self, key, value)
 
@@ -203,7 +208,44 @@ class SignedDistancePair(_QueryResult):
         self._nhat_BA_W = -self._nhat_BA_W
 
 
+class SignedDistanceToPoint(_QueryResult):
+    """φ_G(Q) of a geometry G and a query point Q: ``p_GN`` the nearest point of ∂G (in G's
+    frame), ``distance`` (negative inside G) and ``grad_W``, ∇φ in the world frame."""
+
+    __slots__ = ("_distance", "_grad_W", "_p_GN", "id_G")
+    _ids = ("id_G",)
+    _vectors = ("p_GN", "grad_W")
+    _scalar = "distance"
+
+    id_G: GeometryId
+    _distance: float
+    _p_GN: Vector3
+    _grad_W: Vector3
+
+    distance = _scalar_property("distance")
+    p_GN = _vector_property("p_GN")
+    grad_W = _vector_property("grad_W")
+
+    def _reset(self) -> None:
+        self.id_G = GeometryId._from_value(0)
+        self._distance = 0.0
+        self._p_GN, self._grad_W = np.zeros(3), np.zeros(3)
+
+    @classmethod
+    def _make(
+        cls, id_G: GeometryId, p_GN: Vector3, distance: float, grad_W: Vector3
+    ) -> SignedDistanceToPoint:
+        """A result from the engine (the vectors are kept)."""
+        result = object.__new__(cls)
+        result.id_G, result._distance = id_G, distance
+        result._p_GN, result._grad_W = p_GN, grad_W
+        return result
+
+
 PenetrationAsPointPair_ = scalar_template(
     "reimpl.geometry", "PenetrationAsPointPair_", PenetrationAsPointPair
 )
 SignedDistancePair_ = scalar_template("reimpl.geometry", "SignedDistancePair_", SignedDistancePair)
+SignedDistanceToPoint_ = scalar_template(
+    "reimpl.geometry", "SignedDistanceToPoint_", SignedDistanceToPoint
+)

@@ -119,10 +119,11 @@ IMPORTS = "a module pydrake's package imports into its namespace"
 RENDERING = "rendering (render engines, cameras, images, labels)"
 VISUALIZATION = "visualization (Meshcat, DrakeVisualizer, colors)"
 HYDROELASTIC = "hydroelastic contact (compliant/rigid meshes, contact surfaces)"
-MESH_DATA = "mesh contents (surface and volume meshes, convex hulls): reimpl reads no mesh"
+MESH_DATA = (
+    "mesh contents beyond the convex hull (surface and volume meshes, fields, in-memory meshes)"
+)
 BOUNDING = "bounding volumes (AABB/OBB)"
 DEFORMABLE = "deformable bodies and geometries"
-POINT_DISTANCE = "signed distance to a point (not a collision-filter query)"
 VERSIONING = "geometry version tracking (for render and proximity caches)"
 SHAPE_CHANGE = "changing a registered geometry's shape"
 DYNAMICS = "dynamics: mass, inertia, Jacobians, forces, energies, velocities, accelerations"
@@ -187,9 +188,9 @@ LEFT_OUT: tuple[Entry, ...] = (
     (
         MESH_DATA,
         ("geometry",),
-        "ConvertVolumeToSurfaceMesh InMemoryMesh PolygonSurfaceMesh PolygonSurfaceMeshFieldLinear "
+        "ConvertVolumeToSurfaceMesh InMemoryMesh PolygonSurfaceMeshFieldLinear "
         "PolygonSurfaceMeshFieldLinear_ PolygonSurfaceMesh_ ReadObjToTriangleSurfaceMesh "
-        "RefineVolumeMesh RefineVolumeMeshIntoVtkFileContents SurfacePolygon SurfaceTriangle "
+        "RefineVolumeMesh RefineVolumeMeshIntoVtkFileContents SurfaceTriangle "
         "TriangleSurfaceMesh TriangleSurfaceMeshFieldLinear TriangleSurfaceMeshFieldLinear_ "
         "TriangleSurfaceMesh_ VolumeElement VolumeMesh VolumeMesh_",
         None,
@@ -202,7 +203,6 @@ LEFT_OUT: tuple[Entry, ...] = (
         None,
     ),
     (DEFORMABLE, ("geometry",), "GeometryConfigurationVector GeometryConfigurationVector_", None),
-    (POINT_DISTANCE, ("geometry",), "SignedDistanceToPoint SignedDistanceToPoint_", None),
     (VERSIONING, ("geometry",), "GeometryVersion", None),
     (
         RENDERING,
@@ -232,7 +232,6 @@ LEFT_OUT: tuple[Entry, ...] = (
         "ComputeContactSurfaces ComputeContactSurfacesWithFallback",
         None,
     ),
-    (POINT_DISTANCE, ("geometry.QueryObject",), "ComputeSignedDistanceToPoint", None),
     (DEFORMABLE, ("geometry.QueryObject",), "GetConfigurationsInWorld", None),
     (
         RENDERING,
@@ -240,7 +239,6 @@ LEFT_OUT: tuple[Entry, ...] = (
         "RenderColorImage RenderDepthImage RenderLabelImage",
         None,
     ),
-    (MESH_DATA, ("geometry.Mesh", "geometry.Convex"), "GetConvexHull", None),
     (
         NANOBIND_INT,
         ("geometry.Role",),

@@ -7,9 +7,13 @@ pure Python, step for step as libccd's src/mpr.c and ccd/vec3.h.
 * Each shape is posed by a quaternion (Eigen's ``Quaternion(R)``) and rotated
   as ``ccdQuatRotVec``: ``v + 2·q⃗ × (q⃗ × v + w·v)``; its support point along d
   is FCL's (box corner, capsule cap, cylinder rim, sphere, ellipsoid
-  ``diag(a², b², c²)·d / √(d·diag(a², b², c²)·d)``).
+  ``diag(a², b², c²)·d / √(d·diag(a², b², c²)·d)``, and a convex hull's
+  extreme vertex, ``Convex::findExtremeVertex``: the first vertex of largest
+  ``d·v`` for up to 32 vertices, else a walk from vertex 0 along the hull's
+  edges to any neighbour at least as far, until none is).
 * A support point of A ⊖ B is ``v = s_A(d) − s_B(−d)``; the portal is v0 (the
-  centres' difference) and a face v1 v2 v3 crossed by the ray from v0 to the
+  centres' difference: a shape's centre is its origin, a hull's FCL's interior
+  point, the mean vertex) and a face v1 v2 v3 crossed by the ray from v0 to the
   origin; refinement pushes the face out along its normal until the origin is
   inside or the face moves less than the tolerance.
 * Penetration keeps refining to the tolerance: depth is the origin's distance
@@ -21,7 +25,7 @@ pure Python, step for step as libccd's src/mpr.c and ccd/vec3.h.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 from reimpl.geometry.proximity.transforms import (
     EPS,
@@ -36,7 +40,13 @@ from reimpl.geometry.proximity.transforms import (
     sub,
 )
 
+if TYPE_CHECKING:
+    from reimpl.geometry._convex_hull import Hull
+
 __all__ = ["Convex", "Mpr"]
+
+#: Above this many vertices FCL finds a hull's extreme vertex by walking its edges.
+_EDGE_WALKING_FROM = 32
 
 _ORIGIN: Vec = (0.0, 0.0, 0.0)
 
@@ -111,16 +121,48 @@ def _quat_rotate(q: Quat, v: Vec) -> Vec:
 
 
 class Convex:
-    """One shape as FCL hands it to libccd: position, quaternion, support mapping."""
+    """One shape as FCL hands it to libccd: position, quaternion, centre, support mapping."""
 
-    __slots__ = ("kind", "m", "pos", "rot", "rot_inv")
+    __slots__ = ("center", "hull", "kind", "m", "pos", "rot", "rot_inv", "vertices")
 
-    def __init__(self, kind: str, m: tuple[float, ...], X_WG: Pose) -> None:
-        self.kind, self.m, self.pos = kind, m, X_WG.p
+    def __init__(
+        self, kind: str, m: tuple[float, ...], X_WG: Pose, hull: Hull | None = None
+    ) -> None:
+        self.kind, self.m, self.pos, self.hull = kind, m, X_WG.p, hull
         self.rot = _quaternion(X_WG.R)
         x, y, z, w = self.rot
         inv = 1.0 / (x * x + y * y + z * z + w * w)
         self.rot_inv = (-x * inv, -y * inv, -z * inv, w * inv)
+        self.center = self.pos
+        self.vertices: list[Vec] = []
+        if hull is not None:
+            self.vertices = [(float(v[0]), float(v[1]), float(v[2])) for v in hull.vertices]
+            self.center = add(_quat_rotate(self.rot, hull.interior_point), self.pos)
+
+    def _extreme_vertex(self, d: Vec) -> Vec:
+        """FCL's Convex::findExtremeVertex along ``d`` (in the hull's frame)."""
+        vertices = self.vertices
+        best, value = 0, dot(d, vertices[0])
+        if len(vertices) <= _EDGE_WALKING_FROM:
+            for i in range(1, len(vertices)):
+                candidate = dot(d, vertices[i])
+                if candidate > value:
+                    best, value = i, candidate
+            return vertices[best]
+        assert self.hull is not None
+        neighbors = self.hull.neighbors
+        visited = [False] * len(vertices)
+        searching = True
+        while searching:
+            searching = False
+            for n in neighbors[best]:
+                if visited[n]:
+                    continue
+                visited[n] = True
+                candidate = dot(d, vertices[n])
+                if candidate >= value:
+                    searching, best, value = True, n, candidate
+        return vertices[best]
 
     def support(self, d_W: Vec) -> Vec:
         """The point of the shape farthest along d (FCL's support functions)."""
@@ -145,6 +187,8 @@ class Convex:
                 v = (k * d[0], k * d[1], _ccd_sign(d[2]) * m[1])
         elif kind == "Sphere":
             v = scale(scale(d, m[0]), 1.0 / math.sqrt(dot(d, d)))
+        elif kind == "Convex":
+            v = self._extreme_vertex(d)
         else:  # Ellipsoid
             v = (m[0] * m[0] * d[0], m[1] * m[1] * d[1], m[2] * m[2] * d[2])
             v = scale(v, 1.0 / math.sqrt(dot(v, d)))
@@ -179,7 +223,7 @@ class Mpr:
 
     def _discover(self, portal: list[_Support]) -> int:
         """−1: origin outside; 1: origin on v1; 2: origin on segment v0–v1; 0: portal built."""
-        c1, c2 = self.a.pos, self.b.pos
+        c1, c2 = self.a.center, self.b.center
         v0 = sub(c1, c2)
         if _vec_eq(v0, _ORIGIN):
             v0 = add(v0, (EPS * 10.0, 0.0, 0.0))
