@@ -73,18 +73,20 @@ def format_pairs(pairs: Iterable[Pair]) -> list[str]:
     return sorted(f"{a}-{b}" for a, b in pairs)
 
 
-#: Record fields: the signed number d (depth or distance), the witness points, the normal.
+#: Record fields: the signed number d (depth or distance), the witness points, the normal
+#: (of a pair, ``nhat_BA_W``; of a point's distance, the gradient ``grad_W``).
 _NUMBER_FIELDS = ("depth", "distance")
-_WITNESS_FIELDS = ("p_WCa", "p_WCb", "p_ACa", "p_BCb")
-_NORMAL_FIELD = "nhat_BA_W"
+_WITNESS_FIELDS = ("p_WCa", "p_WCb", "p_ACa", "p_BCb", "p_GN")
+_NORMAL_FIELDS = ("nhat_BA_W", "grad_W")
 #: A record field → the Tolerance attribute it is compared within (tests and reports).
 _FIELD_TOLERANCE: Mapping[str, str] = {
     **dict.fromkeys(_NUMBER_FIELDS, "distance"),
     **dict.fromkeys(_WITNESS_FIELDS, "witness"),
-    _NORMAL_FIELD: "normal",
+    **dict.fromkeys(_NORMAL_FIELDS, "normal"),
 }
-#: Record fields compared exactly.
-_EXACT_FIELDS = ("pair", "shapes")
+#: Record fields compared exactly: a pair's names and shapes, a point distance's geometry and
+#: shape (its row is the shape's against ``point``).
+_EXACT_FIELDS = ("pair", "shapes", "geometry", "shape")
 
 
 def _numbers(value: Any) -> list[float] | None:
@@ -127,7 +129,7 @@ def _record_differences(reference: Any, other: Any) -> Iterator[str]:
     if not isinstance(reference, Mapping) or not isinstance(other, Mapping):
         yield "not a query record"
         return
-    name = "-".join(map(str, reference.get("pair", ())))
+    name = "-".join(map(str, reference.get("pair", (reference.get("geometry"),))))
     if sorted(reference) != sorted(other):
         yield f"{name} fields {sorted(reference)} vs {sorted(other)}"
         return
@@ -135,7 +137,7 @@ def _record_differences(reference: Any, other: Any) -> Iterator[str]:
         if reference.get(key) != other.get(key):
             yield f"{name} {key} {reference.get(key)} vs {other.get(key)}"
             return
-    shapes = reference.get("shapes")
+    shapes = reference.get("shapes", [reference.get("shape"), "point"])
     number = next((key for key in _NUMBER_FIELDS if key in reference), None)
     if not isinstance(shapes, list) or len(shapes) != 2 or number is None:
         yield f"{name} is not a query record of a shape pair"
@@ -153,7 +155,7 @@ def _record_differences(reference: Any, other: Any) -> Iterator[str]:
             yield f"{name} {key} differs"
             continue
         allowed = getattr(row, attribute)
-        if key == _NORMAL_FIELD:
+        if key in _NORMAL_FIELDS:
             gap = _gap(_scaled(d, reference[key]), _scaled(d_other, other[key]))
             what = f"{number}·{key}"
         else:
@@ -168,8 +170,12 @@ def _record_differences(reference: Any, other: Any) -> Iterator[str]:
 def _proximity_differences(reference: Any, other: Any) -> list[str]:
     """Query values: one record, or lists of records with the same pairs (see the module doc)."""
     if isinstance(reference, list) and isinstance(other, list):
-        pairs = [r.get("pair") if isinstance(r, Mapping) else r for r in reference]
-        other_pairs = [o.get("pair") if isinstance(o, Mapping) else o for o in other]
+        pairs = [
+            r.get("pair", r.get("geometry")) if isinstance(r, Mapping) else r for r in reference
+        ]
+        other_pairs = [
+            o.get("pair", o.get("geometry")) if isinstance(o, Mapping) else o for o in other
+        ]
         if pairs != other_pairs:
             return [f"pairs {pairs} vs {other_pairs}"]
         return [d for r, o in zip(reference, other, strict=True) for d in _record_differences(r, o)]

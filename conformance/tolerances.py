@@ -141,7 +141,11 @@ _SHAPES = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "halfspace")
 #: The unordered shape pair → its tolerances. Every pair of the six shapes has a row: the
 #: iterative pairs ``ITERATIVE``, the others (sphere with anything but an ellipsoid, box-box,
 #: anything with a half space) ``CLOSED``; a mesh or convex hull against anything ``HULL``,
-#: against a half space ``HULL_HALFSPACE``.
+#: against a half space ``HULL_HALFSPACE``. A shape against ``point`` (the signed distance
+#: to a point): ``CLOSED``, measured against pydrake 1.51.1 on 11 shapes (meshes of the three
+#: file kinds among them) x 400 points: |Δd| <= 1.7e-16, ‖Δp_GN‖ <= 7.7e-15,
+#: ‖Δgrad_W‖ <= 1.3e-13 (the ellipsoid's through FCL in both, the meshes' through the same
+#: surface).
 TOLERANCES: Mapping[frozenset[str], Tolerance] = {
     **{
         shape_pair(a, b): ITERATIVE
@@ -155,6 +159,7 @@ TOLERANCES: Mapping[frozenset[str], Tolerance] = {
         for hull in ("mesh", "convex")
         for other in (*_SHAPES, "mesh", "convex")
     },
+    **{shape_pair(shape, "point"): CLOSED for shape in (*_SHAPES, "mesh", "convex")},
 }
 
 #: Shapes the table lacks (meshes, convex hulls): the loosest row.

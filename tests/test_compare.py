@@ -185,9 +185,9 @@ def test_bools_and_candidate_lists_stay_exact() -> None:
     assert diff_results(Result(value=1.0), Result(value=1.0 + 1e-15), op="is_active") != []
 
 
-def test_every_pair_of_the_six_shapes_has_a_tolerance_row_with_a_reason() -> None:
-    shapes = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "halfspace")
-    rows = {shape_pair(a, b) for a in shapes for b in shapes}
+def test_every_pair_of_the_eight_shapes_and_every_shape_with_a_point_has_a_row() -> None:
+    shapes = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "halfspace", "mesh", "convex")
+    rows = {shape_pair(a, b) for a in shapes for b in (*shapes, "point")}
     assert rows == set(TOLERANCES)
     assert all(row.reason for row in TOLERANCES.values())
     assert tolerance("sphere", "capsule") is CLOSED

@@ -115,11 +115,13 @@ def test_set_poses_refers_to_each_posed_frame_by_name() -> None:
 
 def test_the_shape_schema_has_one_rule_per_shape_with_its_pydrake_keywords() -> None:
     shape = scenario_schema()["$defs"]["shape"]
-    assert shape["properties"]["type"]["enum"] == list(SHAPES)
+    assert shape["properties"]["type"]["enum"] == [*SHAPES, "mesh", "convex"]
     rules = {rule["if"]["properties"]["type"]["const"]: rule["then"] for rule in shape["allOf"]}
     assert rules["box"]["required"] == ["width", "depth", "height"]
     assert rules["ellipsoid"]["required"] == ["a", "b", "c"]
     assert rules["halfspace"]["required"] == []
+    assert rules["mesh"]["required"] == rules["convex"]["required"] == ["path"]
+    assert sorted(rules["convex"]["properties"]) == ["path", "scale", "type"]
     assert all(rule["additionalProperties"] is False for rule in rules.values())
 
 
@@ -130,6 +132,7 @@ def test_register_geometry_takes_a_shape_and_a_pose_and_the_queries_compare_by_t
         "compute_point_pair_penetration",
         "compute_signed_distance_pairwise_closest_points",
         "compute_signed_distance_pair_closest_points",
+        "compute_signed_distance_to_point",
         "x_wg",
         "x_wf",
         "model_inventory",

@@ -143,6 +143,7 @@ def test_the_query_ops_say_how_their_values_compare() -> None:
         "find_collision_candidates": Comparison.EXACT,
         "compute_signed_distance_pairwise_closest_points": Comparison.PROXIMITY,
         "compute_signed_distance_pair_closest_points": Comparison.PROXIMITY,
+        "compute_signed_distance_to_point": Comparison.PROXIMITY,
         "x_wg": Comparison.POSE,
         "x_wf": Comparison.POSE,
     }

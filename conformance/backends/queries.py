@@ -25,7 +25,13 @@ import math
 from collections.abc import Callable, Iterable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from conformance.grammar.queries import DEFAULT_SHAPE, SHAPE_OF_CLASS, SHAPES
+from conformance.grammar.queries import (
+    DEFAULT_SHAPE,
+    MESH_ROOT,
+    MESH_SHAPES,
+    SHAPE_OF_CLASS,
+    SHAPES,
+)
 from conformance.protocol import MODEL
 
 if TYPE_CHECKING:
@@ -39,6 +45,7 @@ _QUERY_NEEDS: tuple[tuple[str, str | None], ...] = (
     ("QueryObject", "ComputePointPairPenetration"),
     ("QueryObject", "ComputeSignedDistancePairwiseClosestPoints"),
     ("QueryObject", "ComputeSignedDistancePairClosestPoints"),
+    ("QueryObject", "ComputeSignedDistanceToPoint"),
     ("QueryObject", "FindCollisionCandidates"),
     ("QueryObject", "HasCollisions"),
     ("QueryObject", "GetPoseInWorld"),
@@ -107,6 +114,11 @@ class QueryCommands:
     def shape(self, spec: Mapping[str, Any] | None) -> Any:
         """A grammar shape (``grammar.queries.SHAPES``) → the api's Shape (keyword form)."""
         spec = DEFAULT_SHAPE if spec is None else spec
+        mesh_class = MESH_SHAPES.get(spec["type"])
+        if mesh_class is not None:
+            return getattr(self.api.geometry, mesh_class)(
+                filename=str(MESH_ROOT / spec["path"]), scale=float(spec.get("scale", 1.0))
+            )
         class_name, keys = SHAPES[spec["type"]]
         return getattr(self.api.geometry, class_name)(**{key: spec[key] for key in keys})
 
@@ -240,6 +252,25 @@ class QueryCommands:
         record = self._record(query.inspector(), item, fields)
         del context
         return record
+
+    def compute_signed_distance_to_point(self, args: Mapping[str, Any]) -> list[dict[str, Any]]:
+        context, query = self._posed(args)
+        inspector = query.inspector()
+        threshold = float(args.get("threshold", math.inf))
+        records = [
+            {
+                "geometry": self._name(item.id_G),
+                "shape": self._shape_name(inspector, item.id_G),
+                "distance": float(item.distance),
+                "p_GN": _vector(item.p_GN),
+                "grad_W": _vector(item.grad_W),
+            }
+            for item in query.ComputeSignedDistanceToPoint(
+                p_WQ=[float(x) for x in args["p_WQ"]], threshold=threshold
+            )
+        ]
+        del context
+        return sorted(records, key=lambda r: r["geometry"])
 
     def x_wg(self, args: Mapping[str, Any]) -> dict[str, Any]:
         geometry_id = self._geometry(args["geometry"])

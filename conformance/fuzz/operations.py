@@ -786,6 +786,7 @@ _DRAWN_KINDS: dict[ArgKind, st.SearchStrategy[Any]] = {
     ArgKind.SHAPE: cs.shapes(),
     ArgKind.POSE: cs.poses(),
     ArgKind.POSES: cs.poses(),
+    ArgKind.POINT: cs.points(),
 }
 #: A ``max_distance`` read from a pick of 128 or more (below: left out, infinite).
 _DISTANCES = (0.0, 1e-3, 0.01, 0.1, 0.5)
@@ -819,6 +820,7 @@ _READ: dict[ArgKind, Callable[[Machine, Arg, int, Iterator[Any]], Any]] = {
     ArgKind.POSE: lambda m, a, p, t: next(t) or None,
     ArgKind.POSES: lambda m, a, p, t: _frame_poses(m, p, next(t)),
     ArgKind.DISTANCE: lambda m, a, p, t: _distance(p),
+    ArgKind.POINT: lambda m, a, p, t: next(t),
 }
 
 #: Features an op may need beyond SceneGraph's core, and whether both backends have it.

@@ -54,6 +54,7 @@ __all__ = [
     "FOREIGN",
     "GAP_SCALES",
     "HALFSPACE_SHARE",
+    "MESH_FILES",
     "PICK_RANGE",
     "POSED_HALFSPACE_SHARE",
     "POSE_BYTES",
@@ -79,6 +80,8 @@ __all__ = [
     "geometry_sets",
     "pick",
     "picks",
+    "point_of",
+    "points",
     "pose_of",
     "poses",
     "role_list",
@@ -194,8 +197,22 @@ def roles(*, proximity: bool | None = None) -> st.SearchStrategy[list[str]]:
 
 
 # ------------------------------------------------------- shapes, poses, touches
-#: The shapes of the grammar's SHAPE, in Drake's order of ``shape_specification.h``.
-SHAPE_TYPES = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "halfspace")
+#: The shapes of the grammar's SHAPE, in Drake's order of ``shape_specification.h``, then the
+#: mesh files (``MESH_FILES``) as a Mesh and as a Convex.
+SHAPE_TYPES = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "halfspace", "mesh", "convex")
+#: The bounded shapes a drawn byte picks among (the half space is drawn apart).
+_DRAWN_TYPES = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "mesh", "convex")
+#: The mesh files a drawn mesh or convex shape names (below the corpus folder): small
+#: irregular hulls, generated so that no face is parallel to a coordinate plane or to another
+#: face (a support point is then unique for the directions the queries meet), an .obj of 8
+#: and one of 12 vertices and a .vtk of two tetrahedra.
+MESH_FILES = (
+    "queries/meshes/poly8.obj",
+    "queries/meshes/poly12.obj",
+    "queries/meshes/two_tets.vtk",
+)
+#: A drawn mesh's scale: 0.8 + byte % 5 / 10 (0.8 to 1.2).
+_MESH_SCALES = 5
 
 #: Bytes of a drawn shape: the type, then one per dimension.
 SHAPE_BYTES = 4
@@ -228,6 +245,8 @@ _DIMENSIONS: dict[str, tuple[tuple[str, tuple[int, int]], ...]] = {
     "capsule": (("radius", _RADIUS), ("length", _LENGTH)),
     "ellipsoid": (("a", _RADIUS), ("b", _RADIUS), ("c", _RADIUS)),
     "halfspace": (),
+    "mesh": (),
+    "convex": (),
 }
 #: A pose's steps: 5 mm (±0.64 m) and 0.025 rad (±3.2 rad). Dividing by a whole
 #: number of steps keeps the values short in a written case (0.575, not 0.5750000000000001).
@@ -248,16 +267,24 @@ def _signed(byte: int) -> int:
 def shape_of(data: bytes, *, halfspace: int = HALFSPACE_SHARE) -> dict[str, Any]:
     """The SHAPE that ``SHAPE_BYTES`` bytes stand for.
 
-    Byte 0 is the type: ``SHAPE_TYPES[byte % 5]`` (0, the sphere, is where it
-    shrinks), or a HalfSpace one time in ``halfspace`` (its top bytes: from
-    248 up for 32; 0 for never). The
+    Byte 0 is the type: one of the five primitives, a mesh or a convex
+    (``byte % 7``; 0, the sphere, is where it shrinks), or a HalfSpace one time
+    in ``halfspace`` (its top bytes: from 248 up for 32; 0 for never). The
     next bytes are the dimensions in whole centimetres, smallest at 0: radii
     and semi-axes 0.05-0.30 m, lengths and box sides 0.10-0.60 m. Whole
-    centimetres keep a written case readable (``"radius": 0.23``).
+    centimetres keep a written case readable (``"radius": 0.23``). A mesh or
+    convex reads a file of ``MESH_FILES`` and a scale 0.8-1.2 instead.
     """
     head = data[0] if data else 0
     from_ = PICK_RANGE - PICK_RANGE // halfspace if halfspace else PICK_RANGE
-    kind = "halfspace" if head >= from_ else SHAPE_TYPES[head % 5]
+    kind = "halfspace" if head >= from_ else _DRAWN_TYPES[head % len(_DRAWN_TYPES)]
+    if kind in ("mesh", "convex"):
+        file, scale = (data[1:3] + b"\0\0")[:2]
+        return {
+            "type": kind,
+            "path": MESH_FILES[file % len(MESH_FILES)],
+            "scale": 0.8 + (scale % _MESH_SCALES) / 10,
+        }
     sizes = iter(data[1:])
     return {"type": kind} | {
         key: _centimetres(next(sizes, 0), bounds) for key, bounds in _DIMENSIONS[kind]
@@ -284,6 +311,18 @@ def shapes(*, halfspace: int = HALFSPACE_SHARE) -> st.SearchStrategy[dict[str, A
     One choice of ``SHAPE_BYTES`` bytes, read by ``shape_of``.
     """
     return picks(SHAPE_BYTES).map(partial(shape_of, halfspace=halfspace))
+
+
+def point_of(data: bytes) -> list[float]:
+    """The point ``[x, y, z]`` that 3 bytes stand for: signed steps of 5 mm (±0.64 m)."""
+    steps = [_signed(byte) for byte in data[:3].ljust(3, b"\0")]
+    return [step / _STEPS_PER_METRE for step in steps]
+
+
+@cache
+def points() -> st.SearchStrategy[list[float]]:
+    """A point in the world (``point_of``); one choice of 3 bytes."""
+    return picks(3).map(point_of)
 
 
 @cache
@@ -368,6 +407,32 @@ _SUPPORT: dict[str, Callable[[dict[str, Any], Vector], Vector]] = {
     "capsule": _support_capsule,
     "ellipsoid": _support_ellipsoid,
 }
+
+
+@cache
+def _mesh_points(path: str) -> tuple[Vector, ...]:
+    """The vertices of a corpus mesh file (``v`` lines of an .obj, POINTS of a legacy .vtk)."""
+    from conformance.grammar.queries import MESH_ROOT  # noqa: PLC0415 (grammar imports fuzz)
+
+    lines = (MESH_ROOT / path).read_text().splitlines()
+    if path.endswith(".obj"):
+        rows = [line.split()[1:4] for line in lines if line.startswith("v ")]
+    else:
+        start = next(i for i, line in enumerate(lines) if line.startswith("POINTS"))
+        count = int(lines[start].split()[1])
+        rows = [line.split() for line in lines[start + 1 : start + 1 + count]]
+    return tuple((float(x), float(y), float(z)) for x, y, z in rows)
+
+
+def _support_mesh(shape: dict[str, Any], d: Vector) -> Vector:
+    """The scaled vertex farthest along d (a mesh collides as its convex hull)."""
+    k = shape.get("scale", 1.0)
+    points = [(x * k, y * k, z * k) for x, y, z in _mesh_points(shape["path"])]
+    return max(points, key=lambda p: p[0] * d[0] + p[1] * d[1] + p[2] * d[2])
+
+
+_SUPPORT["mesh"] = _support_mesh
+_SUPPORT["convex"] = _support_mesh
 
 
 def support(shape: dict[str, Any], direction: Vector) -> Vector:

@@ -9,7 +9,13 @@ Values:
 - a shape (``SHAPES``): ``{"type": "sphere", "radius": r}``, ``box``
   (``width, depth, height``), ``cylinder`` and ``capsule`` (``radius,
   length``), ``ellipsoid`` (``a, b, c``), ``{"type": "halfspace"}``: the
-  pydrake class called with these keywords;
+  pydrake class called with these keywords; and a mesh file (``MESH_SHAPES``),
+  ``{"type": "mesh" | "convex", "path": p, "scale": s}``: ``Mesh(filename=,
+  scale=)`` or ``Convex(filename=, scale=)`` of the file at ``p`` below the
+  corpus folder ``scenarios/`` (``MESH_ROOT``: the vendored real models'
+  ``real_models/drake/...`` and ``real_models/drake_models/...``, the queries'
+  own ``queries/meshes/...``), ``scale`` 1 if left out;
+- a point: ``[x, y, z]`` in the world frame;
 - a pose: ``{"xyz": [x, y, z], "rpy": [r, p, y]}``, both optional (zero), is
   ``RigidTransform(rpy=RollPitchYaw(rpy=rpy), p=xyz)``;
 - poses: ``{frame name: pose}``, each the frame's pose in its parent frame,
@@ -30,6 +36,8 @@ the order it was given.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from importlib import resources
+from pathlib import Path
 from typing import Any
 
 from conformance.grammar.spec import Arg, ArgKind, CommandSpec, Comparison
@@ -37,6 +45,8 @@ from conformance.grammar.spec import Arg, ArgKind, CommandSpec, Comparison
 __all__ = [
     "DEFAULT_SHAPE",
     "DEFINITIONS",
+    "MESH_ROOT",
+    "MESH_SHAPES",
     "QUERY_COMMANDS",
     "SHAPES",
     "SHAPE_OF_CLASS",
@@ -55,8 +65,17 @@ SHAPES: Mapping[str, tuple[str, tuple[str, ...]]] = {
     "halfspace": ("HalfSpace", ()),
 }
 
+#: Mesh-file shape type → the pydrake.geometry class (keywords ``filename``, ``scale``).
+MESH_SHAPES: Mapping[str, str] = {"mesh": "Mesh", "convex": "Convex"}
+
+#: The folder a mesh shape's ``path`` is below: the corpus, ``scenarios/``.
+MESH_ROOT = Path(str(resources.files("scenarios")))
+
 #: The shape type of each class name (how query results name a geometry's shape).
-SHAPE_OF_CLASS: Mapping[str, str] = {cls: shape for shape, (cls, _) in SHAPES.items()}
+SHAPE_OF_CLASS: Mapping[str, str] = {
+    **{cls: shape for shape, (cls, _) in SHAPES.items()},
+    **{cls: shape for shape, cls in MESH_SHAPES.items()},
+}
 
 #: A geometry registered without a ``shape``.
 DEFAULT_SHAPE: Mapping[str, Any] = {"type": "sphere", "radius": 0.1}
@@ -65,24 +84,53 @@ _MEASURE = {"type": "number", "exclusiveMinimum": 0, "description": "A length (m
 _VECTOR = {"type": "array", "items": {"type": "number"}, "minItems": 3, "maxItems": 3}
 
 
+_MESH_FILE = {
+    "then": {
+        "required": ["path"],
+        "properties": {
+            "type": True,
+            "path": {
+                "type": "string",
+                "pattern": r"^(?!/)(?!.*(^|/)\.\.(/|$)).+\.(obj|vtk|gltf|OBJ|VTK|GLTF)$",
+                "description": "A mesh file below the corpus folder scenarios/, e.g. "
+                "real_models/drake/geometry/test/octahedron.obj.",
+            },
+            "scale": {
+                "type": "number",
+                "not": {"const": 0},
+                "description": "The uniform scale (Drake: |scale| >= 1e-8); 1 if left out.",
+            },
+        },
+        "additionalProperties": False,
+    }
+}
+
+
 def _shape_schema() -> dict[str, Any]:
-    """One object per shape type: ``type`` and exactly that type's measures."""
+    """One object per shape type: ``type`` and exactly that type's measures (a mesh file:
+    ``path`` and ``scale``)."""
     return {
         "description": "A shape: its pydrake class's keyword arguments, and its type. "
-        "Generated from conformance.grammar.queries.SHAPES.",
+        "Generated from conformance.grammar.queries.SHAPES and MESH_SHAPES.",
         "type": "object",
         "required": ["type"],
-        "properties": {"type": {"enum": list(SHAPES)}},
+        "properties": {"type": {"enum": [*SHAPES, *MESH_SHAPES]}},
         "allOf": [
-            {
-                "if": {"properties": {"type": {"const": shape}}},
-                "then": {
-                    "required": list(keys),
-                    "properties": {"type": True, **{key: _MEASURE for key in keys}},
-                    "additionalProperties": False,
-                },
-            }
-            for shape, (_, keys) in SHAPES.items()
+            *(
+                {
+                    "if": {"properties": {"type": {"const": shape}}},
+                    "then": {
+                        "required": list(keys),
+                        "properties": {"type": True, **{key: _MEASURE for key in keys}},
+                        "additionalProperties": False,
+                    },
+                }
+                for shape, (_, keys) in SHAPES.items()
+            ),
+            *(
+                {"if": {"properties": {"type": {"const": shape}}}, **_MESH_FILE}
+                for shape in MESH_SHAPES
+            ),
         ],
     }
 
@@ -96,6 +144,7 @@ DEFINITIONS: Mapping[str, Mapping[str, Any]] = {
         "additionalProperties": False,
         "properties": {"xyz": _VECTOR, "rpy": {**_VECTOR, "description": "radians"}},
     },
+    "point": {**_VECTOR, "description": "A point [x, y, z] in the world frame (m)."},
     "poses": {
         "description": "Frame name → its pose in its parent frame (X_PF). The world frame "
         "has no pose to set.",
@@ -171,6 +220,15 @@ QUERY_COMMANDS: tuple[CommandSpec, ...] = (
         "QueryObject.ComputeSignedDistancePairClosestPoints(geometry_id_A=, geometry_id_B=) "
         "(filters ignored); returns one record, in the pair's order",
         Arg("pair", K.PAIR, True),
+        compare=Comparison.PROXIMITY,
+    ),
+    _query(
+        "compute_signed_distance_to_point",
+        "QueryObject.ComputeSignedDistanceToPoint(p_WQ=[, threshold=]) (filters do not apply); "
+        'returns the list of {"geometry", "shape", "distance", "p_GN", "grad_W"} sorted by '
+        "geometry name",
+        Arg("p_WQ", K.POINT, True),
+        Arg("threshold", K.DISTANCE),
         compare=Comparison.PROXIMITY,
     ),
     _query(

@@ -124,6 +124,7 @@ class ArgKind(enum.Enum):
     POSE = ({"$ref": "#/$defs/pose"}, None, None)
     POSES = ({"$ref": "#/$defs/poses"}, None, None)
     DISTANCE = ({"type": "number", "description": "A distance (m)."}, None, None)
+    POINT = ({"$ref": "#/$defs/point"}, None, None)
     JOINT_TYPE = (
         {
             "enum": [
