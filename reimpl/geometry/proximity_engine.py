@@ -532,7 +532,16 @@ class ProximityEngine:
                 if type(hit_a) is int and type(hit_b) is int:
                     return visit(hit_a, hit_b)
                 a, b = self._identify(o1), self._identify(o2)
-                pairs = [p for p in self._expand(a, b) if (min(p), max(p)) not in seen]
+                # N.B. A group of identical geometries may hold anchored and dynamic ones;
+                # two anchored geometries are never met (fuzz --poses, seed 1: an anchored
+                # sphere posed as a dynamic one was paired with the other anchored ones).
+                bodies = self._bodies
+                pairs = [
+                    p
+                    for p in self._expand(a, b)
+                    if (min(p), max(p)) not in seen
+                    and (bodies[p[0]].dynamic or bodies[p[1]].dynamic)
+                ]
                 seen.update((min(p), max(p)) for p in pairs)
                 return any(visit(x, y) for x, y in pairs)
             except BaseException as error:
