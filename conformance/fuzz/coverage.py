@@ -43,6 +43,10 @@ reassigned_by_frame_then_filter    a filter edit after a geometry whose roles we
 error:{kind}                       the reference raised an error of that ``ErrorKind``
 =================================  ============================================================
 
+Posed campaigns (a machine that issues the query ops) also count, from the
+reference's answers (``QUERY_FEATURES``): a penetration, a signed distance and
+a point distance with a ``mesh``, and with a ``convex``, among its records.
+
 An *edit* is a command that changes the state (``EDITS``), run without error.
 """
 
@@ -62,6 +66,7 @@ __all__ = [
     "ERROR_KINDS",
     "FEATURES",
     "FILTER_EDITS",
+    "QUERY_FEATURES",
     "Coverage",
     "CoverageBook",
     "LocationKind",
@@ -179,10 +184,38 @@ def expected_features(ops: Iterable[str]) -> list[str]:
 def campaign_features(operations: Iterable[str], shared: frozenset[str]) -> list[str]:
     """``expected_features`` of the grammar ops a machine's operations issue
     (``operations.issued_ops``), less those of a feature both backends lack
-    (``shared``: ``activation``, ``queries``)."""
-    return expected_features(
-        sorted(op for op in operations if GRAMMAR[op].feature not in _OPTIONAL - shared)
-    )
+    (``shared``: ``activation``, ``queries``); with the query ops, ``QUERY_FEATURES``."""
+    ops = sorted(op for op in operations if GRAMMAR[op].feature not in _OPTIONAL - shared)
+    queried = set(_QUERY_RECORDS) <= set(ops)
+    return [*expected_features(ops), *(QUERY_FEATURES if queried else ())]
+
+
+#: Query op → its short name in ``QUERY_FEATURES``.
+_QUERY_RECORDS = {
+    "compute_point_pair_penetration": "penetration",
+    "compute_signed_distance_pairwise_closest_points": "distance",
+    "compute_signed_distance_to_point": "point_distance",
+}
+#: A query record (in the reference's answer) with a mesh or convex hull among its shapes.
+QUERY_FEATURES: dict[str, str] = {
+    f"{name}:{shape}": f"a {name.replace('_', ' ')} record of a {shape}"
+    for name in _QUERY_RECORDS.values()
+    for shape in ("mesh", "convex")
+}
+
+
+def _query_features(op: str, value: object) -> Iterator[str]:
+    """``QUERY_FEATURES`` a query's answer reaches (its records' shapes)."""
+    name = _QUERY_RECORDS.get(op)
+    if name is None or not isinstance(value, list):
+        return
+    shapes = {
+        shape
+        for record in value
+        if isinstance(record, Mapping)
+        for shape in (*record.get("shapes", ()), record.get("shape"))
+    }
+    yield from (f"{name}:{shape}" for shape in ("mesh", "convex") if shape in shapes)
 
 
 #: Grammar features that some backends lack; their ops are expected only if both have them.
@@ -250,6 +283,7 @@ class CoverageBook:
         follow = _FOLLOW.get(command.op)
         if follow is not None:
             yield from follow(self, command.args, where)
+        yield from _query_features(command.op, result.value)
         if command.op in EDITS:
             yield from self._edit(command.op, where)
 
