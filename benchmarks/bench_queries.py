@@ -12,7 +12,13 @@ of ``repeat`` runs, pydrake's and reimpl's runs interleaved:
 * "new poses": FixValue of the other of two FramePoseVectors, then the query
   (pose update, broadphase and narrowphase from scratch on both sides).
 
+Mesh scene (``mesh``): n copies of a real robot's collision mesh, Drake's
+Jaco forearm (``drake_models/jaco_description/meshes/forearm.obj``, 0.08 x 0.25
+x 0.06 m, its convex hull in the proximity role), posed the same way in a cube of
+side L (defaults n = 200, L = 2).
+
 Usage: python benchmarks/bench_queries.py [n [r [L]]]
+       python benchmarks/bench_queries.py mesh [n [L]]
 """
 
 from __future__ import annotations
@@ -21,6 +27,7 @@ import sys
 import time
 from collections.abc import Callable
 from functools import partial
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -30,12 +37,25 @@ from conformance.backends.reimpl_api import reimpl_api
 from conformance.backends.scene_graph import Api
 
 MAX_DISTANCE = 0.05
+#: The mesh scene's shape: a Jaco arm link's collision mesh from Drake's drake_models.
+MESH = (
+    Path(__file__).resolve().parents[1]
+    / "scenarios/real_models/drake_models/jaco_description/meshes/forearm.obj"
+)
+
+
+def sphere(radius: float) -> Callable[[Api], Any]:
+    return lambda api: api.geometry.Sphere(radius=radius)
+
+
+def mesh(api: Api) -> Any:
+    return api.geometry.Mesh(filename=str(MESH), scale=1.0)
 
 
 class Posed:
-    """n proximity spheres on n frames, with two FramePoseVectors to alternate between."""
+    """n proximity shapes on n frames, with two FramePoseVectors to alternate between."""
 
-    def __init__(self, api: Api, n: int, radius: float, side: float) -> None:
+    def __init__(self, api: Api, n: int, shape: Callable[[Api], Any], side: float) -> None:
         g, m = api.geometry, api.math
         self.sg = g.SceneGraph()
         self.source = self.sg.RegisterSource(name="bench")
@@ -48,7 +68,7 @@ class Posed:
                 source_id=self.source,
                 frame_id=frame,
                 geometry=g.GeometryInstance(
-                    X_PG=m.RigidTransform(), shape=g.Sphere(radius=radius), name=f"g{i}"
+                    X_PG=m.RigidTransform(), shape=shape(api), name=f"g{i}"
                 ),
             )
             self.sg.AssignRole(
@@ -103,12 +123,12 @@ def median(values: list[float]) -> float:
     return sorted(values)[len(values) // 2]
 
 
-def main(n: int, radius: float, side: float) -> None:
+def main(n: int, shape: Callable[[Api], Any], side: float, title: str) -> None:
     scenes = {
-        "pydrake": Posed(pydrake_api(), n, radius, side),
-        "reimpl": Posed(reimpl_api(), n, radius, side),
+        "pydrake": Posed(pydrake_api(), n, shape, side),
+        "reimpl": Posed(reimpl_api(), n, shape, side),
     }
-    print(f"n = {n} spheres, r = {radius}, cube side {side}")
+    print(f"n = {n} {title}, cube side {side}")
     for name, call in QUERIES.items():
         counts = {k: call(s.query) for k, s in scenes.items()}
         sizes = {k: v if isinstance(v, bool) else len(v) for k, v in counts.items()}
@@ -125,8 +145,18 @@ def main(n: int, radius: float, side: float) -> None:
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    main(
-        int(args[0]) if args else 1000,
-        float(args[1]) if len(args) > 1 else 0.3,
-        float(args[2]) if len(args) > 2 else 10.0,
-    )
+    if args[:1] == ["mesh"]:
+        main(
+            int(args[1]) if len(args) > 1 else 200,
+            mesh,
+            float(args[2]) if len(args) > 2 else 2.0,
+            f"meshes ({MESH.name}, its convex hull)",
+        )
+    else:
+        radius = float(args[1]) if len(args) > 1 else 0.3
+        main(
+            int(args[0]) if args else 1000,
+            sphere(radius),
+            float(args[2]) if len(args) > 2 else 10.0,
+            f"spheres, r = {radius}",
+        )
