@@ -23,6 +23,7 @@ from conformance.corpus.loader import load_file
 from conformance.engine import Divergence
 from conformance.fuzz import strategies as cs
 from conformance.fuzz.campaign import Campaign
+from conformance.fuzz.coverage import QUERY_FEATURES
 from conformance.fuzz.lockstep import PosedLockstepMachine
 from conformance.fuzz.operations import (
     QUERY_OPS,
@@ -182,6 +183,8 @@ def test_a_bounded_posed_campaign_of_reimpl_against_pydrake_issues_every_query_a
     assert result.stats.examples >= 60
     assert set(QUERY_OPS) <= set(_Recording.issued)
     assert _Recording.found_pairs > 10, "penetration queries find pairs, not only empty sets"
+    # Meshes and convex hulls are drawn: each query answers with records of both.
+    assert result.stats.coverage.gaps(list(QUERY_FEATURES), at_least=1) == []
 
 
 def test_a_mutant_ignoring_filters_in_penetration_is_found_and_written_as_a_case(
