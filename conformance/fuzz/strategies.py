@@ -205,11 +205,14 @@ _DRAWN_TYPES = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "mesh", "co
 #: The mesh files a drawn mesh or convex shape names (below the corpus folder): small
 #: irregular hulls, generated so that no face is parallel to a coordinate plane or to another
 #: face (a support point is then unique for the directions the queries meet), an .obj of 8
-#: and one of 12 vertices and a .vtk of two tetrahedra.
+#: and one of 12 vertices and a .vtk of two tetrahedra; and a real robot's collision mesh,
+#: Drake's iiwa link 7 polytope (drake_models, 64 vertices, 16 on each of its two faces
+#: parallel to the xy plane: support ties, where the HULL tolerance row applies in full).
 MESH_FILES = (
     "queries/meshes/poly8.obj",
     "queries/meshes/poly12.obj",
     "queries/meshes/two_tets.vtk",
+    "real_models/drake_models/iiwa_description/meshes/iiwa14/collision/link_7_polytope.obj",
 )
 #: A drawn mesh's scale: 0.8 + byte % 5 / 10 (0.8 to 1.2).
 _MESH_SCALES = 5
