@@ -2,7 +2,11 @@
 
 Each case template below is run step by step on pydrake (the release installed; the
 committed file was made on 1.51.1) through the conformance backend, and each query's
-Result is written as the step's ``returns`` or ``error``. Rerun after changing a case:
+Result is written as the step's ``returns`` or ``error``. Drake answers the signed
+distance to a point from a Mesh or Convex since 1.36.0 (drake#21471, "ComputeSignedDistanceToPoint
+from meshes"); up to 1.35.0 it leaves them out, so a point-distance step expects the measured
+records since 1.36 and the same without the mesh and convex ones until 1.35.0 (matrix:
+1.30.0 passes so). Rerun after changing a case:
 
     python scenarios/queries/make_mesh_cases.py
 """
@@ -164,12 +168,34 @@ def _measured(case: dict[str, Any]) -> dict[str, Any]:
                 if result.error is not None
                 else {"returns": result.value}
             )
-            steps.append({**template, "expect": outcome})
+            steps.append({**template, "expect": _by_release(template["op"], outcome)})
             continue
         if result.error is not None:
             raise RuntimeError(f"{case['description']}: {template} failed: {result.error}")
         steps.append(template)
     return {**case, "steps": steps}
+
+
+#: The first release whose ComputeSignedDistanceToPoint measures to meshes (drake#21471).
+MESH_POINT_SINCE = "1.36"
+MESH_POINT_UNTIL = "1.35.0"
+
+
+def _by_release(op: str, outcome: dict[str, Any]) -> dict[str, Any] | list[dict[str, Any]]:
+    """A point-distance step's expectation, split at ``MESH_POINT_SINCE``; others as measured."""
+    if op != "compute_signed_distance_to_point" or "returns" not in outcome:
+        return outcome
+    primitives = [r for r in outcome["returns"] if r["shape"] not in ("mesh", "convex")]
+    if primitives == outcome["returns"]:
+        return outcome
+    return [
+        {"since": MESH_POINT_SINCE, **outcome},
+        {
+            "until": MESH_POINT_UNTIL,
+            "comment": "before drake#21471 a Mesh or Convex has no signed distance to a point",
+            "returns": primitives,
+        },
+    ]
 
 
 def main() -> None:
