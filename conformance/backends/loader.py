@@ -16,6 +16,7 @@ from conformance.backends.exec_backend import (
     ExecSpecError,
     exec_spec_command,
 )
+from conformance.backends.reimpl_worker import reimpl_spec_version
 from conformance.backends.releases import ReleaseSpecError, check_release
 from conformance.backends.subprocess_backend import worker_spec_version
 from conformance.protocol import Backend
@@ -133,10 +134,21 @@ def _exec(spec: str, step_timeout: float | None) -> Backend:
         raise BackendLoadError(f"backend {spec!r} at {exc.where}: {exc.message}") from None
 
 
+def _reimpl_worker(spec: str, release: str, step_timeout: float | None) -> Backend:
+    """A ``reimpl==X`` worker: reimpl following release X in its own process."""
+    from conformance.backends.reimpl_worker import ReimplWorkerBackend  # noqa: PLC0415
+
+    try:
+        return ReimplWorkerBackend(release, step_timeout=step_timeout)
+    except BackendError as exc:
+        raise BackendLoadError(f"backend {spec!r}: {exc}") from None
+
+
 def load_backend(
     spec: str, *, python: Sequence[str] | None = None, step_timeout: float | None = None
 ) -> Backend:
     """``reimpl``, ``pydrake``, ``drake==X`` (release X in a worker process),
+    ``reimpl==X`` (reimpl following release X, in a worker process),
     ``exec:CMD ARGS`` (any program that speaks the worker protocol), or
     ``package.module:attribute`` (a class or factory).
 
@@ -160,12 +172,19 @@ def load_backend(
         except ReleaseSpecError as exc:
             raise BackendLoadError(f"backend {spec!r}: {exc}") from None
         return _worker(spec, release, python, step_timeout)
+    followed = reimpl_spec_version(spec)
+    if followed is not None:
+        try:
+            check_release(followed)
+        except ReleaseSpecError as exc:
+            raise BackendLoadError(f"backend {spec!r}: {exc}") from None
+        return _reimpl_worker(spec, followed, step_timeout)
     if spec.startswith(EXEC_PREFIX):
         return _exec(spec, step_timeout)
     if ":" not in spec:
         known = ", ".join(sorted(BUILTIN_BACKENDS))
         raise BackendLoadError(
-            f"unknown backend {spec!r}: use one of {known}, drake==X.Y.Z, "
+            f"unknown backend {spec!r}: use one of {known}, drake==X.Y.Z, reimpl==X.Y.Z, "
             "exec:'CMD ARGS', or package.module:attribute"
         )
     module_name, _, attribute = spec.partition(":")

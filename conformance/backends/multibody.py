@@ -47,6 +47,8 @@ from types import ModuleType
 from typing import TYPE_CHECKING, Any
 from xml.etree import ElementTree
 
+from conformance.grammar import FEATURE_BINDINGS, release_features
+from conformance.policy.release_facts import fact_holds, release_fact
 from conformance.protocol import UnknownNameError
 
 if TYPE_CHECKING:
@@ -57,6 +59,7 @@ __all__ = [
     "PACKAGE",
     "PLANT_SOURCE",
     "MultibodyCommands",
+    "binding_error",
     "model_features",
     "package_names",
 ]
@@ -86,12 +89,16 @@ JOINT_CLASSES: Mapping[str, tuple[str, tuple[str, str], Mapping[str, Any]]] = {
     "rpy_floating": ("RpyFloatingJoint", ("frame_on_parent", "frame_on_child"), {}),
 }
 
-#: Feature tag → what an implementation must have for it (module attribute, member or None).
-_FEATURE_NEEDS: Mapping[str, tuple[str, str, str | None]] = {
-    "multibody": ("plant", "MultibodyPlant", None),
-    "parsing": ("parsing", "Parser", None),
-    "adjacency_opt_out": ("plant", "MultibodyPlant", "set_adjacent_bodies_collision_filters"),
-    "filter_groups_report": ("parsing", "Parser", "GetCollisionFilterGroups"),
+#: ``add_joint`` types whose class some releases lack → its binding row.
+_JOINT_BINDINGS: Mapping[str, str] = {"rpy_floating": "rpy-floating-joint-since-1.27"}
+
+#: Model feature tag → the modules of the implementation it needs (``Api`` attributes).
+#: Which releases have a tag is the release table's (``grammar.FEATURE_BINDINGS``).
+_FEATURE_MODULES: Mapping[str, tuple[str, ...]] = {
+    "multibody": ("plant", "tree"),
+    "parsing": ("parsing", "tree"),
+    "adjacency_opt_out": ("plant", "tree"),
+    "filter_groups_report": ("parsing", "tree"),
 }
 
 
@@ -124,19 +131,33 @@ def package_names(folder: Path) -> list[str]:
 
 
 def model_features(api: Api) -> frozenset[str]:
-    """The model feature tags ``api`` supports (none if it lacks the multibody modules)."""
-    features = set()
-    for tag, (module_name, class_name, member) in _FEATURE_NEEDS.items():
-        module = getattr(api, module_name)
-        cls = getattr(module, class_name, None) if module is not None else None
-        if cls is not None and api.tree is not None and (member is None or hasattr(cls, member)):
-            features.add(tag)
-    return frozenset(features)
+    """The model feature tags ``api`` supports: its modules exist (Drake 1.12-1.23 under
+    numpy 2 cannot import ``pydrake.multibody``) and its release has them
+    (``grammar.release_features``)."""
+    released = release_features(api.version)
+    return frozenset(
+        tag
+        for tag, modules in _FEATURE_MODULES.items()
+        if all(getattr(api, m) is not None for m in modules)
+        and (tag not in FEATURE_BINDINGS or tag in released)
+    )
 
 
 def _missing(api: Api, what: str) -> TypeError:
     """A binding error (ErrorKind.BINDING): the implementation lacks ``what``."""
     return TypeError(f"{api.name} {api.version} has no {what}")
+
+
+def binding_error(api: Api, fact: str) -> TypeError:
+    """The binding error of a call whose binding row ``fact`` does not hold for ``api``."""
+    return _missing(api, " / ".join(release_fact(fact).bindings))
+
+
+def _require(api: Api, fact: str) -> None:
+    """Raises the binding error of a call whose binding row (``fact``) does not hold for
+    ``api``'s release: the release table decides, not the implementation's attributes."""
+    if not fact_holds(fact, api.version):
+        raise binding_error(api, fact)
 
 
 class MultibodyCommands:
@@ -306,8 +327,6 @@ class MultibodyCommands:
         packages of the map (Drake's defaults ``drake``, ``drake_models``) that the folder
         also provides, so that its own copy is the one found."""
         package_map = parser.package_map()
-        if not hasattr(package_map, "PopulateFromFolder"):
-            raise _missing(self.api, "PackageMap.PopulateFromFolder")
         for name in package_names(folder):
             if package_map.Contains(package_name=name):
                 package_map.Remove(package_name=name)
@@ -325,6 +344,7 @@ class MultibodyCommands:
                 raise UnknownNameError("parser", "(reuse_parser needs an earlier add_models)")
             return self.parser
         if "prefix" in args:
+            _require(self.api, "parser-model-name-prefix-since-1.13")
             return parsing.Parser(plant=plant, model_name_prefix=args["prefix"])
         return parsing.Parser(plant=plant)
 
@@ -332,8 +352,7 @@ class MultibodyCommands:
         plant = self._plant()
         parser = self.parser = self._parser(args)
         if "auto_renaming" in args:
-            if not hasattr(parser, "SetAutoRenaming"):  # Drake < 1.15
-                raise _missing(self.api, "Parser.SetAutoRenaming")
+            _require(self.api, "parser-auto-renaming-since-1.14")
             parser.SetAutoRenaming(value=args["auto_renaming"])
         files = args.get("files", {})
         if files or ("path" in args and "folder" not in args):
@@ -430,8 +449,6 @@ class MultibodyCommands:
 
     def rename_model_instance(self, args: Mapping[str, Any]) -> None:
         plant = self._plant()
-        if not hasattr(plant, "RenameModelInstance"):  # Drake < 1.20
-            raise _missing(self.api, "MultibodyPlant.RenameModelInstance")
         plant.RenameModelInstance(
             model_instance=plant.GetModelInstanceByName(name=args["model"]), name=args["name"]
         )
@@ -457,9 +474,9 @@ class MultibodyCommands:
 
     def add_joint(self, args: Mapping[str, Any]) -> None:
         class_name, (on_parent, on_child), extra = JOINT_CLASSES[args["type"]]
-        cls = getattr(self._module("tree"), class_name, None)
-        if cls is None:
-            raise _missing(self.api, f"multibody.tree.{class_name}")
+        if args["type"] in _JOINT_BINDINGS:
+            _require(self.api, _JOINT_BINDINGS[args["type"]])
+        cls = getattr(self._module("tree"), class_name)
         keywords = {
             key: self.api.math.RigidTransform() if value is None else value
             for key, value in extra.items()
@@ -511,8 +528,6 @@ class MultibodyCommands:
 
     def set_adjacent_filters(self, args: Mapping[str, Any]) -> None:
         plant = self._plant()
-        if not hasattr(plant, "set_adjacent_bodies_collision_filters"):
-            raise _missing(self.api, "MultibodyPlant.set_adjacent_bodies_collision_filters")
         plant.set_adjacent_bodies_collision_filters(value=args["value"])
 
     def finalize(self, args: Mapping[str, Any]) -> None:

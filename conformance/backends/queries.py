@@ -37,33 +37,11 @@ from conformance.protocol import MODEL
 if TYPE_CHECKING:
     from conformance.backends.api import Api
 
-__all__ = ["QueryCommands", "query_features"]
-
-#: The calls the ``queries`` feature needs: (module attribute, member or None).
-_QUERY_NEEDS: tuple[tuple[str, str | None], ...] = (
-    ("FramePoseVector", "set_value"),
-    ("QueryObject", "ComputePointPairPenetration"),
-    ("QueryObject", "ComputeSignedDistancePairwiseClosestPoints"),
-    ("QueryObject", "ComputeSignedDistancePairClosestPoints"),
-    ("QueryObject", "ComputeSignedDistanceToPoint"),
-    ("QueryObject", "FindCollisionCandidates"),
-    ("QueryObject", "HasCollisions"),
-    ("QueryObject", "GetPoseInWorld"),
-)
+__all__ = ["QueryCommands"]
 
 #: Record fields swapped when a pair is put in name order (the normal is negated).
 _SWAPPED = (("p_WCa", "p_WCb"), ("p_ACa", "p_BCb"))
 _NORMAL = "nhat_BA_W"
-
-
-def query_features(api: Api) -> frozenset[str]:
-    """``{"queries"}`` if ``api.geometry`` has every call the query ops make, else empty."""
-    g = api.geometry
-    for name, member in _QUERY_NEEDS:
-        owner = getattr(g, name, None)
-        if owner is None or (member is not None and not hasattr(owner, member)):
-            return frozenset()
-    return frozenset({"queries"})
 
 
 def _vector(value: Iterable[Any]) -> list[float]:

@@ -8,11 +8,13 @@ from types import ModuleType
 import reimpl.geometry
 import reimpl.math
 from conformance.backends.api import Api
+from reimpl._release import release
 
 __all__ = ["REIMPL_DRAKE_VERSION", "reimpl_api"]
 
-#: The Drake release whose observable semantics reimpl follows, for since/until.
-REIMPL_DRAKE_VERSION = "1.51.1"
+#: The Drake release whose observable semantics reimpl follows in this process
+#: (``REIMPL_DRAKE_RELEASE``, default 1.51.1: ``reimpl/_release.py``).
+REIMPL_DRAKE_VERSION = release.version
 
 
 def reimpl_api() -> Api:

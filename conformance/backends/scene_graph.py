@@ -20,10 +20,11 @@ from dataclasses import dataclass
 from typing import Any
 
 from conformance.backends.api import Api
-from conformance.backends.multibody import MultibodyCommands, model_features
-from conformance.backends.queries import QueryCommands, query_features
-from conformance.grammar import GRAMMAR
+from conformance.backends.multibody import MultibodyCommands, binding_error, model_features
+from conformance.backends.queries import QueryCommands
+from conformance.grammar import FEATURE_BINDINGS, GRAMMAR, release_features
 from conformance.policy.guards import GUARDS, armed_guards
+from conformance.policy.release_facts import fact_holds
 from conformance.protocol import (
     MODEL,
     Command,
@@ -55,8 +56,10 @@ DEFAULT_SOURCE = "source"
 #: std::out_of_range). Anything else is a broken backend, not a Result.
 _IMPLEMENTATION_ERRORS = (RuntimeError, TypeError, ValueError, IndexError)
 
-#: Feature tags every SceneGraph-based backend supports; others depend on the release.
-BASE_FEATURES = frozenset({"core", "transient", "contexts", "errors", "roles", "quirk"})
+#: Feature tags every SceneGraph-based backend supports on every release.
+BASE_FEATURES = frozenset({"core", "transient", "contexts", "errors", "roles", "quirk", "queries"})
+#: SceneGraph feature tags that some releases lack (``grammar.FEATURE_BINDINGS``).
+_RELEASED_FEATURES = frozenset({"activation", "scope"})
 
 
 class RefusedCallError(Exception):
@@ -79,6 +82,12 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
         self.name = api.name
         #: The release guards armed for the current run (``policy.guards``).
         self.armed: frozenset[str] = armed_guards([api.version])
+        #: The binding rows (``CommandSpec.binding``) that hold for its release.
+        self._bound = frozenset(
+            op.binding
+            for op in GRAMMAR.values()
+            if op.binding is not None and fact_holds(op.binding, api.version)
+        )
         self.reset()
 
     def arm_guards(self, ids: frozenset[str]) -> None:
@@ -90,13 +99,11 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
         return self.api.version
 
     def features(self) -> frozenset[str]:
-        g = self.api.geometry
-        features = set(BASE_FEATURES)
-        if hasattr(g.CollisionFilterManager, "Deactivate"):
-            features.add("activation")
-        if hasattr(g, "CollisionFilterScope"):
-            features.add("scope")
-        return frozenset(features) | model_features(self.api) | query_features(self.api)
+        """The base tags, the model tags its modules allow, and the tags its release has: the
+        release table decides (``grammar.FEATURE_BINDINGS``), not the api's attributes."""
+        released = release_features(self.version()) & _RELEASED_FEATURES
+        assert _RELEASED_FEATURES <= FEATURE_BINDINGS.keys()
+        return BASE_FEATURES | released | model_features(self.api)
 
     def reset(self) -> None:
         g = self.api.geometry
@@ -118,6 +125,8 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
             raise UnknownNameError("command", command.op)
         handler: Callable[[Mapping[str, Any]], Any] = getattr(self, op.handler)
         try:
+            if op.binding is not None and op.binding not in self._bound:
+                raise binding_error(self.api, op.binding)
             return Result(value=handler(command.args))
         except UnknownNameError:
             raise
@@ -138,6 +147,11 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
         return Observation(locations)
 
     # ------------------------------------------------------------- helpers
+    def _require(self, fact: str) -> None:
+        """A binding error unless the binding row ``fact`` holds for this backend's release."""
+        if not fact_holds(fact, self.version()):
+            raise binding_error(self.api, fact)
+
     def _observe(self, context: Any) -> LocationState:
         inspector = self._inspector(context)
         manager = self._manager(context)
@@ -346,6 +360,7 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
     def remove_role(self, args: Mapping[str, Any]) -> int:
         kwargs: dict[str, Any] = {"source_id": self._source(args), "role": self._role(args["role"])}
         if "frame" in args:
+            self._require("remove-role-by-frame-since-1.13")
             kwargs["frame_id"] = self._frame(args["frame"])
         else:
             kwargs["geometry_id"] = self._geometry(args["geometry"])
@@ -459,4 +474,5 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
         self.poses[args["name"]] = dict(self.poses.get(args["from"], {}))
 
     def set_default_context(self, args: Mapping[str, Any]) -> None:
+        self._require("set-default-context-keyword-since-1.15")
         self.scene_graph.SetDefaultContext(context=self._context(args))

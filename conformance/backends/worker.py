@@ -32,7 +32,10 @@ worker that dies mid-case has already sent every earlier answer; a step that
 raises answers ``raised`` and ends the batch.
 
 It imports only the harness's pure-Python modules and pydrake (through
-``pydrake_api``, the one module that imports it). The host decides which
+``pydrake_api``, the one module that imports it). Run as ``python -m
+conformance.backends.worker reimpl`` it drives reimpl instead, following the
+release its ``REIMPL_DRAKE_RELEASE`` names, and is named ``reimpl==<that
+release>`` (``backends.reimpl_worker``). The host decides which
 release guards are armed (``arm_guards``); with none armed, a call that
 crashes the release ends this process, and the host records the crash.
 """
@@ -44,6 +47,7 @@ import sys
 from collections.abc import Callable
 from typing import Any, TextIO
 
+from conformance.backends.api import Api
 from conformance.backends.pydrake_api import pydrake_api
 from conformance.backends.scene_graph import SceneGraphBackend
 from conformance.backends.wire import hello_value, raised_answer
@@ -52,10 +56,12 @@ from conformance.protocol import Command, Result
 __all__ = ["serve"]
 
 
-def _handlers(backend: SceneGraphBackend) -> dict[str, Callable[[dict[str, Any]], Any]]:
+def _handlers(
+    backend: SceneGraphBackend, prefix: str
+) -> dict[str, Callable[[dict[str, Any]], Any]]:
     return {
         "hello": lambda r: hello_value(
-            f"drake=={backend.version()}", backend.version(), backend.features()
+            f"{prefix}{backend.version()}", backend.version(), backend.features()
         ),
         "reset": lambda r: backend.reset(),
         "arm_guards": lambda r: backend.arm_guards(frozenset(r["ids"])),
@@ -71,10 +77,25 @@ def _step(backend: SceneGraphBackend, step: dict[str, Any]) -> dict[str, Any]:
     return {"result": result.to_json(), "observation": observation}
 
 
-def serve(requests: TextIO, responses: TextIO) -> None:
+def _reimpl_api() -> Api:
+    from conformance.backends.reimpl_api import reimpl_api  # noqa: PLC0415 (reimpl workers only)
+
+    return reimpl_api()
+
+
+#: The implementations a worker drives, by its command-line argument (none: pydrake), each
+#: with the prefix of its name (``drake==X``, ``reimpl==X``).
+IMPLEMENTATIONS: dict[str, tuple[Callable[[], Api], str]] = {
+    "pydrake": (pydrake_api, "drake=="),
+    "reimpl": (_reimpl_api, "reimpl=="),
+}
+
+
+def serve(requests: TextIO, responses: TextIO, implementation: str = "pydrake") -> None:
     """Answers requests until stdin closes."""
-    backend = SceneGraphBackend(pydrake_api())
-    handlers = _handlers(backend)
+    api, prefix = IMPLEMENTATIONS[implementation]
+    backend = SceneGraphBackend(api())
+    handlers = _handlers(backend, prefix)
 
     def send(response: dict[str, Any]) -> None:
         responses.write(json.dumps(response) + "\n")
@@ -99,4 +120,4 @@ def serve(requests: TextIO, responses: TextIO) -> None:
 
 
 if __name__ == "__main__":
-    serve(sys.stdin, sys.stdout)
+    serve(sys.stdin, sys.stdout, sys.argv[1] if len(sys.argv) > 1 else "pydrake")

@@ -18,8 +18,10 @@ from conformance.grammar.multibody import MODEL_COMMANDS
 from conformance.grammar.queries import QUERY_COMMANDS
 from conformance.grammar.scene_graph import SCENE_GRAPH_COMMANDS
 from conformance.grammar.spec import Arg, ArgKind, CommandSpec, Comparison, NameKind
+from conformance.policy.release_facts import fact_holds
 
 __all__ = [
+    "FEATURE_BINDINGS",
     "GRAMMAR",
     "Arg",
     "ArgKind",
@@ -29,6 +31,8 @@ __all__ = [
     "UnknownOpError",
     "declared_names",
     "features_of",
+    "has_binding",
+    "release_features",
     "ops_of",
     "referenced_names",
     "spec",
@@ -38,6 +42,28 @@ __all__ = [
 GRAMMAR: Mapping[str, CommandSpec] = {
     command.op: command for command in (*SCENE_GRAPH_COMMANDS, *MODEL_COMMANDS, *QUERY_COMMANDS)
 }
+
+
+#: Feature tag → the release fact (a ``binding`` row) whose releases have it. Tags not
+#: listed are on every release (``core``, ``transient``, ...), or need a module rather
+#: than a release (``multibody``, ``parsing``: ``backends.multibody``).
+FEATURE_BINDINGS: Mapping[str, str] = {
+    "activation": "activation-since-1.55",
+    "scope": "collision-filter-scope-since-1.45",
+    "adjacency_opt_out": "adjacent-filters-opt-out-since-1.13",
+    "filter_groups_report": "filter-groups-report-since-1.31",
+}
+
+
+def release_features(version: str) -> frozenset[str]:
+    """The tags of ``FEATURE_BINDINGS`` that Drake ``version`` has, by the release table."""
+    return frozenset(tag for tag, fact in FEATURE_BINDINGS.items() if fact_holds(fact, version))
+
+
+def has_binding(op: str, version: str) -> bool:
+    """Whether Drake ``version`` binds the call ``op`` makes (its ``CommandSpec.binding``)."""
+    binding = spec(op).binding
+    return binding is None or fact_holds(binding, version)
 
 
 class UnknownOpError(KeyError):

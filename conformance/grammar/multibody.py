@@ -9,14 +9,14 @@ filters on top of a parsed model, by the scoped names of its bodies
 
 Feature tags:
 
-==========================  ============================================  =======
-tag                         ops                                           since
-==========================  ============================================  =======
-``multibody``               bodies, joints, welds, geometry, Finalize     1.12
-``parsing``                 ``add_models`` (URDF, SDFormat, directives)   1.12
-``adjacency_opt_out``       ``set_adjacent_filters``                      1.13
-``filter_groups_report``    ``collision_filter_groups``                   1.31
-==========================  ============================================  =======
+==========================  ============================================  ====================================
+tag                         ops                                           release fact (``FEATURE_BINDINGS``)
+==========================  ============================================  ====================================
+``multibody``               bodies, joints, welds, geometry, Finalize     every release
+``parsing``                 ``add_models`` (URDF, SDFormat, directives)   every release
+``adjacency_opt_out``       ``set_adjacent_filters``                      adjacent-filters-opt-out-since-1.13
+``filter_groups_report``    ``collision_filter_groups``                   filter-groups-report-since-1.31
+==========================  ============================================  ====================================
 """
 
 from __future__ import annotations
@@ -70,7 +70,7 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
         "filter_groups_report",
         "The last add_models Parser's GetCollisionFilterGroups(): returns "
         '{"groups": {name: sorted members}, "pairs": sorted [a, b] lists}',
-        since="1.31",
+        binding="filter-groups-report-since-1.31",
         domain="model",
     ),
     CommandSpec(
@@ -89,7 +89,7 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
         "multibody",
         "MultibodyPlant.RenameModelInstance(model_instance=GetModelInstanceByName(name=model), "
         "name=name); a parse after it may reuse the old name (Drake issue #21316)",
-        since="1.20",
+        binding="rename-model-instance-since-1.20",
         domain="model",
         scoped_names=True,
     ),
@@ -139,7 +139,7 @@ MODEL_COMMANDS: tuple[CommandSpec, ...] = (
         (Arg("value", K.BOOL, True),),
         "adjacency_opt_out",
         "MultibodyPlant.set_adjacent_bodies_collision_filters",
-        since="1.13",
+        binding="adjacent-filters-opt-out-since-1.13",
         domain="model",
     ),
     CommandSpec(

@@ -165,7 +165,7 @@ def _query(
     doc: str,
     *args: Arg,
     compare: Comparison = Comparison.EXACT,
-    since: str | None = None,
+    binding: str | None = None,
     error_choice: str | None = None,
 ) -> CommandSpec:
     return CommandSpec(
@@ -175,7 +175,7 @@ def _query(
         doc,
         domain="queries",
         compare=compare,
-        since=since,
+        binding=binding,
         error_choice=error_choice,
     )
 
@@ -205,7 +205,7 @@ QUERY_COMMANDS: tuple[CommandSpec, ...] = (
         "find_collision_candidates",
         "QueryObject.FindCollisionCandidates(); returns the sorted list of sorted name pairs "
         "(before 1.48 pydrake cannot convert its result: a binding gap)",
-        since="1.48",
+        binding="find-collision-candidates-since-1.48",
     ),
     _query(
         "compute_signed_distance_pairwise_closest_points",

@@ -120,14 +120,14 @@ SCENE_GRAPH_COMMANDS: tuple[CommandSpec, ...] = (
         (Arg("set", K.SET, True), _CONTEXT),
         "activation",
         "CollisionFilterManager.Activate",
-        since="1.55",
+        binding="activation-since-1.55",
     ),
     CommandSpec(
         "deactivate",
         (Arg("set", K.SET, True), _CONTEXT),
         "activation",
         "CollisionFilterManager.Deactivate",
-        since="1.55",
+        binding="activation-since-1.55",
     ),
     CommandSpec(
         "collision_filtered",

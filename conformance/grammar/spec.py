@@ -196,7 +196,10 @@ class CommandSpec:
     - ``one_of``: groups of keys of which exactly one must be given;
     - ``needs``: (key, keys it needs): given ``key``, those are required too;
     - ``feature``: the feature tag a backend needs to run it;
-    - ``since``/``until``: the Drake releases that have the call;
+    - ``binding``: the release fact (a ``binding`` row of
+      ``policy/release_facts.json``) whose releases have the call; a backend
+      of another release answers the op with a binding error, as that
+      release's pydrake does (None: every release has it);
     - ``harness_only``: no backend executes it (``check`` only checks
       expectations); every other op is executed by the backend method of the
       same name;
@@ -220,8 +223,7 @@ class CommandSpec:
     doc: str
     one_of: tuple[tuple[str, ...], ...] = ()
     needs: tuple[tuple[str, tuple[str, ...]], ...] = ()
-    since: str | None = None
-    until: str | None = None
+    binding: str | None = None
     harness_only: bool = False
     domain: str = "scene_graph"
     scoped_names: bool = False

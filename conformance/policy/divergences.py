@@ -1,7 +1,17 @@
 """Known divergences, as data (``known_divergences.json``), and the matcher that acts on them.
 
 Each entry records one finding: what Drake documents, what it does, the
-releases it holds for, and the scenarios or tests that show it. An entry may
+releases it holds for, and the scenarios or tests that show it. Its kind is one of
+
+- ``doc_vs_drake``: the documentation says one thing, Drake does another;
+- ``release_change``: releases differ (the release fact it names says how);
+- ``drake_crash``: the call ends the process on some releases (a crash row,
+  which the release guards name);
+- ``reimpl_vs_drake``: reimpl knowingly differs from every release.
+
+An entry about a release fact names its row (``release_fact``: an id of
+``release_facts.json``), whose range is the entry's; any other gives the
+releases it was measured on (``drake``). An entry may
 also say when a failure is *expected* (its ``xfail`` object):
 
 - ``backends``: ``fnmatch`` patterns of the backends that may fail this way (the one
@@ -41,6 +51,7 @@ from functools import cache
 from importlib import resources
 from typing import Any
 
+from conformance.policy.release_facts import release_fact
 from conformance.policy.versions import VersionRange
 from conformance.protocol import BackendId, Command, Result
 
@@ -147,13 +158,15 @@ class KnownDivergence:
     """One finding: what Drake documents, what it does, and where that is shown."""
 
     id: str
-    kind: str  # doc_vs_drake | reimpl_vs_drake | drake_crash
+    kind: str  # doc_vs_drake | release_change | drake_crash | reimpl_vs_drake
     releases: VersionRange
     observed: str
     reason: str
     scenarios: tuple[str, ...]
     tests: tuple[str, ...]
     xfail: XfailMatcher | None = None
+    #: The release fact the entry is about (its row in ``release_facts.json``), if any.
+    release_fact: str | None = None
 
     @property
     def since(self) -> str | None:
@@ -198,7 +211,8 @@ def known_divergences() -> tuple[KnownDivergence, ...]:
     )
     entries = []
     for e in data["entries"]:
-        releases = _range(e["drake"])
+        fact = e.get("release_fact")
+        releases = release_fact(fact).releases if fact is not None else _range(e["drake"])
         entries.append(
             KnownDivergence(
                 id=e["id"],
@@ -209,6 +223,7 @@ def known_divergences() -> tuple[KnownDivergence, ...]:
                 scenarios=tuple(e["evidence"].get("scenarios", ())),
                 tests=tuple(e["evidence"].get("tests", ())),
                 xfail=_matcher(e.get("xfail"), releases),
+                release_fact=fact,
             )
         )
     return tuple(entries)

@@ -2,8 +2,9 @@
 
 Some calls end the process in some releases (a failed ``DRAKE_DEMAND``, an
 abort in the proximity engine), which would lose a whole run. A guard names
-such a call by the id of the known divergence that records the crash; the
-divergence's release range says where it crashes. A run *arms* a guard when
+such a call by the id of its crash row in the release table
+(``release_facts.json``, kind ``crash``); the row's range says where it
+crashes. A run *arms* a guard when
 any of its backends has a release in that range, and then every backend of
 the run refuses the call alike (``ErrorKind.REFUSED``), so the backends stay
 comparable and the run survives.
@@ -24,7 +25,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from conformance.policy.divergences import divergence
+from conformance.policy.release_facts import FactKind, release_fact
 from conformance.policy.versions import VersionRange
 from conformance.protocol import Backend
 
@@ -33,22 +34,26 @@ __all__ = ["GUARDS", "Guard", "arm_guards", "armed_guards"]
 
 @dataclass(frozen=True)
 class Guard:
-    """A refused call: the known divergence that records the crash, and what is refused."""
+    """A refused call: the crash row that records the crash, and what is refused."""
 
-    divergence: str
+    fact: str
     refuses: str
+
+    def __post_init__(self) -> None:
+        if release_fact(self.fact).kind is not FactKind.CRASH:
+            raise ValueError(f"a guard names a crash row; {self.fact!r} is not one")
 
     @property
     def releases(self) -> VersionRange:
-        return divergence(self.divergence).releases
+        return release_fact(self.fact).releases
 
     def message(self) -> str:
-        return f"refused ({self.divergence}): {self.refuses} aborts pydrake {self.releases}"
+        return f"refused ({self.fact}): {self.refuses} aborts pydrake {self.releases}"
 
 
-#: Every guard, by the id of its known divergence.
+#: Every guard, by the id of its crash row.
 GUARDS: dict[str, Guard] = {
-    guard.divergence: guard
+    guard.fact: guard
     for guard in (
         Guard("deactivate-anchored-aborts", "(de)activating anchored geometry"),
         Guard(

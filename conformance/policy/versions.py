@@ -35,6 +35,18 @@ class VersionRange:
     def __contains__(self, version: object) -> bool:
         return isinstance(version, str) and version_in_range(version, self.since, self.until)
 
+    def before(self, version: str) -> bool:
+        """``version`` < since (False without a ``since``, or for an unknown version)."""
+        v = parse_version(version)
+        return bool(v) and self.since is not None and v < parse_version(self.since)
+
+    def after(self, version: str) -> bool:
+        """``version`` > until (False without an ``until``, or for an unknown version)."""
+        v = parse_version(version)
+        return (
+            bool(v) and self.until is not None and not version_in_range(version, None, self.until)
+        )
+
     def __str__(self) -> str:
         if self.since and self.until:
             return f"{self.since}-{self.until}"

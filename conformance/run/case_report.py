@@ -68,6 +68,9 @@ class CaseReport:
     recoverable: bool = False
     #: backend → how it broke (CRASH, TIMEOUT or ERROR), also when that is ``xfail``.
     broken: dict[str, Outcome] = field(default_factory=dict)
+    #: backend → the crash row (``policy.release_facts``) that records its crash as its
+    #: release's answer: it passes.
+    recorded: dict[str, str] = field(default_factory=dict)
     #: backend → what it answered (``Track``), for each backend that ran the case.
     traces: dict[str, Track] = field(default_factory=dict, repr=False)
     #: The engine's steps, every backend's answers side by side (None: the case never ran).

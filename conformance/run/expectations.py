@@ -1,7 +1,11 @@
 """A step's expectations, checked against one backend's Result and Observation.
 
 An expectation holds for a backend only if the backend's Drake release lies
-in its ``since``/``until`` range. ``check`` yields ``(what, expected,
+in its ``since``/``until`` range. An expectation of a refusal that names a
+crash row (``refused (<id>)``, a release guard's message) describes a run
+whose guard was armed; where it was not (a worker) and the backend gave the
+row's answer instead (``policy.release_facts.crash_answer``), the call was
+made and the expectation does not apply. ``check`` yields ``(what, expected,
 actual)`` for every part that does not hold: the error kind and message
 prefix (the part an op's ``error_choice`` matches may name any choice), the
 return value (compared as the op's ``CommandSpec.compare`` says:
@@ -13,18 +17,49 @@ filtered or unfiltered, IsActive per label and ``has_transient_history``.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
 from conformance.compare import comparable_message, format_pairs, value_differences
 from conformance.corpus.loader import Step
-from conformance.protocol import MODEL, LocationState, Observation, Pair, Result, normalise_message
+from conformance.policy.release_facts import crash_answer
+from conformance.protocol import (
+    MODEL,
+    ErrorKind,
+    LocationState,
+    Observation,
+    Pair,
+    Result,
+    normalise_message,
+)
 
 __all__ = ["check"]
 
 
 def _pairs(raw: Iterable[Sequence[str]]) -> frozenset[Pair]:
     return frozenset((a, b) if a < b else (b, a) for a, b in raw)
+
+
+#: A release guard's refusal: ``refused (<crash row id>): ...``.
+_REFUSAL = re.compile(r"^refused \(([a-z0-9.-]+)\)")
+
+
+def _answered_unguarded(op: str, expectation: Mapping[str, Any], result: Result) -> bool:
+    """Whether ``expectation`` expects a refusal naming a crash row and ``result`` is that
+    row's answer instead (no guard refused the call)."""
+    expected = expectation.get("error") or {}
+    refusal = _REFUSAL.match(expected.get("message", ""))
+    if expected.get("kind") != ErrorKind.REFUSED.value or refusal is None or result.error is None:
+        return False
+    answer = crash_answer(refusal.group(1))
+    return (
+        answer is not None
+        and result.error.kind.value == answer["kind"]
+        and comparable_message(op, result.error.message).startswith(
+            comparable_message(op, normalise_message(answer["message"]))
+        )
+    )
 
 
 def _check_result(
@@ -70,6 +105,8 @@ def check(
     step: Step, expectation: Mapping[str, Any], result: Result, observation: Observation
 ) -> Iterator[tuple[str, Any, Any]]:
     """(what, expected, actual) for every part of ``expectation`` that does not hold."""
+    if _answered_unguarded(step.op, expectation, result):
+        return
     yield from _check_result(step.op, expectation, result)
     at = expectation.get("at", step.args.get("context", MODEL))
     state = observation.locations.get(at)

@@ -140,7 +140,8 @@ def outcome_of(report: CaseReport, backend: str) -> Cell:
     """The cell of ``backend`` in ``report`` (the module doc's table)."""
     if backend in report.broken:
         outcome = report.broken[backend]
-        return Cell(outcome, _broke(report, backend), report.xfails.get(backend))
+        expected = report.xfails.get(backend) or report.recorded.get(backend)
+        return Cell(outcome, _broke(report, backend), expected)
     return _BY_OUTCOME[report.status.get(backend, Outcome.PASS)](report, backend)
 
 

@@ -5,6 +5,7 @@
 | the backend's track                         | outcome                          |
 |---------------------------------------------|----------------------------------|
 | broke (raised, timed out, its worker died)  | ERROR / TIMEOUT / CRASH          |
+|   ... an isolated crash its release's crash row records | PASS (``recorded``)   |
 |   ... an isolated crash a divergence expects| XFAIL                            |
 | no failures                                 | PASS                             |
 | a Drake release lacking a binding the case uses | SKIP                         |
@@ -24,6 +25,7 @@ from collections.abc import Sequence
 from conformance.backends.calls import BackendError
 from conformance.engine import Engine, Outcome, outcome_of_break
 from conformance.policy.divergences import KnownDivergence, match_step
+from conformance.policy.release_facts import recorded_crash
 from conformance.protocol import Backend, BackendId, ErrorKind, backend_id
 from conformance.run.case_report import CaseReport
 
@@ -31,6 +33,9 @@ __all__ = ["DRAKE_NAMES", "binding_gap", "judge"]
 
 #: Backend names that are real Drake: preferred as the reference.
 DRAKE_NAMES = ("pydrake", "drake")
+#: Backend names that claim one Drake release's bindings: real Drake, and reimpl following a
+#: release in a worker (``reimpl==X``), whose missing bindings are that release's.
+_RELEASE_NAMES = (*DRAKE_NAMES, "reimpl==")
 
 
 def judge(
@@ -103,8 +108,10 @@ def _broke(
     """Records a backend that broke: its outcome, and why the case stopped early.
 
     A crash or a timeout of an isolated backend is recoverable (a new worker
-    takes over); one that a known divergence expects of that backend's own
-    release is ``xfail``, unless ``strict``.
+    takes over). A crash that a crash row of the release table records for
+    that backend's own release, in that case, is the release's answer: it
+    passes. Any other that a known divergence expects of that release is
+    ``xfail``, unless ``strict``.
     """
     status = outcome_of_break(broken)
     report.broken[backend.name] = status
@@ -113,6 +120,11 @@ def _broke(
     report.recoverable = (report.aborted is None or report.recoverable) and recoverable
     report.aborted = "; ".join(filter(None, (report.aborted, str(broken))))
     me = backend_id(backend)
+    recorded = recorded_crash(report.case.qualified_name, me.version)
+    if recorded is not None and status is Outcome.CRASH and recoverable:
+        report.recorded[backend.name] = recorded
+        report.status[backend.name] = Outcome.PASS
+        return
     at = len(report.traces[backend.name].results)
     known = (
         None
@@ -151,7 +163,7 @@ def _status(
     if not failures:
         return Outcome.PASS
     gap = binding_gap(report, backend.name)
-    if gap is not None and backend.name.startswith(DRAKE_NAMES):
+    if gap is not None and backend.name.startswith(_RELEASE_NAMES):
         report.skip_reasons[backend.name] = f"no binding: {gap}"
         return Outcome.SKIP
     if strict:

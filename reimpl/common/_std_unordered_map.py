@@ -33,7 +33,10 @@ import functools
 from collections.abc import Iterable, Iterator, MutableMapping
 from typing import Generic, Protocol, Self, TypeVar
 
+from reimpl._release import release
+
 __all__ = [
+    "MAP_AT_MESSAGE",
     "IdentifierUnorderedMap",
     "StdUnorderedMap",
     "fnv1a_int64_hash",
@@ -205,3 +208,11 @@ def identifier_set_order(keys: Iterable[I]) -> list[I]:
     for key in keys:
         walk[key] = None
     return list(walk)
+
+
+#: What ``std::unordered_map::at`` says of a missing key (pydrake: IndexError): the C++
+#: standard library of Drake's wheels words it '_Map_base::at' up to 1.51.1 and
+#: 'unordered_map::at' since 1.52 (the release fact clone-error-wording-since-1.52).
+MAP_AT_MESSAGE = (
+    "unordered_map::at" if release.has("clone-error-wording-since-1.52") else "_Map_base::at"
+)

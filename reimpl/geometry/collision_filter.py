@@ -33,7 +33,7 @@ immutable ints: copying a relation copies n references, and the copies share
 every row until one of them writes it. So
 
 - without transient history, U's row of a slot *is* the base's row (the same
-  object) unless a failed Apply left that row different (see ``apply``);
+  object) unless a failed Apply left that row different (``_failed_apply``);
 - a context shares every row with the model until it writes one.
 
 Cost model (n slots; a row write costs O(w), w = ⌈n/64⌉ machine words, at
@@ -65,6 +65,7 @@ from typing import NamedTuple, cast
 import numpy as np
 import numpy.typing as npt
 
+from reimpl._release import release
 from reimpl.common._drake_demand import demand_failure
 from reimpl.geometry._pair_bits import PairBits, mask_of
 from reimpl.geometry.collision_filter_declaration import Pairing, Statement, StatementOp
@@ -168,7 +169,7 @@ class CollisionFilter:
         self._filtered = PairBits()  # U = replay(base, history), what C reads
         self._history: list[_Delta] = []
         self._active: set[FilterId] = set()  # the history's FilterIds
-        # Slots whose rows in U may hold leftovers of a failed, partial apply.
+        # Slots whose rows in U may differ from the base's after a failed apply.
         self._leftover: set[int] = set()
 
     # ----------------------------------------------------------------- copies
@@ -298,9 +299,8 @@ class CollisionFilter:
 
         Raises:
             TransientHistoryActiveError: if any transient declaration is active.
-            UnknownGeometryError, UnknownFrameError: from ``resolve``. N.B. As in
-                Drake ≤ 1.51, statements before the bad one stay in C (not in the
-                base) until C is next re-derived from the base by RemoveDeclaration.
+            UnknownGeometryError, UnknownFrameError: from ``resolve``; what the
+                statements before the bad one leave is ``_failed_apply``'s.
         """
         if self._history:
             raise TransientHistoryActiveError(_PERSISTENT_WITH_HISTORY)
@@ -311,11 +311,30 @@ class CollisionFilter:
             for item in resolved:
                 item.write(self._invariant)
         elif error is not None:
-            self._write_leftover(resolved)
+            self._failed_apply(resolved)
         else:
             self._write_base(resolved)
         if error is not None:
             raise error
+
+    def _failed_apply(self, resolved: Sequence[ResolvedStatement]) -> None:
+        """What a failing Apply leaves of the statements before the bad one, by release:
+
+        - up to 1.51 (partial-apply-until-1.51): they are in C, not in the base,
+          until C is next re-derived from the base (a successful RemoveDeclaration);
+        - 1.52-1.56 (failed-apply-writes-base-1.52-1.56): they are in the base, not
+          in C, until that re-derivation shows them;
+        - since 1.57: nowhere.
+
+        Either way U's rows of the slots they mention differ from the base's
+        (``_leftover``) until the next re-derivation.
+        """
+        if release.has("partial-apply-until-1.51"):
+            self._write_leftover(resolved)
+        elif release.has("failed-apply-writes-base-1.52-1.56"):
+            for item in resolved:
+                item.write(self._base)
+                self._leftover |= item.mentioned()
 
     def _write_base(self, resolved: Sequence[ResolvedStatement]) -> None:
         """Writes the base; U's rows follow it (no history: U = base off the leftovers).
@@ -346,14 +365,15 @@ class CollisionFilter:
         """Appends a declaration to the history; C ← C then the declaration.
 
         Returns the new declaration's FilterId. If resolution fails part way,
-        no history entry is made and the statements before the failure stay in
-        C until it is next re-derived (Drake ≤ 1.51): a successful
-        ApplyTransient writes onto C as it is, only RemoveDeclaration
-        re-derives C from the base.
+        no history entry is made. Up to 1.51 (partial-apply-until-1.51) the
+        statements before the failure stay in C until it is next re-derived (a
+        successful ApplyTransient writes onto C as it is, only
+        RemoveDeclaration re-derives C from the base); since 1.52 C is unchanged.
         """
         resolved, error = self._resolve_all(statements, resolve)
         if error is not None:
-            self._write_leftover(resolved)
+            if release.has("partial-apply-until-1.51"):
+                self._write_leftover(resolved)
             raise error
         for item in resolved:
             item.write(self._filtered)
@@ -403,10 +423,18 @@ class CollisionFilter:
     def has_transient_history(self) -> bool:
         return bool(self._history)
 
-    def set_active(self, ids: Iterable[GeometryId], active: bool) -> None:
-        """Edits the inactive set (Drake ≥ 1.55); allowed with transient history."""
-        for slot in self._slots(ids):
-            self._inactive[slot] = not active
+    def set_active(self, ids: Iterable[GeometryId], active: bool) -> list[GeometryId]:
+        """Edits the inactive set (Drake ≥ 1.55); allowed with transient history.
+
+        Returns the ids whose status changed (Drake's ActiveStatusChange).
+        """
+        changed = []
+        for geometry_id in ids:
+            slot = self._slot_of[geometry_id]
+            if self._inactive[slot] == active:
+                self._inactive[slot] = not active
+                changed.append(geometry_id)
+        return changed
 
     # ---------------------------------------------------------------- queries
     def relationship(self, a: GeometryId, b: GeometryId) -> PairRelationship:

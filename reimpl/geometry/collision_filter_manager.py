@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from reimpl._release import release
 from reimpl.geometry.collision_filter_declaration import CollisionFilterDeclaration
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FilterId
@@ -48,8 +49,9 @@ class CollisionFilterManager:
         """Applies ``declaration`` to the persistent base, statement by statement.
 
         Raises:
-            RuntimeError: an id in the declaration is not registered (statements
-                before it stay applied), or transient history is active.
+            RuntimeError: an id in the declaration is not registered (what the
+                statements before it leave depends on the release:
+                ``CollisionFilter._failed_apply``), or transient history is active.
         """
         state = self._state
         state.collision_filter.apply(declaration.statements(), state.collect_ids)
@@ -69,12 +71,12 @@ class CollisionFilterManager:
     def has_transient_history(self) -> bool:
         return self._state.collision_filter.has_transient_history()
 
-    def Deactivate(self, geometry_set: GeometrySet) -> None:
-        """C ← C − {(a, b) : a ∈ S or b ∈ S}, until reactivated (Drake ≥ 1.55)."""
-        ids = self._state.collect_ids(geometry_set)
-        self._state.collision_filter.set_active(ids, active=False)
+    if release.has("activation-since-1.55"):
 
-    def Activate(self, geometry_set: GeometrySet) -> None:
-        """Undoes Deactivate for the geometries in S (Drake ≥ 1.55)."""
-        ids = self._state.collect_ids(geometry_set)
-        self._state.collision_filter.set_active(ids, active=True)
+        def Deactivate(self, geometry_set: GeometrySet) -> None:
+            """C ← C − {(a, b) : a ∈ S or b ∈ S}, until reactivated (Drake ≥ 1.55)."""
+            self._state.set_active(geometry_set, active=False)
+
+        def Activate(self, geometry_set: GeometrySet) -> None:
+            """Undoes Deactivate for the geometries in S (Drake ≥ 1.55)."""
+            self._state.set_active(geometry_set, active=True)

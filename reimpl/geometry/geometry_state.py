@@ -20,7 +20,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import NoReturn
 
-from reimpl.common._std_unordered_map import IdentifierUnorderedMap
+from reimpl._release import release
+from reimpl.common._drake_demand import demand_failure
+from reimpl.common._std_unordered_map import MAP_AT_MESSAGE, IdentifierUnorderedMap
 from reimpl.geometry.collision_filter import CollisionFilter
 from reimpl.geometry.collision_filter_declaration import Statement, StatementOp
 from reimpl.geometry.errors import (
@@ -46,8 +48,8 @@ from reimpl.geometry.mesh import _MeshShape
 from reimpl.geometry.shape import Shape
 from reimpl.math import RigidTransform
 
-#: What libstdc++'s ``unordered_map::at`` says of a missing key (pydrake: IndexError).
-_MAP_AT = "_Map_base::at"
+#: What ``unordered_map::at`` says of a missing key (pydrake: IndexError), by release.
+_MAP_AT = MAP_AT_MESSAGE
 
 __all__ = ["WORLD_FRAME_ID", "GeometryState"]
 
@@ -488,6 +490,25 @@ class GeometryState:
             if Role.kProximity in geometry.properties:
                 ids[geometry_id] = None
         return list(ids)
+
+    def set_active(self, geometry_set: GeometrySet, *, active: bool) -> None:
+        """(De)activates the set's proximity geometries (Drake ≥ 1.55: Activate, Deactivate).
+
+        The filter's inactive set changes first; then the proximity engine is told of
+        each geometry whose status changed. Up to 1.58 it looks an anchored one up among
+        its dynamic objects and fails a DRAKE_DEMAND (deactivate-anchored-aborts):
+        pydrake's SystemExit, with the anchored pairs already out of C (measured on
+        1.55.0-1.58.0; the lines are 1.58.0's).
+        """
+        changed = self.collision_filter.set_active(self.collect_ids(geometry_set), active)
+        anchored = any(self._geometries[g].is_anchored for g in changed)
+        if anchored and release.has("deactivate-anchored-aborts"):
+            raise demand_failure(
+                "geometry/proximity_engine.cc",
+                329 if active else 315,
+                "ApplyActiveStatusChange",
+                "iter != dynamic_objects_.end()",
+            )
 
     # ---------------------------------------------------------------- queries
     def collision_filtered(self, a: GeometryId, b: GeometryId) -> bool:

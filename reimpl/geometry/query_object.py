@@ -26,7 +26,7 @@ import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
-from reimpl.common._std_unordered_map import identifier_set_order
+from reimpl.common._std_unordered_map import MAP_AT_MESSAGE, identifier_set_order
 from reimpl.common.value import register_value_type
 from reimpl.geometry.geometry_roles import Role
 from reimpl.geometry.geometry_state import WORLD_FRAME_ID
@@ -362,7 +362,7 @@ class PosedState:
         if self.state.ghost_frames:
             # Measured: after the ports are checked, a frame index left by a failed
             # duplicate-name RegisterFrame fails the update (queries and Clone alike).
-            raise IndexError("_Map_base::at")
+            raise IndexError(MAP_AT_MESSAGE)
         self.engine.pose(
             tuple(self._validated),
             lambda: [self._block(s, v) for s, v in zip(self.sources, blocks, strict=True)],
