@@ -15,6 +15,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from reimpl.common._pybind_text import incompatible_arguments
+
 __all__ = ["REQUIRED", "Overload", "Param", "any_of", "dispatch", "instance_of", "list_of"]
 
 Check = Callable[[object], bool]
@@ -151,10 +153,7 @@ def dispatch(
             if receiver is _NO_RECEIVER:
                 return overload.impl(**bound)
             return overload.impl(receiver, **bound)
-    what = "constructor" if name == "__init__" else "function"
-    lines = [
-        f"{name}(): incompatible {what} arguments. The following argument types are supported:"
-    ]
+    lines = [f"{incompatible_arguments(name)}. The following argument types are supported:"]
     for i, overload in enumerate(overloads, 1):
         lines.append(f"    {i}. {overload.signature(owner)}")
     shown = [repr(a) for a in args] + [f"kwargs: {k}={v!r}" for k, v in kwargs.items()]

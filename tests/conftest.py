@@ -168,26 +168,29 @@ def _runs_on_pydrake(item: pytest.Item) -> bool:
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """``@pytest.mark.release_fact(id)``: the test asserts what a known divergence records.
+    """``@pytest.mark.release_fact(id)``: the test asserts what a release fact records.
 
-    The divergence (``conformance/policy/known_divergences.json``) holds for a
-    range of Drake releases. Run on real pydrake of a release outside it, the
-    test is an expected failure naming the divergence (strict: if it passes,
-    the record is wrong). On reimpl it always runs as written.
+    The fact is a row of the release table (``conformance/policy/release_facts.json``),
+    which holds for a range of Drake releases. Run on an implementation whose release is
+    outside it (the installed pydrake's; for reimpl, the release it follows:
+    ``REIMPL_DRAKE_RELEASE``, default 1.51.1), the test is an expected failure naming the
+    row (strict: if it passes, the table is wrong).
     """
     from importlib.metadata import version  # noqa: PLC0415
 
-    from conformance.policy.divergences import divergence  # noqa: PLC0415
+    from conformance.policy.release_facts import release_fact  # noqa: PLC0415
+    from reimpl._release import release  # noqa: PLC0415
 
-    release = version("drake")
+    releases = {True: version("drake"), False: release.version}
     for item in items:
         for marker in item.iter_markers("release_fact"):
-            entry = divergence(marker.args[0])
-            if _runs_on_pydrake(item) and release not in entry.releases:
+            fact = release_fact(marker.args[0])
+            tested = releases[_runs_on_pydrake(item)]
+            if tested not in fact.releases:
                 item.add_marker(
                     pytest.mark.xfail(
-                        reason=f"known divergence {entry.id}: holds for Drake {entry.releases}, "
-                        f"not {release}",
+                        reason=f"release fact {fact.id}: holds for Drake {fact.releases}, "
+                        f"not {tested}",
                         strict=True,
                     )
                 )

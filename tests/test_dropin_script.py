@@ -189,7 +189,7 @@ def test_reimpl_variant_imports_only_reimpl() -> None:
     assert "from reimpl.math import RigidTransform" in switched
 
 
-@pytest.mark.release_fact("binding-wording-until-1.51")
+@pytest.mark.release_fact("pybind-wording-until-1.57")
 def test_outputs_are_identical(outputs: tuple[str, str]) -> None:
     pydrake_out, reimpl_out = outputs
     assert len(pydrake_out.splitlines()) > 100
@@ -197,7 +197,7 @@ def test_outputs_are_identical(outputs: tuple[str, str]) -> None:
 
 
 @pytest.mark.parametrize("implementation", ["pydrake", "reimpl"])
-@pytest.mark.release_fact("binding-wording-until-1.51")
+@pytest.mark.release_fact("pybind-wording-until-1.57")
 def test_output_has_the_measured_lines(outputs: tuple[str, str], implementation: str) -> None:
     out = outputs[0] if implementation == "pydrake" else outputs[1]
     lines = out.splitlines()

@@ -136,7 +136,7 @@ class TestGeometrySet:
         )
         assert scene.C() == {"a-c", "b-c"}
 
-    @pytest.mark.release_fact("binding-wording-until-1.51")
+    @pytest.mark.release_fact("pybind-wording-until-1.57")
     def test_mixed_id_list_raises_type_error(self, scene: Scene) -> None:
         self._setup(scene)
         with pytest.raises(TypeError) as info:
@@ -146,21 +146,21 @@ class TestGeometrySet:
             "The following argument types are supported:"
         )
 
-    @pytest.mark.release_fact("binding-wording-until-1.51")
+    @pytest.mark.release_fact("pybind-wording-until-1.57")
     def test_mixed_id_keyword_list_raises_type_error(self, scene: Scene) -> None:
         self._setup(scene)
         with pytest.raises(TypeError) as info:
             scene.g.GeometrySet(geometry_ids=[scene.ids["a"], scene.frames["f"]])
         assert str(info.value).startswith("__init__(): incompatible constructor arguments")
 
-    @pytest.mark.release_fact("binding-wording-until-1.51")
+    @pytest.mark.release_fact("pybind-wording-until-1.57")
     def test_python_set_raises_type_error(self, scene: Scene) -> None:
         self._setup(scene)
         with pytest.raises(TypeError) as info:
             scene.g.GeometrySet({scene.ids["a"]})
         assert str(info.value).startswith("__init__(): incompatible constructor arguments")
 
-    @pytest.mark.release_fact("binding-wording-until-1.51")
+    @pytest.mark.release_fact("pybind-wording-until-1.57")
     def test_int_raises_type_error(self, api: Api) -> None:
         with pytest.raises(TypeError) as info:
             api.geometry.GeometrySet(3)
@@ -183,7 +183,7 @@ ID_TYPES = ("GeometryId", "FrameId", "SourceId", "FilterId")
 
 class TestIds:
     @pytest.mark.parametrize("type_name", ID_TYPES)
-    @pytest.mark.release_fact("binding-wording-until-1.51")
+    @pytest.mark.release_fact("pybind-wording-until-1.57")
     def test_id_constructor_raises_no_constructor_defined(self, api: Api, type_name: str) -> None:
         with pytest.raises(TypeError) as info:
             getattr(api.geometry, type_name)()

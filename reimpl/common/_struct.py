@@ -32,6 +32,8 @@ from typing import Any, ClassVar, Self
 
 import numpy as np
 
+from reimpl.common._pybind_text import incompatible_arguments
+
 __all__ = ["Field", "Struct", "as_vector", "optional_of", "str_list", "string", "vector"]
 
 Check = Callable[[object], bool]
@@ -100,7 +102,7 @@ class Struct:
         if args:
             shown = ", ".join(repr(a) for a in args)
             raise TypeError(
-                "__init__(): incompatible constructor arguments. The following argument types "
+                f"{incompatible_arguments('__init__')}. The following argument types "
                 f"are supported:\n    1. {self._owner()}(**kwargs)\n\nInvoked with: {shown}"
             )
         for spec in self.FIELDS:

@@ -14,7 +14,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any, ClassVar
 
+from reimpl._release import release
 from reimpl._template import TemplateClass
+from reimpl.common._pybind_text import incompatible_arguments, no_constructor
 
 __all__ = ["AbstractValue", "Value", "cpp_type_name", "register_value_type"]
 
@@ -31,7 +33,7 @@ class AbstractValue:
     _value: Any
 
     def __init__(self, *args: object, **kwargs: object) -> None:
-        raise TypeError("reimpl.common.value.AbstractValue: No constructor defined!")
+        raise no_constructor("reimpl.common.value.AbstractValue")
 
     @staticmethod
     def Make(value: object) -> AbstractValue:
@@ -89,9 +91,12 @@ _INSTANTIATIONS: dict[Any, type[AbstractValue]] = {}
 
 def _instantiate(param: Any, cpp_name: str, convert: Callable[[Any], Any] | None) -> None:
     def init(self: AbstractValue, value: object) -> None:
+        if value is None and param is object and not release.has("value-of-none-until-1.57"):
+            # 1.58: None means "default-construct", and a Python object has no default.
+            raise TypeError("object() takes no arguments")
         if convert is None and param is not object and not isinstance(value, param):
             raise TypeError(
-                "__init__(): incompatible constructor arguments. The following argument "
+                f"{incompatible_arguments('__init__')}. The following argument "
                 f"types are supported:\n    1. {type(self).__name__}(arg0: {param.__name__})"
                 f"\n\nInvoked with: {value!r}"
             )

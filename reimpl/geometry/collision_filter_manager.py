@@ -11,6 +11,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from reimpl._release import release
+from reimpl.common._pybind_text import no_constructor
 from reimpl.geometry.collision_filter_declaration import CollisionFilterDeclaration
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FilterId
@@ -30,7 +31,7 @@ class CollisionFilterManager:
     """
 
     def __init__(self, *args: object, **kwargs: object) -> None:
-        raise TypeError("reimpl.geometry.CollisionFilterManager: No constructor defined!")
+        raise no_constructor("reimpl.geometry.CollisionFilterManager")
 
     _state_of: Callable[[], GeometryState]
 

@@ -11,6 +11,8 @@ from __future__ import annotations
 import itertools
 from typing import ClassVar, Self
 
+from reimpl.common._pybind_text import no_constructor
+
 __all__ = ["FilterId", "FrameId", "GeometryId", "Identifier", "SourceId"]
 
 # N.B. One counter for every id type, as in pydrake (see pydrake-observed.md §1).
@@ -26,7 +28,7 @@ class Identifier:
     _value: int
 
     def __init__(self) -> None:
-        raise TypeError(f"reimpl.geometry.{type(self).__name__}: No constructor defined!")
+        raise no_constructor(f"reimpl.geometry.{type(self).__name__}")
 
     @classmethod
     def _from_value(cls, value: int) -> Self:

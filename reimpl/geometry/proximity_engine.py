@@ -37,6 +37,7 @@ from typing import Any, NamedTuple, cast
 import fcl
 import numpy as np
 
+from reimpl._release import release
 from reimpl.geometry._convex_hull import Hull
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
 from reimpl.geometry.mesh import Convex, Mesh
@@ -52,6 +53,7 @@ from reimpl.geometry.proximity.narrowphase import (
     point_signed_distance,
 )
 from reimpl.geometry.proximity.sphere_sphere import sphere_sphere
+from reimpl.geometry.proximity.tight_aabb import overlapping_pairs
 from reimpl.geometry.proximity.transforms import EPS, Array, Pose, Vec, compose_poses
 from reimpl.geometry.shape import Box, Capsule, Cylinder, Ellipsoid, HalfSpace, Shape, Sphere
 
@@ -578,8 +580,16 @@ class ProximityEngine:
 
             self._balance()
             self._traverse(keep)
+            if release.has("rotated-aabb-tight-since-1.58"):
+                met = self._tight_boxes(met)
             self._met = met
         return self._met
+
+    def _tight_boxes(self, met: list[_Met]) -> list[_Met]:
+        """The met pairs under Drake 1.58's boxes (``proximity.tight_aabb``)."""
+        kinds = [(body.kind, body.m) for body in self._bodies]
+        dynamic = [body.dynamic for body in self._bodies]
+        return overlapping_pairs(met, kinds, dynamic, self._R_WG, self._p_WG)
 
     def distance_pairs(self, max_distance: float) -> list[_Met]:
         """Pairs FCL's distance traversal visits when it prunes at ``max(max_distance, ε/10)``

@@ -26,6 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 from reimpl._template import scalar_template
+from reimpl.common._pybind_text import incompatible_arguments
 from reimpl.geometry.identifier import GeometryId
 
 __all__ = [
@@ -77,7 +78,7 @@ class _QueryResult:
         name = type(self).__name__
         if args:
             raise TypeError(
-                "__init__(): incompatible constructor arguments. The following argument types "
+                f"{incompatible_arguments('__init__')}. The following argument types "
                 f"are supported:\n    1. reimpl.geometry.{name}(**kwargs)\n\n"
                 f"Invoked with: {', '.join(repr(a) for a in args)}"
             )

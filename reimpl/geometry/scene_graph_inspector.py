@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import scalar_template
+from reimpl.common._pybind_text import no_constructor
 from reimpl.common._std_unordered_map import identifier_set_order
 from reimpl.geometry.geometry_instance import GeometryInstance, canonicalize_string_name
 from reimpl.geometry.geometry_roles import (
@@ -40,7 +41,7 @@ class SceneGraphInspector:
     """Queries on a model or context state; get one from SceneGraph or a QueryObject."""
 
     def __init__(self, *args: object, **kwargs: object) -> None:
-        raise TypeError("reimpl.geometry.SceneGraphInspector: No constructor defined!")
+        raise no_constructor("reimpl.geometry.SceneGraphInspector")
 
     _state_of: Callable[[], GeometryState]
 

@@ -29,6 +29,7 @@ import numpy as np
 import numpy.typing as npt
 
 from reimpl._overload import REQUIRED, Overload, Param, dispatch
+from reimpl.common._pybind_text import no_constructor
 from reimpl.geometry._drake_text import shortest
 from reimpl.geometry._half_space_pose import make_pose_columns
 from reimpl.geometry._shape_args import is_float, is_vector
@@ -53,7 +54,7 @@ class Shape:
     __slots__ = ()
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
-        raise TypeError("reimpl.geometry.Shape: No constructor defined!")
+        raise no_constructor("reimpl.geometry.Shape")
 
     def Clone(self) -> Shape:
         clone = object.__new__(type(self))

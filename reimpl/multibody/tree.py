@@ -31,6 +31,7 @@ import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._template import TemplateClass
+from reimpl.common._pybind_text import no_constructor
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody import kinematics
 from reimpl.multibody._errors import MultibodyPlantError
@@ -541,7 +542,7 @@ class Frame(_Element):
     _body: RigidBody
 
     def __init__(self, *args: object, **kwargs: object) -> None:
-        raise TypeError(f"{_OWNER}.Frame: No constructor defined!")
+        raise no_constructor(f"{_OWNER}.Frame")
 
     def body(self) -> RigidBody:
         return self._body
@@ -785,7 +786,7 @@ class Joint(_Element):
         """Binds pydrake's overloads: name, the two frames, then one of ``_overloads()``."""
         cls = type(self)
         if cls is Joint:
-            raise TypeError(f"{_OWNER}.Joint: No constructor defined!")
+            raise no_constructor(f"{_OWNER}.Joint")
         frames = (
             Param("name", instance_of(str)),
             Param(cls._parent_param, instance_of(Frame)),

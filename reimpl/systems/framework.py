@@ -22,6 +22,8 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from reimpl._template import scalar_template
+from reimpl.common._drake_demand import demand_failure
+from reimpl.common._pybind_text import no_constructor
 
 if TYPE_CHECKING:
     from reimpl.geometry.geometry_state import GeometryState
@@ -130,7 +132,7 @@ class Context:
     """The state of one system evaluation; independent of the model once made."""
 
     def __init__(self, *args: object, **kwargs: object) -> None:
-        raise TypeError(f"reimpl.systems.framework.{type(self).__name__}: No constructor defined!")
+        raise no_constructor(f"reimpl.systems.framework.{type(self).__name__}")
 
     _system: System
     _pathname: str
@@ -254,6 +256,15 @@ class InputPort:
 
     def FixValue(self, context: Context, value: object) -> FixedInputPortValue:
         _check_port_context("InputPort", self._system, self._index, self._name, context)
+        if self._index >= context.num_input_ports():
+            # A context made before the port existed (a SceneGraph source registered later):
+            # Drake's DRAKE_DEMAND in SetFixedInputPortValue (older-context-pose-port-aborts).
+            raise demand_failure(
+                "systems/framework/context_base.cc",
+                91,
+                "SetFixedInputPortValue",
+                "0 <= index && index < num_input_ports()",
+            )
         # N.B. The context keeps a copy, as pydrake's does: editing ``value`` afterwards
         # does not change what the context holds.
         held = copy.copy(value)
@@ -313,7 +324,7 @@ class Diagram(System):
     _cpp_type = "drake::systems::Diagram<double>"
 
     def __init__(self, *args: object, **kwargs: object) -> None:
-        raise TypeError("reimpl.systems.framework.Diagram: No constructor defined!")
+        raise no_constructor("reimpl.systems.framework.Diagram")
 
     _systems: list[System]
     #: (input system, input index) -> the output port wired to it.

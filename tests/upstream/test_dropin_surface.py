@@ -49,7 +49,7 @@ class TestScalarTemplates:
 
 
 class TestValue:
-    @pytest.mark.release_fact("value-of-none-until-1.51")
+    @pytest.mark.release_fact("value-of-none-until-1.57")
     def test_make_picks_the_instantiation_from_the_type(self, drake: ModuleType) -> None:
         value = drake.common.value
         assert type(value.AbstractValue.Make(2.0)) is value.Value[float]
@@ -93,7 +93,7 @@ class TestValue:
             "using the static type 'std::string'."
         )
 
-    @pytest.mark.release_fact("binding-wording-until-1.51")
+    @pytest.mark.release_fact("pybind-wording-until-1.57")
     def test_abstract_value_has_no_constructor(self, drake: ModuleType) -> None:
         with pytest.raises(TypeError, match="AbstractValue: No constructor defined!"):
             drake.common.value.AbstractValue()

@@ -211,7 +211,7 @@ def test_halfspace_copies_but_does_not_pickle(drake: ModuleType) -> None:
     assert str(info.value) == f"cannot pickle '{drake.__name__}.geometry.HalfSpace' object"
 
 
-@pytest.mark.release_fact("binding-wording-until-1.51")
+@pytest.mark.release_fact("pybind-wording-until-1.57")
 def test_shape_itself_has_no_constructor(drake: ModuleType) -> None:
     with pytest.raises(TypeError, match=r"geometry\.Shape: No constructor defined!$"):
         drake.geometry.Shape()

@@ -45,6 +45,8 @@ from typing import Any
 
 import numpy as np
 
+from reimpl._release import release
+from reimpl.common._pybind_text import no_constructor
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics
@@ -97,7 +99,7 @@ class ModelInstanceInfo:
     )
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
-        raise TypeError("reimpl.multibody.parsing.ModelInstanceInfo: No constructor defined!")
+        raise no_constructor("reimpl.multibody.parsing.ModelInstanceInfo")
 
     @classmethod
     def _make(cls, model_instance: Any, model_name: str, model_path: str) -> ModelInstanceInfo:
@@ -281,7 +283,13 @@ class _Run:
             object.__setattr__(info, "parent_frame_name", parent.name())
             object.__setattr__(info, "child_frame_name", child.name())
             object.__setattr__(info, "X_PC", X_PC)
-        if not infos:
+        if not infos and release.has("directives-unmatched-weld-error-since-1.58"):
+            model = self.plant.GetModelInstanceName(child.model_instance())
+            raise self.diagnostics.error(
+                f"add_weld: child frame '{child.name()}' (model instance '{model}') does not "
+                "match any model added by these directives"
+            )
+        if not infos:  # up to 1.57: a failed DRAKE_DEMAND
             raise SystemExit(_DMD_FAILURE.format(line=46) + "AddWeld(): condition 'found' failed.")
 
     def add_collision_filter_group(self, group: AddCollisionFilterGroup, namespace: str) -> None:

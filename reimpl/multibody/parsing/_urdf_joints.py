@@ -40,7 +40,8 @@ Limits default to ±∞ and damping to 0; they go to the joint's constructor
 limits ±acceleration are set (a negative one fails Drake's DRAKE_DEMAND:
 SystemExit). ``<dynamics>`` warns of a non-zero ``friction`` and of any
 ``coulomb_window``. Each joint gets a frame ``<name>_parent`` at X_PF on the
-parent body, in the child's model instance; a planar joint also turns both its
+parent body, in the child's model instance (since 1.55 only where X_PF is not
+exactly the identity); a planar joint also turns both its
 frames so that z is the axis (``<name>_child`` on the child), see
 ``planar_rotation``.
 
@@ -61,6 +62,7 @@ from typing import Any
 
 import numpy as np
 
+from reimpl._release import release
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody.kinematics import rotation_about
 from reimpl.multibody.parsing._diagnostics import Diagnostics
@@ -276,12 +278,20 @@ class JointReader:
         X_BM: RigidTransform | None = None,
         X_PF: RigidTransform | None = None,
     ) -> Any:
-        """MultibodyPlant::AddJoint: the ``_parent`` (and ``_child``) frames, then the joint."""
+        """MultibodyPlant::AddJoint: the ``_parent`` (and ``_child``) frames, then the joint.
+
+        Since 1.55 (urdf-identity-joint-frame-elided-since-1.55) a joint whose X_PF is
+        exactly the identity is made on the parent body's frame, with no ``_parent`` frame.
+        """
         instance = joint.child.model_instance()
-        frame_on_parent = FixedOffsetFrame(
-            f"{joint.name}_parent", joint.parent.body_frame(), X_PF or joint.X_PF, instance
-        )
-        self.plant.AddFrame(frame_on_parent)
+        X_PF = X_PF or joint.X_PF
+        frame_on_parent = joint.parent.body_frame()
+        elided = X_PF.IsExactlyIdentity()  # drake#24687
+        if not (elided and release.has("urdf-identity-joint-frame-elided-since-1.55")):
+            frame_on_parent = FixedOffsetFrame(
+                f"{joint.name}_parent", frame_on_parent, X_PF, instance
+            )
+            self.plant.AddFrame(frame_on_parent)
         frame_on_child = joint.child.body_frame()
         if X_BM is not None:
             frame_on_child = FixedOffsetFrame(f"{joint.name}_child", frame_on_child, X_BM, instance)

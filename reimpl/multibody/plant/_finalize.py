@@ -5,7 +5,8 @@ topology it builds (LinkJointGraph, SpanningForest). Measured on pydrake
 1.51.1, in this order:
 
 1. A second Finalize: ``MultibodyTreeSystem::Finalize(): repeated calls not
-   allowed.``; a loop of bodies and joints (welds included): Drake's loop
+   allowed.`` (since 1.56 ``DeclareMiscContinuousState(): calls after Finalize()
+   are not allowed.``, finalize-repeat-wording-since-1.56); a loop of bodies and joints (welds included): Drake's loop
    error.
 2. Every tree not joined to the world gets a QuaternionFloatingJoint
    world → its base body (see _link_joint_graph.floating_bases), named after
@@ -21,6 +22,7 @@ topology it builds (LinkJointGraph, SpanningForest). Measured on pydrake
 
 from __future__ import annotations
 
+from reimpl._release import release
 from reimpl.multibody import _link_joint_graph as graph
 from reimpl.multibody._errors import FinalizedError, TopologyError
 from reimpl.multibody._mobilizer_frames import mobilizer_frames
@@ -41,7 +43,11 @@ class Finalization(CollisionFilters, Poses, ElementNames):
     def Finalize(self) -> None:
         """Adds the floating joints, then the default collision filters; seals the model."""
         if self._finalized:
-            raise FinalizedError("MultibodyTreeSystem::Finalize(): repeated calls not allowed.")
+            raise FinalizedError(
+                "DeclareMiscContinuousState(): calls after Finalize() are not allowed."
+                if release.has("finalize-repeat-wording-since-1.56")
+                else "MultibodyTreeSystem::Finalize(): repeated calls not allowed."
+            )
         n = len(self._bodies)
         if graph.has_loop(n, self._edges()):
             raise TopologyError(
