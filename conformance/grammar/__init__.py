@@ -32,9 +32,9 @@ __all__ = [
     "declared_names",
     "features_of",
     "has_binding",
-    "release_features",
     "ops_of",
     "referenced_names",
+    "release_features",
     "spec",
 ]
 

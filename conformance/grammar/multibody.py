@@ -7,16 +7,16 @@ SceneGraph. They mix freely with the SceneGraph ops, so a case can declare
 filters on top of a parsed model, by the scoped names of its bodies
 (``m::l1``, a frame) and geometries (``m::l1/Sphere``).
 
-Feature tags:
+Feature tags (a release fact: ``grammar.FEATURE_BINDINGS``):
 
-==========================  ============================================  ====================================
-tag                         ops                                           release fact (``FEATURE_BINDINGS``)
-==========================  ============================================  ====================================
-``multibody``               bodies, joints, welds, geometry, Finalize     every release
-``parsing``                 ``add_models`` (URDF, SDFormat, directives)   every release
-``adjacency_opt_out``       ``set_adjacent_filters``                      adjacent-filters-opt-out-since-1.13
-``filter_groups_report``    ``collision_filter_groups``                   filter-groups-report-since-1.31
-==========================  ============================================  ====================================
+==========================  ============================================  ==============
+tag                         ops                                           release fact
+==========================  ============================================  ==============
+``multibody``               bodies, joints, welds, geometry, Finalize     (every one)
+``parsing``                 ``add_models`` (URDF, SDFormat, directives)   (every one)
+``adjacency_opt_out``       ``set_adjacent_filters``                      ≥ 1.13
+``filter_groups_report``    ``collision_filter_groups``                   ≥ 1.31
+==========================  ============================================  ==============
 """
 
 from __future__ import annotations
