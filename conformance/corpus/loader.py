@@ -45,6 +45,7 @@ from conformance.corpus.documents import (
 from conformance.grammar import ArgKind, declared_names, features_of, referenced_names, spec
 from conformance.grammar.schema import SCHEMA_FILE as SCENARIO_SCHEMA
 from conformance.grammar.schema import scenario_schema
+from conformance.policy.release_facts import fact_side
 
 __all__ = [
     "SCENARIO_SCHEMA",
@@ -270,6 +271,7 @@ def scenario_from_data(
         try:
             _check_names(shown, case)
             _check_pairs(shown, case)
+            _check_release_facts(shown, case)
         except ScenarioError as exc:
             _record(exc, errors)
             continue
@@ -367,6 +369,23 @@ def _check_pairs(path: str, case: Case) -> None:
                     case=case.description,
                     where=f"{step.label}, field {where}",
                 )
+
+
+def _check_release_facts(path: str, case: Case) -> None:
+    """An expectation's ``release_fact`` names a row of the release table, on a side it has."""
+    for step in case.steps:
+        for i, expectation in enumerate(step.expect):
+            references = expectation.get("release_fact", ())
+            try:
+                for reference in [references] if isinstance(references, str) else references:
+                    fact_side(reference)
+            except (KeyError, ValueError) as exc:
+                raise ScenarioError(
+                    path,
+                    str(exc).strip('"'),
+                    case=case.description,
+                    where=f"{step.label}, field expect[{i}].release_fact",
+                ) from None
 
 
 def _declares(step: Step) -> Iterator[tuple[str, str]]:

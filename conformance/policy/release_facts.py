@@ -50,6 +50,7 @@ __all__ = [
     "Side",
     "crash_answer",
     "fact_holds",
+    "fact_side",
     "recorded_crash",
     "release_fact",
     "release_facts",
@@ -166,3 +167,16 @@ def crash_answer(fact_id: str) -> Mapping[str, str] | None:
     answer = release_fact(fact_id).answer
     error: Mapping[str, str] | None = None if answer is None else answer.get("error")
     return error
+
+
+def fact_side(reference: str) -> tuple[ReleaseFact, Side]:
+    """A scenario's ``release_fact`` reference: ``"<id>"`` (where the row holds),
+    ``"before <id>"`` (releases before its ``since``) or ``"after <id>"`` (after its
+    ``until``). KeyError for an unknown id; ValueError for a side the row has no bound for."""
+    side_text, _, fact_id = reference.rpartition(" ")
+    side = Side(side_text) if side_text else Side.HOLDS
+    fact = release_fact(fact_id)
+    bound = {Side.BEFORE: fact.releases.since, Side.AFTER: fact.releases.until}
+    if side in bound and bound[side] is None:
+        raise ValueError(f"{reference!r}: release fact {fact_id} has no {side.value} side")
+    return fact, side

@@ -1,7 +1,9 @@
 """A step's expectations, checked against one backend's Result and Observation.
 
 An expectation holds for a backend only if the backend's Drake release lies
-in its ``since``/``until`` range. An expectation of a refusal that names a
+in its ``since``/``until`` range and on the side of the release fact it names
+(``release_fact``: ``"<id>"``, ``"before <id>"`` or ``"after <id>"``, a row
+of ``policy/release_facts.json``): ``applies``. An expectation of a refusal that names a
 crash row (``refused (<id>)``, a release guard's message) describes a run
 whose guard was armed; where it was not (a worker) and the backend gave the
 row's answer instead (``policy.release_facts.crash_answer``), the call was
@@ -23,7 +25,8 @@ from typing import Any
 
 from conformance.compare import comparable_message, format_pairs, value_differences
 from conformance.corpus.loader import Step
-from conformance.policy.release_facts import crash_answer
+from conformance.policy.release_facts import crash_answer, fact_side
+from conformance.policy.versions import version_in_range
 from conformance.protocol import (
     MODEL,
     ErrorKind,
@@ -34,7 +37,17 @@ from conformance.protocol import (
     normalise_message,
 )
 
-__all__ = ["check"]
+__all__ = ["applies", "check"]
+
+
+def applies(expectation: Mapping[str, Any], version: str) -> bool:
+    """Whether ``expectation`` holds for a backend of Drake ``version`` (see the module doc)."""
+    if not version_in_range(version, expectation.get("since"), expectation.get("until")):
+        return False
+    references = expectation.get("release_fact", ())
+    if isinstance(references, str):
+        references = (references,)
+    return all(fact.on_side(version, side) for fact, side in map(fact_side, references))
 
 
 def _pairs(raw: Iterable[Sequence[str]]) -> frozenset[Pair]:

@@ -52,14 +52,13 @@ from conformance.engine import (
 )
 from conformance.grammar import spec
 from conformance.policy.divergences import KnownDivergence
-from conformance.policy.versions import version_in_range
 from conformance.protocol import (
     Backend,
     Command,
     UnknownNameError,
 )
 from conformance.run.case_report import CaseReport, Failure
-from conformance.run.expectations import check
+from conformance.run.expectations import applies, check
 from conformance.run.verdict import DRAKE_NAMES, judge
 
 __all__ = [
@@ -112,8 +111,7 @@ def _expectation_failures(
     result, observation = record.results[backend.name], record.observations[backend.name]
     if observation is not None:
         for expectation in step.expect:
-            since, until = expectation.get("since"), expectation.get("until")
-            if version_in_range(backend.version(), since, until):
+            if applies(expectation, backend.version()):
                 for what, expected, actual in check(step, expectation, result, observation):
                     yield Failure(step.label, what, expected, actual, backend.name, index=index)
     if step.index == 0 and result.error is not None:

@@ -9,7 +9,10 @@ frames do not serve, Finalize adds ephemeral FixedOffsetFrames in the joint's
 model instance, named ``<joint>_<frame>_<F|M>`` (with a leading ``_`` until
 no frame of that instance has the name), in the order the tree is walked
 (measured on pydrake 1.51.1 and 1.58.0: names, bodies, poses,
-``is_ephemeral()``):
+``is_ephemeral()``). Welds get theirs since 1.39, revolute and prismatic joints
+since 1.41 (drake's weld_joint.cc and revolute_joint.cc at those tags; 1.30
+adds none: the release facts weld-mobilizer-frame-since-1.39 and
+axial-mobilizer-frames-since-1.41):
 
 ==================  ===========================================  ================================
 joint               when                                         frames (base frame: pose)
@@ -30,6 +33,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from reimpl._release import release
 from reimpl.math import RigidTransform, RotationMatrix
 
 __all__ = ["from_one_unit_vector", "mobilizer_frames"]
@@ -87,16 +91,17 @@ def _ends(joint: Any, reversed_: bool) -> tuple[Any, Any]:
     return (child, parent) if reversed_ else (parent, child)
 
 
-#: joint type name → the frames its mobilizer needs (none for the other types).
-_NEEDS: dict[str, Needs] = {
-    "revolute": _axial(lambda joint: joint.revolute_axis()),
-    "prismatic": _axial(lambda joint: joint.translation_axis()),
-    "weld": _weld,
+#: joint type name → (the release fact from which Finalize adds them, the frames its
+#: mobilizer needs); none for the other types, nor before that release.
+_NEEDS: dict[str, tuple[str, Needs]] = {
+    "revolute": ("axial-mobilizer-frames-since-1.41", _axial(lambda j: j.revolute_axis())),
+    "prismatic": ("axial-mobilizer-frames-since-1.41", _axial(lambda j: j.translation_axis())),
+    "weld": ("weld-mobilizer-frame-since-1.39", _weld),
 }
 
 
 def mobilizer_frames(joint: Any, reversed_: bool) -> Iterator[FrameSpec]:
     """The frames Finalize adds for ``joint``, modeled in the direction ``reversed_`` says."""
-    needs = _NEEDS.get(joint.type_name())
-    if needs is not None:
+    fact, needs = _NEEDS.get(joint.type_name(), (None, None))
+    if fact is not None and needs is not None and release.has(fact):
         yield from needs(joint, reversed_)

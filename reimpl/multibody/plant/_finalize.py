@@ -12,7 +12,8 @@ topology it builds (LinkJointGraph, SpanningForest). Measured on pydrake
    world → its base body (see _link_joint_graph.floating_bases), named after
    the body with leading ``_`` until unique in its instance, ephemeral, with
    the body's default free pose.
-3. A joint a tree meets from its child must be prismatic, revolute or weld.
+3. A joint a tree meets from its child must be one the release can reverse
+   (prismatic, revolute or weld on 1.41+; see _reversed_joints).
 4. q and v are laid out (see plant._topology), and each mobilizer gets the
    frames Drake adds (see _mobilizer_frames).
 5. The plant is finalized, then the default collision filters are applied
@@ -26,15 +27,13 @@ from reimpl._release import release
 from reimpl.multibody import _link_joint_graph as graph
 from reimpl.multibody._errors import FinalizedError, TopologyError
 from reimpl.multibody._mobilizer_frames import mobilizer_frames
+from reimpl.multibody._reversed_joints import reversed_joint_refusal
 from reimpl.multibody.plant._collision_filters import CollisionFilters
 from reimpl.multibody.plant._element_names import ElementNames
 from reimpl.multibody.plant._poses import Poses
 from reimpl.multibody.tree import FixedOffsetFrame, Joint, QuaternionFloatingJoint, RigidBody
 
 __all__ = ["Finalization"]
-
-#: Joint types a tree may model from child to parent (measured, from Finalize's message).
-_REVERSIBLE_JOINT_TYPES = frozenset({"prismatic", "revolute", "weld"})
 
 
 class Finalization(CollisionFilters, Poses, ElementNames):
@@ -72,17 +71,10 @@ class Finalization(CollisionFilters, Poses, ElementNames):
 
     def _check_reversible(self, joint: Joint) -> None:
         """Raises Drake's error unless a tree may model ``joint`` from child to parent."""
-        if joint.type_name() in _REVERSIBLE_JOINT_TYPES:
-            return
-        kind = joint.type_name()
-        raise TopologyError(
-            f"MultibodyPlant::Finalize(): parent/child ordering for {kind} joint "
-            f"{joint.name()} in model instance {self.GetModelInstanceName(joint.model_instance())} "
-            "would have to be reversed to make a tree-structured model for this system. "
-            f"Currently Drake does not support reversed {kind} joints. The joints that can be "
-            f"reversed are: {', '.join(sorted(_REVERSIBLE_JOINT_TYPES))}. Reverse the ordering in "
-            "your joint definition so that its parent body is closer to World in the tree."
-        )
+        instance = self.GetModelInstanceName(joint.model_instance())
+        refusal = reversed_joint_refusal(joint, instance)  # by release: _reversed_joints
+        if refusal is not None:
+            raise TopologyError(refusal)
 
     def _add_floating_joint(self, body: RigidBody) -> None:
         """A QuaternionFloatingJoint world → body, named after the body.
