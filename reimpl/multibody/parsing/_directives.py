@@ -232,10 +232,10 @@ class _Run:
         joint.set_default_positions(positions)
 
     def _default_pose(self, instance: Any, parent: Any, child_name: str, X_PC: Any) -> None:
-        """Poses body ``child_name`` (the instance's only body if empty) at X_PC."""
+        """Poses body ``child_name`` (the instance's only body if empty, since 1.33) at X_PC."""
         plant = self.plant
-        if child_name:
-            child = plant.GetFrameByName(child_name, instance)
+        if child_name or not release.has("directives-default-pose-empty-name-since-1.33"):
+            child = plant.GetFrameByName(child_name, instance)  # up to 1.32, '' too
         else:
             bodies = plant.GetBodyIndices(instance)
             if len(bodies) != 1:

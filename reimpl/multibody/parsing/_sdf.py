@@ -45,6 +45,7 @@ import functools
 import logging
 from typing import Any
 
+from reimpl._release import release
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
@@ -250,7 +251,8 @@ class _Builder:
             )  # fmt: skip
         bodies = []
         for link in model.links:
-            if children(link.element, "drake:deformable_properties"):
+            deformable = children(link.element, "drake:deformable_properties")
+            if deformable and release.has("sdf-deformable-links-since-1.41"):
                 refuse_deformable(
                     link.element,
                     self,

@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from reimpl._release import release
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._sdf_dom import Joint
@@ -73,6 +74,11 @@ _DRAKE_JOINT_ELEMENTS = frozenset({
     "drake:parent", "drake:child", "drake:damping", "drake:initial_tangent",
     "drake:plane_normal", "drake:is_periodic", "drake:curves", "drake:line_segment",
     "drake:circular_arc", "drake:length", "drake:radius", "drake:angle", "pose",
+})  # fmt: skip
+#: The <drake:joint> elements of a curvilinear joint (curvilinear-joints-since-1.38).
+_CURVILINEAR_ELEMENTS = frozenset({
+    "drake:initial_tangent", "drake:plane_normal", "drake:is_periodic", "drake:curves",
+    "drake:line_segment", "drake:circular_arc", "drake:length", "drake:radius", "drake:angle",
 })  # fmt: skip
 _DAMPED = frozenset({"revolute", "prismatic", "screw", "universal", "ball", "continuous"})
 #: |a₁·a₂| above which universal axes are not orthogonal (RotationMatrix::IsValid)
@@ -334,6 +340,11 @@ class JointAdder:
         return lower, upper
 
     def _one_axis_warnings(self, joint: Joint) -> None:
+        gains = children(joint.element, "drake:controller_gains")
+        if gains and _effort(joint.element, 0) != 0 and {"p", "d"} <= set(gains[0].attrib):
+            # The joint's actuator is PD controlled (reimpl keeps no actuator: the plant
+            # counts them for Finalize, continuous-pd-actuators-refused-until-1.50).
+            self.plant._pd_controlled_actuators += 1
         if children(joint.element, "axis2"):
             self.reporter.warn(
                 joint.element,
@@ -343,7 +354,10 @@ class JointAdder:
     # ---------------------------------------------------------- drake:joint
     def add_drake_joint(self, element: XmlElement, scope: Scope) -> None:
         """AddDrakeJointFromSpecification: ``<drake:joint type="planar">``."""
-        self.reporter.check_supported(element, _DRAKE_JOINT_ELEMENTS)
+        supported = _DRAKE_JOINT_ELEMENTS
+        if not release.has("curvilinear-joints-since-1.38"):
+            supported = _DRAKE_JOINT_ELEMENTS - _CURVILINEAR_ELEMENTS
+        self.reporter.check_supported(element, supported)
         joint_type = element.get("type")
         if joint_type is None:
             raise self.reporter.error(

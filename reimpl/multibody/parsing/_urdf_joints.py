@@ -166,6 +166,8 @@ class JointReader:
             element, name, joint_type, child_link, parent, child, X_PF, self._axis(element, keys)
         )
         kind = _KINDS.get(joint_type)
+        if joint_type == "curvilinear" and not release.has("curvilinear-joints-since-1.38"):
+            kind = None
         if kind is None:
             raise self.diagnostics.error(
                 f"Joint '{name}' has unrecognized type: '{joint_type}'", element.line

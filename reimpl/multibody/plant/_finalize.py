@@ -19,13 +19,15 @@ topology it builds (LinkJointGraph, SpanningForest). Measured on pydrake
 5. The plant is finalized, then the default collision filters are applied
    (see plant._collision_filters): an Apply that raises leaves the plant
    finalized and unfiltered.
+6. Up to 1.50, a continuous plant with a PD-controlled actuator is refused
+   (continuous-pd-actuators-refused-until-1.50).
 """
 
 from __future__ import annotations
 
 from reimpl._release import release
 from reimpl.multibody import _link_joint_graph as graph
-from reimpl.multibody._errors import FinalizedError, TopologyError
+from reimpl.multibody._errors import FinalizedError, MultibodyPlantError, TopologyError
 from reimpl.multibody._mobilizer_frames import mobilizer_frames
 from reimpl.multibody._reversed_joints import reversed_joint_refusal
 from reimpl.multibody.plant._collision_filters import CollisionFilters
@@ -38,6 +40,11 @@ __all__ = ["Finalization"]
 
 class Finalization(CollisionFilters, Poses, ElementNames):
     """Finalize and the steps it takes."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        #: Joint actuators with PD gains a parser added (reimpl keeps no actuator itself).
+        self._pd_controlled_actuators = 0
 
     def Finalize(self) -> None:
         """Adds the floating joints, then the default collision filters; seals the model."""
@@ -68,6 +75,13 @@ class Finalization(CollisionFilters, Poses, ElementNames):
         # unfiltered, and refusing a second Finalize.
         self._finalized = True
         self._apply_default_collision_filters()
+        continuous_pd = self._pd_controlled_actuators and self._time_step == 0.0
+        if continuous_pd and release.has("continuous-pd-actuators-refused-until-1.50"):
+            raise MultibodyPlantError(
+                "Continuous model with PD controlled joint actuators. This feature is only "
+                "supported for discrete models. Refer to MultibodyPlant's documentation for "
+                "further details."
+            )
 
     def _check_reversible(self, joint: Joint) -> None:
         """Raises Drake's error unless a tree may model ``joint`` from child to parent."""
