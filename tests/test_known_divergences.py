@@ -44,8 +44,9 @@ def test_an_xfail_matcher_names_a_diverging_step_and_existing_cases(entry: Known
         assert fnmatch.filter(CASES, pattern), f"{entry.id}: no case matches {pattern!r}"
 
 
-def test_the_partial_apply_entry_acts_against_drake_1_52_on_for_backends_that_follow_1_51() -> None:
-    entry = next(e for e in ENTRIES if e.id == "reimpl-follows-1.51-apply")
+def test_the_failed_apply_entry_acts_against_drake_1_52_on_for_backends_that_follow_1_51() -> None:
+    entry = next(e for e in ENTRIES if e.id == "failed-apply-leaves-c-unchanged-since-1.52")
+    assert entry.release_fact == "failed-apply-leaves-c-unchanged-since-1.52"
     assert entry.xfail is not None
     case = entry.xfail.cases[0]
     reimpl, mutant = BackendId("reimpl", "1.51.1"), BackendId("mutant:x", "1.51.1")
@@ -60,6 +61,8 @@ def test_the_partial_apply_entry_acts_against_drake_1_52_on_for_backends_that_fo
     assert matches(reimpl, "1.52.0")
     assert matches(mutant, "1.58.0")
     assert not matches(reimpl, "1.51.1")
+    # reimpl following 1.58 (reimpl==1.58.0) has 1.58's Apply: no xfail is needed for it.
+    assert not matches(BackendId("reimpl==1.58.0", "1.58.0"), "1.58.0")
     assert not matches(BackendId("pydrake", "1.58.0"), "1.58.0")
 
 
@@ -90,8 +93,8 @@ def test_divergence_scenario_holds_on_real_pydrake(entry: KnownDivergence, scena
     assert report.status["pydrake"] is Outcome.PASS, report.failures
 
 
-def test_the_partial_apply_step_pattern_needs_both_sides_to_raise_an_unknown_id_error() -> None:
-    entry = next(e for e in ENTRIES if e.id == "reimpl-follows-1.51-apply")
+def test_the_failed_apply_step_pattern_needs_both_sides_to_raise_an_unknown_id_error() -> None:
+    entry = next(e for e in ENTRIES if e.id == "failed-apply-leaves-c-unchanged-since-1.52")
     assert entry.xfail is not None
     reimpl = BackendId("reimpl", "1.51.1")
     history = Result(error=ErrorInfo(ErrorKind.TRANSIENT_HISTORY, "You cannot attempt to"))
@@ -105,7 +108,7 @@ def test_the_partial_apply_step_pattern_needs_both_sides_to_raise_an_unknown_id_
     assert entry.xfail.matches_step(APPLY, UNKNOWN, UNKNOWN, **on, case=None)
 
 
-def test_a_backends_pattern_names_every_drake_worker_but_not_reimpl() -> None:
+def test_the_failed_apply_entry_names_every_backend_that_claims_1_51_or_before() -> None:
     entry = next(e for e in ENTRIES if e.id == "failed-apply-leaves-c-unchanged-since-1.52")
     assert entry.xfail is not None
     case = entry.xfail.cases[0]
@@ -116,10 +119,15 @@ def test_a_backends_pattern_names_every_drake_worker_but_not_reimpl() -> None:
             APPLY, UNKNOWN, UNKNOWN, blamed=blamed, release="1.58.0", case=case
         )
 
-    for blamed in (BackendId("drake==1.30.0", "1.30.0"), BackendId("pydrake", "1.51.1")):
+    for blamed in (
+        BackendId("drake==1.30.0", "1.30.0"),
+        BackendId("pydrake", "1.51.1"),
+        BackendId("reimpl", "1.51.1"),
+        BackendId("reimpl==1.30.0", "1.30.0"),
+    ):
         assert matches(blamed)
-    assert not matches(BackendId("reimpl", "1.51.1"))
     assert not matches(BackendId("drake==1.52.0", "1.52.0"))
+    assert not matches(BackendId("reimpl==1.52.0", "1.52.0"))
 
 
 def test_a_crash_entry_matches_the_step_where_the_release_broke_or_failed_its_assertion() -> None:

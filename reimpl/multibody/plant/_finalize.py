@@ -6,8 +6,8 @@ topology it builds (LinkJointGraph, SpanningForest). Measured on pydrake
 
 1. A second Finalize: ``MultibodyTreeSystem::Finalize(): repeated calls not
    allowed.`` (since 1.56 ``DeclareMiscContinuousState(): calls after Finalize()
-   are not allowed.``, finalize-repeat-wording-since-1.56); a loop of bodies and joints (welds included): Drake's loop
-   error.
+   are not allowed.``, finalize-repeat-wording-since-1.56); a loop of bodies
+   and joints (welds included): Drake's loop error.
 2. Every tree not joined to the world gets a QuaternionFloatingJoint
    world → its base body (see _link_joint_graph.floating_bases), named after
    the body with leading ``_`` until unique in its instance, ephemeral, with
@@ -40,6 +40,8 @@ __all__ = ["Finalization"]
 
 class Finalization(CollisionFilters, Poses, ElementNames):
     """Finalize and the steps it takes."""
+
+    _time_step: float  # MultibodyPlant's (0: continuous)
 
     def __init__(self) -> None:
         super().__init__()
