@@ -1,7 +1,10 @@
 """``python -m conformance matrix``: the corpus on several Drake releases, and a report.
 
 Each release runs alone in its own cached environment (``drake==X``),
-``--jobs`` releases at a time. Progress goes to stderr; the summary table
+``--jobs`` releases at a time. ``--backend SPEC`` adds an implementation's
+column beside them, run alone on each case the same way: ``reimpl==1.58.0``
+is reimpl following 1.58.0, to read beside Drake 1.58.0's column.
+Progress goes to stderr; the summary table
 and the outcome changes between consecutive releases go to stdout; ``--report
 DIR`` writes report.json, report.md and heatmap.png.
 
@@ -39,9 +42,17 @@ def add_matrix_parser(commands: argparse._SubParsersAction) -> None:  # type: ig
     matrix.add_argument(
         "--drake",
         nargs="+",
-        required=True,
+        default=[],
         metavar="SPEC",
         help="releases: 1.30.0, or a range such as 1.40..1.58 (every release on the index in it)",
+    )
+    matrix.add_argument(
+        "--backend",
+        action="append",
+        default=[],
+        metavar="SPEC",
+        dest="columns",
+        help="add an implementation's column, e.g. reimpl==1.58.0 (repeatable)",
     )
     matrix.add_argument(
         "--report", type=Path, metavar="DIR", help="write report.json, report.md, heatmap.png"
@@ -56,6 +67,11 @@ def add_matrix_parser(commands: argparse._SubParsersAction) -> None:  # type: ig
         timeout="is a timeout",
         quiet="no progress lines",
     )
+
+
+def _name(column: str) -> str:
+    """``drake==X`` for a release's column; an implementation's column is its spec."""
+    return column if "==" in column or ":" in column else f"drake=={column}"
 
 
 class _Progress:
@@ -77,24 +93,26 @@ class _Progress:
         now = time.perf_counter()
         if now - self.last.setdefault(version, self.start) >= self.every:
             self.last[version] = now
-            self.write(f"  drake=={version}: {done}/{total} cases")
+            self.write(f"  {_name(version)}: {done}/{total} cases")
 
     def release(self, run: ReleaseRun) -> None:
         if run.error:
-            self.write(f"  drake=={run.version}: could not run: {run.error}")
+            self.write(f"  {_name(run.version)}: could not run: {run.error}")
             return
         counts = ", ".join(
             f"{n} {label(o)}"
             for n, o in sorted(((run.count(o), o) for o in MATRIX_ORDER), key=lambda no: -no[0])
             if n
         )
-        self.write(f"  drake=={run.version} (Python {run.python}): {counts} [{run.seconds:.1f} s]")
+        self.write(f"  {_name(run.version)} (Python {run.python}): {counts} [{run.seconds:.1f} s]")
 
 
 def _problems(args: argparse.Namespace) -> list[str]:
     problems = []
     if args.jobs < 1:
         problems.append(f"--jobs must be at least 1, got {args.jobs}")
+    if not args.drake and not args.columns:
+        problems.append("name releases (--drake) or implementations (--backend) to run")
     if args.report is not None and (problem := unwritable(args.report / "report.json")):
         problems.append(f"--report {args.report}: {problem}")
     return problems
@@ -113,12 +131,13 @@ def matrix_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     progress = _Progress(err, quiet=args.quiet)
     progress.write(
         f"matrix: {len(cases)} cases on {len(versions)} release(s) "
-        f"({', '.join(versions)}), {args.jobs} at a time"
+        f"({', '.join([*versions, *args.columns])}), {args.jobs} at a time"
     )
     try:
         matrix = run_matrix(
             versions,
             cases,
+            extra=args.columns,
             jobs=args.jobs,
             python=args.python,
             step_timeout=args.step_timeout or None,

@@ -19,6 +19,12 @@ outcome             when
 ``error``           the backend broke otherwise
 ==================  ===========================================================
 
+A column may also be an implementation named by a backend spec, run alone
+on each case like a release, beside Drake's columns: ``reimpl==1.58.0``
+(reimpl following a release, in its worker), or any ``--backend`` spec
+(``extra`` of ``run_matrix``). Its column is named by the spec, and the
+changes between consecutive releases skip it (``release_columns``).
+
 Releases run in parallel (``jobs`` threads, each driving its own worker
 processes); ``on_case`` reports progress as cases finish. A release whose
 environment cannot be built or whose worker cannot start gets no cells and
@@ -27,6 +33,7 @@ an ``error`` in its ``ReleaseRun``; the other releases still run.
 
 from __future__ import annotations
 
+import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
@@ -36,6 +43,7 @@ from typing import Any
 
 from conformance.backends.calls import BackendError
 from conformance.backends.environments import DrakeEnvironmentError
+from conformance.backends.loader import BackendLoadError, load_backend
 from conformance.backends.subprocess_backend import WorkerBackend
 from conformance.corpus.loader import Case
 from conformance.engine import Outcome, Track
@@ -56,6 +64,7 @@ __all__ = [
     "run_column",
     "run_matrix",
     "run_release",
+    "run_spec",
 ]
 
 
@@ -202,6 +211,11 @@ class Matrix:
         ]
 
     @property
+    def release_columns(self) -> list[str]:
+        """The columns that are Drake releases (not an implementation's ``spec``)."""
+        return [v for v in self.versions if "==" not in v and ":" not in v]
+
+    @property
     def broken_releases(self) -> list[str]:
         return [v for v in self.versions if self.runs[v].error is not None]
 
@@ -283,10 +297,46 @@ def run_backends(
     return matrix
 
 
+def run_spec(
+    spec: str,
+    cases: Sequence[Case],
+    *,
+    python: Sequence[str] | None = None,
+    step_timeout: float | None = None,
+    strict_divergences: bool = False,
+    on_case: Callable[[str, int, int], None] = lambda version, done, total: None,
+) -> ReleaseRun:
+    """Runs ``cases`` on the backend ``spec`` alone (a column named by the spec)."""
+    run = ReleaseRun(spec)
+    start = time.perf_counter()
+    try:
+        backend = load_backend(spec, python=python, step_timeout=step_timeout)
+    except BackendLoadError as exc:
+        run.error = str(exc)
+        return run
+    run.python = sys.version.split()[0]
+    try:
+        run_column(
+            run,
+            backend,
+            cases,
+            strict_divergences=strict_divergences,
+            step_timeout=step_timeout,
+            on_case=on_case,
+        )
+    finally:
+        close = getattr(backend, "close", None)  # N.B. a worker's; in-process ones have none
+        if callable(close):
+            close()
+        run.seconds = time.perf_counter() - start
+    return run
+
+
 def run_matrix(
     versions: Sequence[str],
     cases: Sequence[Case],
     *,
+    extra: Sequence[str] = (),
     jobs: int = 1,
     python: Sequence[str] | None = None,
     step_timeout: float | None = None,
@@ -295,29 +345,40 @@ def run_matrix(
     on_release: Callable[[ReleaseRun], None] = lambda run: None,
     log: Callable[[str], None] = lambda line: None,
 ) -> Matrix:
-    """Every case on every release, ``jobs`` releases at a time."""
+    """Every case on every release, then on every ``extra`` backend spec (a column each,
+    beside the releases), ``jobs`` columns at a time."""
     matrix = Matrix(
-        list(versions),
+        [*versions, *extra],
         [c.qualified_name for c in cases],
         sources={c.qualified_name: c for c in cases},
     )
     lock = threading.Lock()
 
     def one(version: str) -> ReleaseRun:
-        run = run_release(
-            version,
-            cases,
-            python=python,
-            step_timeout=step_timeout,
-            strict_divergences=strict_divergences,
-            on_case=on_case,
-            log=log,
-        )
+        if version in extra:
+            run = run_spec(
+                version,
+                cases,
+                python=python,
+                step_timeout=step_timeout,
+                strict_divergences=strict_divergences,
+                on_case=on_case,
+            )
+        else:
+            run = run_release(
+                version,
+                cases,
+                python=python,
+                step_timeout=step_timeout,
+                strict_divergences=strict_divergences,
+                on_case=on_case,
+                log=log,
+            )
         with lock:
             matrix.runs[version] = run
             on_release(run)
         return run
 
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        list(pool.map(one, versions))
+        list(pool.map(one, matrix.versions))
     return matrix

@@ -54,7 +54,7 @@ def _outcome(cell: Cell | None) -> str:
 
 def changes(matrix: Matrix) -> Iterator[tuple[str, str, list[str]]]:
     """(older, newer, cases whose outcome changed) for each consecutive pair of releases."""
-    versions = [v for v in matrix.versions if matrix.runs[v].error is None]
+    versions = [v for v in matrix.release_columns if matrix.runs[v].error is None]
     for older, newer in itertools.pairwise(versions):
         changed = [
             case

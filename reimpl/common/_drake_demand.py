@@ -1,16 +1,38 @@
 """How pydrake reports a failed DRAKE_DEMAND: SystemExit with Drake's own text.
 
-``Failure at external/drake+/<path>:<line> in <function>(): condition '<condition>'
+``Failure at <prefix><path>:<line> in <function>(): condition '<condition>'
 failed.`` (measured on pydrake 1.51.1; the line numbers are that release's).
+The prefix is ``external/drake+/`` since 1.37 and empty before (the release
+fact demand-path-external-since-1.37: ``DRAKE_PATH``). An uncaught C++
+exception (``abort_uncaught``) ends the process instead.
 """
 
 from __future__ import annotations
 
-__all__ = ["demand_failure"]
+import os
+import sys
+from typing import NoReturn
+
+from reimpl._release import release
+
+__all__ = ["DRAKE_PATH", "abort_uncaught", "demand_failure"]
+
+#: Where Drake's sources are, as a failed DRAKE_DEMAND names its file.
+DRAKE_PATH = "external/drake+/" if release.has("demand-path-external-since-1.37") else ""
 
 
 def demand_failure(path: str, line: int, function: str, condition: str) -> SystemExit:
     """The SystemExit pydrake raises for a failed DRAKE_DEMAND at ``path:line``."""
     return SystemExit(
-        f"Failure at external/drake+/{path}:{line} in {function}(): condition '{condition}' failed."
+        f"Failure at {DRAKE_PATH}{path}:{line} in {function}(): condition '{condition}' failed."
     )
+
+
+def abort_uncaught(cpp_type: str, what: str) -> NoReturn:
+    """Ends the process as an uncaught C++ exception ends pydrake's: libstdc++'s
+    terminate handler writes the exception's type and ``what()``, then SIGABRT."""
+    sys.stdout.flush()
+    sys.stderr.write(f"terminate called after throwing an instance of '{cpp_type}'\n")
+    sys.stderr.write(f"  what():  {what}\n")
+    sys.stderr.flush()
+    os.abort()

@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from reimpl.common._drake_demand import demand_failure
 from reimpl.common._struct import Field, Struct, as_vector, optional_of, string, vector
 from reimpl.math import RigidTransform, RollPitchYaw, RotationMatrix
 
@@ -40,9 +41,8 @@ _VECTOR3 = "numpy.ndarray[numpy.float64[3, 1]]"
 
 def _failure(file: str, line: int) -> SystemExit:
     """pydrake's SystemExit for GetDeterministicValue() of a random value."""
-    return SystemExit(
-        f"Failure at external/drake+/common/schema/{file}:{line} in GetDeterministicValue(): "
-        "condition 'this->IsDeterministic()' failed."
+    return demand_failure(
+        f"common/schema/{file}", line, "GetDeterministicValue", "this->IsDeterministic()"
     )
 
 

@@ -16,11 +16,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
+from reimpl.common._drake_demand import DRAKE_PATH
 from reimpl.geometry._drake_text import with_point
 
 __all__ = ["measure_names", "require"]
 
-_FILE = "external/drake+/geometry/shape_specification.cc"
+_FILE = f"{DRAKE_PATH}geometry/shape_specification.cc"
 
 
 def _finite_positive(value: float) -> bool:

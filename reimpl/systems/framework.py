@@ -433,9 +433,11 @@ class DiagramBuilder:
             self._check_registered(port.get_system())
         key = (arg1.get_system(), arg1.get_index())
         if key in self._connections:
-            raise SystemExit(
-                "Failure at external/drake+/systems/framework/diagram_builder.cc:490 in "
-                "ThrowIfInputAlreadyWired(): condition 'iter != input_port_ids_.end()' failed."
+            raise demand_failure(
+                "systems/framework/diagram_builder.cc",
+                490,
+                "ThrowIfInputAlreadyWired",
+                "iter != input_port_ids_.end()",
             )
         self._connections[key] = arg0
 

@@ -24,7 +24,8 @@ group declared later. The checks and messages are Drake 1.51.1's (measured):
   outside the current parse`` or ``body with name 'N' not found``;
 * at resolve, without a source: ``collision filter group with name 'N' not
   found``, first for member groups (sorted), then for pairs (sorted), each
-  pair applied once both its groups are found.
+  pair applied once both its groups are found. Up to 1.30 the pairs' error
+  is not caught and the process aborts (undefined-ignored-group-aborts).
 
 Each pair is applied with ``plant._exclude_collision_geometries_with_collision_
 filter_group_pair``, whose equal names mean ExcludeWithin, else ExcludeBetween.
@@ -34,10 +35,12 @@ from __future__ import annotations
 
 from typing import Any
 
+from reimpl._release import release
+from reimpl.common._drake_demand import abort_uncaught
 from reimpl.geometry import GeometrySet
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._collision_filter_groups import NameGroups
-from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
 from reimpl.multibody.parsing._instanced_name import InstancedName, instanced, order
 
 __all__ = ["CollisionFilterGroupResolver"]
@@ -134,8 +137,8 @@ class CollisionFilterGroupResolver:
             self._check_group(unlocated, name)
         members = {group: self._members(group) for group in sorted(self._bodies)}
         for a, b in sorted(self._pairs):
-            self._check_group(unlocated, a)
-            self._check_group(unlocated, b)
+            self._check_ignored_group(unlocated, a)
+            self._check_ignored_group(unlocated, b)
             self._plant._exclude_collision_geometries_with_collision_filter_group_pair(
                 (a, self._geometry_set(members[a].values())),
                 (b, self._geometry_set(members[b].values())),
@@ -150,6 +153,16 @@ class CollisionFilterGroupResolver:
     def _check_group(self, diagnostics: Diagnostics, name: str) -> None:
         if name not in self._bodies:
             raise diagnostics.error(f"collision filter group with name '{name}' not found")
+
+    def _check_ignored_group(self, diagnostics: Diagnostics, name: str) -> None:
+        """``_check_group`` for a group a pair ignores; up to 1.30 Drake throws it where
+        nothing catches it, and the process aborts (undefined-ignored-group-aborts)."""
+        try:
+            self._check_group(diagnostics, name)
+        except ModelParseError as error:
+            if release.has("undefined-ignored-group-aborts"):
+                abort_uncaught("std::runtime_error", str(error))
+            raise
 
     def _geometry_set(self, bodies: Any) -> GeometrySet:
         frame_ids = [self._plant.GetBodyFrameIdOrThrow(body.index()) for body in bodies]

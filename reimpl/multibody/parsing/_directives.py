@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 
 from reimpl._release import release
+from reimpl.common._drake_demand import DRAKE_PATH
 from reimpl.common._pybind_text import no_constructor
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
@@ -73,7 +74,7 @@ __all__ = [
     "scoped_frame_maybe",
 ]
 
-_DMD_FAILURE = "Failure at external/drake+/multibody/parsing/detail_dmd_parser.cc:{line} in "
+_DMD_FAILURE = f"Failure at {DRAKE_PATH}multibody/parsing/detail_dmd_parser.cc:{{line}} in "
 
 
 class ModelInstanceInfo:

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl.geometry import SceneGraph
 from reimpl.multibody.parsing._binding import binds, is_path, is_str
 from reimpl.multibody.parsing._collision_filter_group_resolver import (
@@ -155,9 +156,16 @@ def _read_file(context: ParseContext, path: str, model_name: str | None, scope: 
         raise ModelParseError(kind.missing.format(path=path, absolute=_absolute(path), error=error))
     with open(path, encoding="utf-8") as stream:
         text = stream.read()
-    label = "/" + os.path.abspath(path) if file_type == "sdf" else None
+    label = _sdf_label(path) if file_type == "sdf" else None
     source = ModelSource(text, file_type, path, label)
     return kind.reader(context, source, model_name, scope)
+
+
+def _sdf_label(path: str) -> str:
+    """How an SDFormat file's diagnostics name it: '/' + its absolute path since 1.40, its
+    absolute path before (sdf-file-path-double-slash-since-1.40)."""
+    slash = "/" if release.has("sdf-file-path-double-slash-since-1.40") else ""
+    return slash + os.path.abspath(path)
 
 
 def _is_plant(value: object) -> bool:

@@ -1,0 +1,197 @@
+"""The release table: its schema, its evidence, what reads it, and the page made from it."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from importlib import resources
+from pathlib import Path
+
+import jsonschema
+import pytest
+
+from conformance.backends.reimpl_worker import reimpl_spec_version
+from conformance.corpus.loader import load_corpus
+from conformance.policy import release_facts_doc
+from conformance.policy.divergences import known_divergences
+from conformance.policy.guards import GUARDS
+from conformance.policy.release_facts import (
+    FactKind,
+    Side,
+    fact_side,
+    recorded_crash,
+    release_fact,
+    release_facts,
+    table_releases,
+)
+
+ROOT = Path(__file__).resolve().parent.parent
+FACTS = release_facts()
+CASES = {c.qualified_name for f in load_corpus() for c in f.cases}
+POLICY = resources.files("conformance.policy")
+#: ``release.has("<id>")`` in reimpl's sources.
+_SWITCH = re.compile(r"""release\.has\(\s*"([a-z0-9.-]+)"\s*\)""")
+
+
+def _json(name: str) -> dict[str, object]:
+    data: dict[str, object] = json.loads(POLICY.joinpath(name).read_text("utf-8"))
+    return data
+
+
+def test_the_table_is_valid_under_its_schema() -> None:
+    schema = _json("release_facts.schema.json")
+    jsonschema.Draft202012Validator.check_schema(schema)
+    jsonschema.Draft202012Validator(schema).validate(_json("release_facts.json"))
+
+
+def test_the_schema_describes_every_kind_of_release_fact() -> None:
+    described = release_facts_doc.kind_descriptions()
+    assert set(described) == set(FactKind)
+    for title, description in described.values():
+        assert title
+        assert len(description) > 80
+
+
+def test_a_row_missing_its_kind_s_field_is_refused_by_the_schema() -> None:
+    schema = _json("release_facts.schema.json")
+    table = _json("release_facts.json")
+    crash = next(row for row in table["facts"] if row["kind"] == "crash")  # type: ignore[attr-defined]
+    del crash["answer"]
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.Draft202012Validator(schema).validate(table)
+
+
+@pytest.mark.parametrize("fact_id", list(FACTS))
+def test_every_row_names_evidence_that_exists(fact_id: str) -> None:
+    fact = FACTS[fact_id]
+    assert fact.scenarios or fact.tests
+    for name in fact.scenarios:
+        assert name in CASES, f"{fact_id}: no scenario {name!r}"
+    for test in fact.tests:
+        assert (ROOT / test.split("::")[0]).is_file(), f"{fact_id}: no test file {test}"
+
+
+def test_every_switch_in_reimpl_names_a_row_of_the_table() -> None:
+    switches = {
+        fact_id
+        for path in (ROOT / "reimpl").rglob("*.py")
+        for fact_id in _SWITCH.findall(path.read_text("utf-8"))
+    }
+    assert switches, "reimpl reads the table"
+    assert switches <= set(FACTS), switches - set(FACTS)
+
+
+def test_every_guard_and_divergence_names_a_row() -> None:
+    assert set(GUARDS) <= set(FACTS)
+    assert {FACTS[g].kind for g in GUARDS} == {FactKind.CRASH}
+    for entry in known_divergences():
+        if entry.release_fact is not None:
+            assert entry.releases == FACTS[entry.release_fact].releases, entry.id
+
+
+def test_a_reference_names_a_side_of_a_row() -> None:
+    fact, side = fact_side("before member-groups-since-1.27")
+    assert (fact.id, side) == ("member-groups-since-1.27", Side.BEFORE)
+    assert fact.side("1.26.0") is Side.BEFORE
+    assert fact.side("1.27.0") is Side.HOLDS
+    with pytest.raises(ValueError, match="has no after side"):
+        fact_side("after member-groups-since-1.27")
+    with pytest.raises(KeyError, match="no release fact 'no-such-row'"):
+        release_fact("no-such-row")
+
+
+def test_a_crash_is_the_release_s_answer_only_in_its_row_s_cases_and_releases() -> None:
+    case = "models/model_errors > ignoring an undefined group is an error naming the scoped group"
+    assert recorded_crash(case, "1.30.0") == "undefined-ignored-group-aborts"
+    assert recorded_crash(case, "1.31.0") is None
+    assert (
+        recorded_crash("transient/table1 > Table 1 lines 1-7 hold step by step", "1.30.0") is None
+    )
+
+
+def test_reimpl_follows_a_release_of_the_table_named_by_its_spec() -> None:
+    span = table_releases()
+    assert (span.since, span.until) == ("1.12.0", "1.58.0")
+    assert reimpl_spec_version("reimpl==1.30.0") == "1.30.0"
+    assert reimpl_spec_version("reimpl") is None
+
+
+def _reimpl_at(release: str, code: str) -> subprocess.CompletedProcess[str]:
+    env = {**os.environ, "REIMPL_DRAKE_RELEASE": release, "PYTHONPATH": str(ROOT)}
+    return subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=False
+    )
+
+
+def test_reimpl_refuses_a_release_the_table_does_not_describe() -> None:
+    done = _reimpl_at("1.11.0", "import reimpl.geometry")
+    assert done.returncode != 0
+    assert (
+        "REIMPL_DRAKE_RELEASE='1.11.0': reimpl follows a Drake release from 1.12.0 to 1.58.0"
+        in (done.stderr)
+    )
+
+
+#: Each release's answers (measured on pydrake 1.30.0 and 1.58.0): Activate is bound from
+#: 1.55 (activation-since-1.55); a second Finalize's wording (finalize-repeat-wording-
+#: since-1.56); a failed DRAKE_DEMAND's path (demand-path-external-since-1.37).
+_PROBE = """
+from reimpl.geometry import CollisionFilterManager
+from reimpl.multibody.plant import MultibodyPlant
+from reimpl.common._drake_demand import demand_failure
+print(hasattr(CollisionFilterManager, "Activate"))
+plant = MultibodyPlant(0.0)
+plant.Finalize()
+try:
+    plant.Finalize()
+except RuntimeError as e:
+    print(e)
+print(demand_failure("a.cc", 1, "F", "c"))
+"""
+
+
+@pytest.mark.parametrize(
+    ("release", "answers"),
+    [
+        (
+            "1.30.0",
+            [
+                "False",
+                "MultibodyTreeSystem::Finalize(): repeated calls not allowed.",
+                "Failure at a.cc:1 in F(): condition 'c' failed.",
+            ],
+        ),
+        (
+            "1.58.0",
+            [
+                "True",
+                "DeclareMiscContinuousState(): calls after Finalize() are not allowed.",
+                "Failure at external/drake+/a.cc:1 in F(): condition 'c' failed.",
+            ],
+        ),
+    ],
+)
+def test_reimpl_at_a_release_gives_that_release_s_recorded_answers(
+    release: str, answers: list[str]
+) -> None:
+    done = _reimpl_at(release, _PROBE)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == answers
+
+
+def test_docs_release_facts_md_is_what_the_table_gives() -> None:
+    page = (ROOT / "docs" / "release_facts.md").read_text("utf-8")
+    assert page == release_facts_doc.render(), "run: python -m conformance.policy.release_facts_doc"
+    for fact_id in FACTS:
+        assert f"| `{fact_id}` |" in page
+
+
+def test_no_hasattr_probe_decides_a_backend_s_capabilities() -> None:
+    for name in ("scene_graph.py", "queries.py", "multibody.py", "reimpl_api.py"):
+        text = (ROOT / "conformance" / "backends" / name).read_text("utf-8")
+        assert "hasattr(" not in text, name
+    for path in (ROOT / "conformance" / "grammar").glob("*.py"):
+        assert "hasattr(" not in path.read_text("utf-8"), path.name
