@@ -13,8 +13,10 @@ from pathlib import Path
 import jsonschema
 import pytest
 
+from conformance.backends.loader import load_backend
 from conformance.backends.reimpl_worker import reimpl_spec_version
 from conformance.corpus.loader import load_corpus
+from conformance.engine import Outcome
 from conformance.policy import release_facts_doc
 from conformance.policy.divergences import known_divergences
 from conformance.policy.guards import GUARDS
@@ -27,6 +29,7 @@ from conformance.policy.release_facts import (
     release_facts,
     table_releases,
 )
+from conformance.run.runner import run_case
 
 ROOT = Path(__file__).resolve().parent.parent
 FACTS = release_facts()
@@ -136,13 +139,15 @@ def test_reimpl_refuses_a_release_the_table_does_not_describe() -> None:
 
 
 #: Each release's answers (measured on pydrake 1.30.0 and 1.58.0): Activate is bound from
-#: 1.55 (activation-since-1.55); a second Finalize's wording (finalize-repeat-wording-
+#: 1.55 (activation-since-1.55), Parser.GetCollisionFilterGroups from 1.31
+#: (filter-groups-report-since-1.31); a second Finalize's wording (finalize-repeat-wording-
 #: since-1.56); a failed DRAKE_DEMAND's path (demand-path-external-since-1.37).
 _PROBE = """
 from reimpl.geometry import CollisionFilterManager
 from reimpl.multibody.plant import MultibodyPlant
 from reimpl.common._drake_demand import demand_failure
-print(hasattr(CollisionFilterManager, "Activate"))
+from reimpl.multibody.parsing import Parser
+print(hasattr(CollisionFilterManager, "Activate"), hasattr(Parser, "GetCollisionFilterGroups"))
 plant = MultibodyPlant(0.0)
 plant.Finalize()
 try:
@@ -159,7 +164,7 @@ print(demand_failure("a.cc", 1, "F", "c"))
         (
             "1.30.0",
             [
-                "False",
+                "False False",
                 "MultibodyTreeSystem::Finalize(): repeated calls not allowed.",
                 "Failure at a.cc:1 in F(): condition 'c' failed.",
             ],
@@ -167,7 +172,7 @@ print(demand_failure("a.cc", 1, "F", "c"))
         (
             "1.58.0",
             [
-                "True",
+                "True True",
                 "DeclareMiscContinuousState(): calls after Finalize() are not allowed.",
                 "Failure at external/drake+/a.cc:1 in F(): condition 'c' failed.",
             ],
@@ -195,3 +200,27 @@ def test_no_hasattr_probe_decides_a_backend_s_capabilities() -> None:
         assert "hasattr(" not in text, name
     for path in (ROOT / "conformance" / "grammar").glob("*.py"):
         assert "hasattr(" not in path.read_text("utf-8"), path.name
+
+
+#: The cases of member-groups-since-1.27 whose expectations hold both sides, as the release
+#: matrix measured them on 1.21-1.29 (docs/releases/report.md: 1.26.0 → 1.27.0).
+_MEMBER_GROUP_CASES = [
+    "models/urdf_groups > a member group adds its members to the group that names it, transitively",
+    "models/urdf_groups > a cycle of member groups gives every group in it the union of their"
+    " members",
+    "models/urdf_groups > a group made of a member group and a link filters the nested members too",
+    "models/sdf_groups > a member group named by its scoped name in a nested model adds its"
+    " members",
+]
+
+
+@pytest.mark.parametrize("release", ["1.26.0", "1.27.0"])
+def test_reimpl_at_a_release_reads_member_groups_as_that_release_does(release: str) -> None:
+    cases = {c.qualified_name: c for f in load_corpus() for c in f.cases}
+    backend = load_backend(f"reimpl=={release}")
+    try:
+        for name in _MEMBER_GROUP_CASES:
+            report = run_case(cases[name], [backend])
+            assert report.status[backend.name] is Outcome.PASS, (name, report.failures)
+    finally:
+        backend.close()  # type: ignore[attr-defined]

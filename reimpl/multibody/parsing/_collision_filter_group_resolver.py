@@ -27,6 +27,9 @@ group declared later. The checks and messages are Drake 1.51.1's (measured):
   pair applied once both its groups are found. Up to 1.30 the pairs' error
   is not caught and the process aborts (undefined-ignored-group-aborts).
 
+Member groups add their members since 1.27; up to 1.26 they add nothing
+(member-groups-since-1.27, measured by the release matrix on 1.26.0).
+
 Each pair is applied with ``plant._exclude_collision_geometries_with_collision_
 filter_group_pair``, whose equal names mean ExcludeWithin, else ExcludeBetween.
 """
@@ -82,6 +85,8 @@ class CollisionFilterGroupResolver:
         for body_name in sorted(scoped.join(scope, b) for b in body_names):
             bodies[body_name] = self._find_body(diagnostics, line, body_name)
         self._bodies[name] = bodies
+        if not release.has("member-groups-since-1.27"):
+            member_group_names = set()  # up to 1.26 a group's member groups add nothing
         self._member_groups[name] = {scoped.join(scope, g) for g in member_group_names}
 
     def _check_scope(self, scope: str) -> None:

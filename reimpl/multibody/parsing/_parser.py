@@ -296,13 +296,15 @@ class Parser:
         """Makes every warning an error."""
         self._strict = True
 
-    def GetCollisionFilterGroups(self) -> CollisionFilterGroups:
-        """The groups and pairs of every parse so far, named with the model
-        instances' current names (see _instanced_name)."""
-        plant = self._plant
-        return CollisionFilterGroups._from(
-            self._groups.convert(lambda name: spelled(plant, name), str)
-        )
+    if release.has("filter-groups-report-since-1.31"):  # bound since 1.31
+
+        def GetCollisionFilterGroups(self) -> CollisionFilterGroups:
+            """The groups and pairs of every parse so far, named with the model
+            instances' current names (see _instanced_name)."""
+            plant = self._plant
+            return CollisionFilterGroups._from(
+                self._groups.convert(lambda name: spelled(plant, name), str)
+            )
 
     # ------------------------------------------------------------ parsing
     def AddModels(self, *args: Any, **kwargs: Any) -> list[Any]:
