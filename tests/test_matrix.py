@@ -146,6 +146,28 @@ def test_matrix_command_writes_the_report_and_exits_zero_when_the_release_answer
     assert f"drake=={RELEASE} (Python" in err.getvalue()  # progress, per release
 
 
+# ------------------------------------------------------------------ implementation columns
+def test_reimpl_at_a_release_is_a_column_beside_the_releases_and_outside_their_changes() -> None:
+    """reimpl==1.30.0 runs alone on each case in its worker, like a release: it lacks
+    Activate (activation-since-1.55), so the anchored case is unsupported there, and it
+    passes Table 1; the changes between consecutive releases do not count its column."""
+    matrix = run_matrix([], [_case(TABLE_1), _case(ANCHORED)], extra=["reimpl==1.30.0"])
+    assert matrix.versions == ["reimpl==1.30.0"]
+    assert matrix.release_columns == []
+    assert matrix.cell(TABLE_1, "reimpl==1.30.0") == Cell(Outcome.PASS)
+    assert matrix.cell(ANCHORED, "reimpl==1.30.0") == Cell(
+        Outcome.SKIP, "needs feature(s) activation"
+    )
+    assert matrix.runs["reimpl==1.30.0"].error is None
+
+
+def test_matrix_names_an_unknown_implementation_column_as_an_error_of_that_column() -> None:
+    matrix = run_matrix([], [_case(TABLE_1)], extra=["reimpl==1.11.0"])
+    error = matrix.runs["reimpl==1.11.0"].error
+    assert error is not None
+    assert "reimpl==1.11.0" in error
+
+
 # ------------------------------------------------------------------ bisection
 def _probe(outcomes: dict[str, Outcome], probed: list[str]):  # type: ignore[no-untyped-def]
     def probe(version: str) -> Probe:

@@ -130,8 +130,9 @@ def matrix_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         return EXIT_USAGE
     progress = _Progress(err, quiet=args.quiet)
     progress.write(
-        f"matrix: {len(cases)} cases on {len(versions)} release(s) "
-        f"({', '.join([*versions, *args.columns])}), {args.jobs} at a time"
+        f"matrix: {len(cases)} cases on {len(versions)} release(s) and "
+        f"{len(args.columns)} implementation(s) ({', '.join([*versions, *args.columns])}), "
+        f"{args.jobs} at a time"
     )
     try:
         matrix = run_matrix(

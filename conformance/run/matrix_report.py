@@ -143,7 +143,10 @@ def _why(cell: Cell | None) -> str:
 def matrix_markdown(matrix: Matrix, *, title: str = "Release matrix") -> str:
     """The ``report.md`` text (see the module doc)."""
     shown = list(MATRIX_ORDER)
-    lines = [f"# {title}", "", f"{len(matrix.cases)} cases on {len(matrix.versions)} releases.", ""]
+    releases = len(matrix.release_columns)
+    others = len(matrix.versions) - releases
+    beside = f" and {others} implementation(s)" if others else ""
+    lines = [f"# {title}", "", f"{len(matrix.cases)} cases on {releases} releases{beside}.", ""]
     lines.append("| release | Python | " + " | ".join(label(o) for o in shown) + " |")
     lines.append("|---|---|" + "---:|" * len(shown))
     for v in matrix.versions:
