@@ -5,8 +5,8 @@ committed file was made on 1.51.1) through the conformance backend, and each que
 Result is written as the step's ``returns`` or ``error``. Drake answers the signed
 distance to a point from a Mesh or Convex since 1.36.0 (drake#21471, "ComputeSignedDistanceToPoint
 from meshes"); up to 1.35.0 it leaves them out, so a point-distance step expects the measured
-records since 1.36 and the same without the mesh and convex ones until 1.35.0 (matrix:
-1.30.0 passes so). Rerun after changing a case:
+records where release fact mesh-point-distance-since-1.36 holds and the same without the
+mesh and convex ones before it (matrix: 1.30.0 passes so). Rerun after changing a case:
 
     python scenarios/queries/make_mesh_cases.py
 """
@@ -177,21 +177,21 @@ def _measured(case: dict[str, Any]) -> dict[str, Any]:
 
 
 #: The first release whose ComputeSignedDistanceToPoint measures to meshes (drake#21471).
-MESH_POINT_SINCE = "1.36"
-MESH_POINT_UNTIL = "1.35.0"
+#: The release fact (conformance/policy/release_facts.json) that splits a point-distance step.
+MESH_POINT_FACT = "mesh-point-distance-since-1.36"
 
 
 def _by_release(op: str, outcome: dict[str, Any]) -> dict[str, Any] | list[dict[str, Any]]:
-    """A point-distance step's expectation, split at ``MESH_POINT_SINCE``; others as measured."""
+    """A point-distance step's expectation, split at ``MESH_POINT_FACT``; others as measured."""
     if op != "compute_signed_distance_to_point" or "returns" not in outcome:
         return outcome
     primitives = [r for r in outcome["returns"] if r["shape"] not in ("mesh", "convex")]
     if primitives == outcome["returns"]:
         return outcome
     return [
-        {"since": MESH_POINT_SINCE, **outcome},
+        {"release_fact": MESH_POINT_FACT, **outcome},
         {
-            "until": MESH_POINT_UNTIL,
+            "release_fact": f"before {MESH_POINT_FACT}",
             "comment": "before drake#21471 a Mesh or Convex has no signed distance to a point",
             "returns": primitives,
         },

@@ -44,6 +44,7 @@ from typing import TYPE_CHECKING, Protocol, Self
 
 import numpy as np
 
+from reimpl._release import release
 from reimpl.geometry.identifier import GeometryId
 from reimpl.geometry.proximity.distance_to_mesh import MeshBoundary
 from reimpl.geometry.proximity.distance_to_point import PointDistance, distance_to_point
@@ -265,7 +266,8 @@ _POINT_CLOSED_FORM = frozenset({"Sphere", "Box", "Cylinder", "Capsule", "Halfspa
 
 
 def point_signed_distance(g: PosedGeometry, p_WQ: Vec) -> PointDistance | None:
-    """φ_G(Q), p_GN and ∇φ in W, as Drake computes them; None for a Mesh Drake skips."""
+    """φ_G(Q), p_GN and ∇φ in W, as Drake computes them; None for a Mesh Drake skips (and,
+    before release fact mesh-point-distance-since-1.36, for every Mesh and Convex)."""
     if g.kind in _POINT_CLOSED_FORM:
         return distance_to_point(g.kind, g.m, g.pose, p_WQ)
     if g.kind == "Ellipsoid":
@@ -274,8 +276,8 @@ def point_signed_distance(g: PosedGeometry, p_WQ: Vec) -> PointDistance | None:
         a, b, c = g.m
         grad_G = unit((p_GN[0] / (a * a), p_GN[1] / (b * b), p_GN[2] / (c * c)))
         return PointDistance(p_GN, distance, rot(g.pose.R, grad_G))
-    boundary = g.boundary()
-    if boundary is None:
+    boundary = g.boundary() if release.has("mesh-point-distance-since-1.36") else None
+    if boundary is None:  # up to 1.35, Drake leaves every Mesh and Convex out
         return None
     found = boundary.signed_distance(np.array(g.pose.apply_inverse(p_WQ)))
     p_GN = (float(found.p_MN[0]), float(found.p_MN[1]), float(found.p_MN[2]))
