@@ -27,10 +27,10 @@ from typing import TYPE_CHECKING, Any
 
 from conformance.grammar.queries import (
     DEFAULT_SHAPE,
-    MESH_ROOT,
     MESH_SHAPES,
     SHAPE_OF_CLASS,
     SHAPES,
+    mesh_root,
 )
 from conformance.protocol import MODEL
 
@@ -95,7 +95,7 @@ class QueryCommands:
         mesh_class = MESH_SHAPES.get(spec["type"])
         if mesh_class is not None:
             return getattr(self.api.geometry, mesh_class)(
-                filename=str(MESH_ROOT / spec["path"]), scale=float(spec.get("scale", 1.0))
+                filename=str(mesh_root() / spec["path"]), scale=float(spec.get("scale", 1.0))
             )
         class_name, keys = SHAPES[spec["type"]]
         return getattr(self.api.geometry, class_name)(**{key: spec[key] for key in keys})

@@ -12,7 +12,7 @@ Values:
   pydrake class called with these keywords; and a mesh file (``MESH_SHAPES``),
   ``{"type": "mesh" | "convex", "path": p, "scale": s}``: ``Mesh(filename=,
   scale=)`` or ``Convex(filename=, scale=)`` of the file at ``p`` below the
-  corpus folder ``scenarios/`` (``MESH_ROOT``: the vendored real models'
+  corpus folder ``scenarios/`` (``mesh_root()``: the vendored real models'
   ``real_models/drake/...`` and ``real_models/drake_models/...``, the queries'
   own ``queries/meshes/...``), ``scale`` 1 if left out;
 - a point: ``[x, y, z]`` in the world frame;
@@ -45,7 +45,6 @@ from conformance.grammar.spec import Arg, ArgKind, CommandSpec, Comparison
 __all__ = [
     "DEFAULT_SHAPE",
     "DEFINITIONS",
-    "MESH_ROOT",
     "MESH_SHAPES",
     "QUERY_COMMANDS",
     "SHAPES",
@@ -68,8 +67,12 @@ SHAPES: Mapping[str, tuple[str, tuple[str, ...]]] = {
 #: Mesh-file shape type → the pydrake.geometry class (keywords ``filename``, ``scale``).
 MESH_SHAPES: Mapping[str, str] = {"mesh": "Mesh", "convex": "Convex"}
 
-#: The folder a mesh shape's ``path`` is below: the corpus, ``scenarios/``.
-MESH_ROOT = Path(str(resources.files("scenarios")))
+
+def mesh_root() -> Path:
+    """The folder a mesh shape's ``path`` is below: the corpus, ``scenarios/`` (looked up
+    when a mesh is made, so a worker without the corpus still starts)."""
+    return Path(str(resources.files("scenarios")))
+
 
 #: The shape type of each class name (how query results name a geometry's shape).
 SHAPE_OF_CLASS: Mapping[str, str] = {
