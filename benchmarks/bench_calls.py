@@ -21,9 +21,9 @@ from typing import Any
 # n frames with one proximity sphere each: bench_filter's scene (run from benchmarks/).
 from bench_filter import scene
 
-from conformance.backends.api import Api
-from conformance.backends.pydrake_api import pydrake_api
-from conformance.backends.reimpl_api import reimpl_api
+from conformance._backends.api import Api
+from conformance._backends.pydrake_api import pydrake_api
+from conformance._backends.reimpl_api import reimpl_api
 
 #: The five operations of issue 15, in the order they are printed.
 OPERATIONS = (

@@ -12,9 +12,9 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from conformance.backends.pydrake_api import pydrake_api
-from conformance.backends.reimpl_api import reimpl_api
-from conformance.backends.scene_graph import Api
+from conformance._backends.pydrake_api import pydrake_api
+from conformance._backends.reimpl_api import reimpl_api
+from conformance._backends.scene_graph import Api
 
 
 def scene(api: Api, n: int) -> tuple[Any, list[Any]]:

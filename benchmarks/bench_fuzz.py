@@ -1,6 +1,6 @@
 """Fuzzing throughput: reimpl against pydrake, on scenes of 5-30 geometries.
 
-Runs the lockstep machine (``conformance.fuzz.campaign.Campaign``) for a fixed seed and
+Runs the lockstep machine (``conformance._fuzz.campaign.Campaign``) for a fixed seed and
 number of examples per initial scene size, ``--repeat`` times, and prints the
 median run's:
 
@@ -52,15 +52,16 @@ from typing import Any, ClassVar
 
 from hypothesis.stateful import Bundle, RuleBasedStateMachine, rule, run_state_machine_as_test
 
-from conformance.backends.loader import load_backend
-from conformance.fuzz.campaign import DEFAULT_STEPS, Campaign, fuzz_settings
-from conformance.fuzz.lockstep import LockstepMachine, PosedLockstepMachine
+from conformance._backends.loader import load_backend
+from conformance._fuzz.campaign import DEFAULT_STEPS, Campaign, fuzz_settings
+from conformance._fuzz.lockstep import LockstepMachine, PosedLockstepMachine
 from conformance.protocol import Backend
 
 SIZES = ((5, 10), (10, 20), (20, 30))
 ROOT = Path(__file__).resolve().parent.parent
 
-#: Typed alias, as in ``conformance.fuzz.campaign`` (Hypothesis releases differ in its annotations).
+#: Typed alias, as in ``conformance._fuzz.campaign`` (Hypothesis releases differ in its
+#: annotations).
 _run_machine: Callable[..., None] = run_state_machine_as_test
 
 

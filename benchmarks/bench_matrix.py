@@ -27,11 +27,11 @@ import sys
 import time
 from importlib import metadata
 
-from conformance.backends.loader import load_backend
-from conformance.corpus.loader import Case, load_corpus
+from conformance._backends.loader import load_backend
+from conformance._corpus.loader import Case, load_corpus
+from conformance._run.matrix import run_matrix
+from conformance._run.runner import run_case
 from conformance.protocol import Backend
-from conformance.run.matrix import run_matrix
-from conformance.run.runner import run_case
 
 REPORT_RELEASES = ("1.12.0", "1.20.0", "1.30.0", "1.40.0", "1.51.1", "1.58.0")
 

@@ -19,11 +19,11 @@ import sys
 import time
 from pathlib import Path
 
+from conformance._corpus.loader import Case, default_corpus_root
+from conformance._corpus.model_files import find_model_files
+from conformance._run.matrix import run_matrix
+from conformance._run.models_report import comparisons
 from conformance.cli.models import model_file_cases
-from conformance.corpus.loader import Case, default_corpus_root
-from conformance.corpus.model_files import find_model_files
-from conformance.run.matrix import run_matrix
-from conformance.run.models_report import comparisons
 
 RELEASES = ("1.30.0", "1.40.0", "1.45.0", "1.51.1", "1.55.0", "1.58.0")
 REAL = default_corpus_root() / "real_models"

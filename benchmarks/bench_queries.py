@@ -32,9 +32,9 @@ from typing import Any
 
 import numpy as np
 
-from conformance.backends.pydrake_api import pydrake_api
-from conformance.backends.reimpl_api import reimpl_api
-from conformance.backends.scene_graph import Api
+from conformance._backends.pydrake_api import pydrake_api
+from conformance._backends.reimpl_api import reimpl_api
+from conformance._backends.scene_graph import Api
 
 MAX_DISTANCE = 0.05
 #: The mesh scene's shape: a Jaco arm link's collision mesh from Drake's drake_models.

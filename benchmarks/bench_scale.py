@@ -215,9 +215,9 @@ def worker(api_name: str, n: int, memory_gib: float) -> None:
     cap = int(memory_gib * 2**30)
     resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
     if api_name == "reimpl":
-        from conformance.backends.reimpl_api import reimpl_api as make  # noqa: PLC0415
+        from conformance._backends.reimpl_api import reimpl_api as make  # noqa: PLC0415
     else:
-        from conformance.backends.pydrake_api import pydrake_api as make  # noqa: PLC0415
+        from conformance._backends.pydrake_api import pydrake_api as make  # noqa: PLC0415
     api = make()
     version = api.version if api_name == "pydrake" else "reimpl"
     print(json.dumps({"version": version, "import_rss_mb": peak_rss_mb()}), flush=True)

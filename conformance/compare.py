@@ -14,7 +14,7 @@ tests) calls ``diff``. Two answers agree iff ``diff`` is empty:
   ``EXACT``, equal JSON values; ``PROXIMITY``, query records (one, or a
   sorted list) with equal pairs and shapes in the same order and their
   numbers within the tolerances of the record's shape pair
-  (``conformance.tolerances``: the depth or distance; unless the contact is
+  (``conformance._tolerances``: the depth or distance; unless the contact is
   a touch, the witness points, and the normal through the separation vector
   ``d·nhat``); ``POSE``, ``xyz`` and rotation entries within
   ``tolerances.POSE_TOLERANCE``.
@@ -37,9 +37,9 @@ from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from conformance.grammar import GRAMMAR, Comparison
+from conformance._grammar import GRAMMAR, Comparison
+from conformance._tolerances import POSE_TOLERANCE, tolerance
 from conformance.protocol import ErrorKind, Observation, Pair, Result
-from conformance.tolerances import POSE_TOLERANCE, tolerance
 
 __all__ = [
     "CHOICE",

@@ -27,8 +27,7 @@ from __future__ import annotations
 
 import reimpl.geometry
 import reimpl.math
-from conformance.backends.loader import load_backend
-from conformance.backends.scene_graph import Api, SceneGraphBackend
+from conformance.adapters import Api, SceneGraphBackend, load_backend
 from conformance.protocol import Backend, Command, Observation, Result
 
 __all__ = ["MyBackend", "pydrake_like"]
@@ -76,7 +75,7 @@ class MyBackend:
         """Run one command; ``command.op`` and ``command.args`` follow the grammar.
 
         The ops and their arguments are the rows of
-        ``conformance/grammar/scene_graph.py`` (``python -m conformance schema``
+        ``conformance/_grammar/scene_graph.py`` (``python -m conformance schema``
         prints them as a JSON schema). Return ``Result(value=...)``, or
         ``Result(error=ErrorInfo(kind, message))`` when your implementation
         refuses the call. Do not raise for a refusal: an exception means the

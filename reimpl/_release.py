@@ -4,7 +4,7 @@ reimpl behaves as one Drake release, chosen once per process: the
 environment variable ``REIMPL_DRAKE_RELEASE`` (``X.Y.Z``, any release the
 release table describes: 1.12.0 to 1.58.0), else 1.51.1, the release pip
 serves to Python 3.11. ``release.has(fact_id)`` says whether a row of the
-release table (``conformance/policy/release_facts.json``, read here as data,
+release table (``conformance/_policy/release_facts.json``, read here as data,
 not through the harness's code) holds for that release.
 
 Each place where releases differ asks one named fact, next to the rule it
@@ -73,7 +73,7 @@ class Release:
 
 
 def _load(version: str) -> Release:
-    path = resources.files("conformance.policy").joinpath("release_facts.json")
+    path = resources.files("conformance._policy").joinpath("release_facts.json")
     table = json.loads(path.read_text("utf-8"))
     first, last = _version(table["first_release"]), _version(table["last_release"])
     if not _RELEASE.match(version) or not first <= _version(version) <= last:

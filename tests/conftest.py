@@ -10,9 +10,9 @@ from typing import Any
 import pytest
 from hypothesis import settings
 
-from conformance.backends.pydrake_api import pydrake_api
-from conformance.backends.reimpl_api import reimpl_api
-from conformance.backends.scene_graph import Api
+from conformance._backends.pydrake_api import pydrake_api
+from conformance._backends.reimpl_api import reimpl_api
+from conformance._backends.scene_graph import Api
 
 IMPLEMENTATIONS = ("reimpl", "pydrake")
 
@@ -170,7 +170,7 @@ def _runs_on_pydrake(item: pytest.Item) -> bool:
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """``@pytest.mark.release_fact(id)``: the test asserts what a release fact records.
 
-    The fact is a row of the release table (``conformance/policy/release_facts.json``),
+    The fact is a row of the release table (``conformance/_policy/release_facts.json``),
     which holds for a range of Drake releases. Run on an implementation whose release is
     outside it (the installed pydrake's; for reimpl, the release it follows:
     ``REIMPL_DRAKE_RELEASE``, default 1.51.1), the test is an expected failure naming the
@@ -178,7 +178,7 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     """
     from importlib.metadata import version  # noqa: PLC0415
 
-    from conformance.policy.release_facts import release_fact  # noqa: PLC0415
+    from conformance._policy.release_facts import release_fact  # noqa: PLC0415
     from reimpl._release import release  # noqa: PLC0415
 
     releases = {True: version("drake"), False: release.version}

@@ -35,9 +35,9 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # this checkout's conformance
 
-from conformance.backends.loader import load_backend
-from conformance.backends.wire import hello_value, raised_answer
-from conformance.grammar import features_of
+from conformance._backends.loader import load_backend
+from conformance._backends.wire import hello_value, raised_answer
+from conformance._grammar import features_of
 from conformance.protocol import Command, Result, UnknownNameError
 
 

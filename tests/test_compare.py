@@ -4,6 +4,14 @@ from __future__ import annotations
 
 from typing import Any
 
+from conformance._tolerances import (
+    CLOSED,
+    ITERATIVE,
+    POSE_TOLERANCE,
+    TOLERANCES,
+    shape_pair,
+    tolerance,
+)
 from conformance.compare import (
     CHOICE,
     Difference,
@@ -14,14 +22,6 @@ from conformance.compare import (
     value_differences,
 )
 from conformance.protocol import ErrorInfo, ErrorKind, LocationState, Observation, Result
-from conformance.tolerances import (
-    CLOSED,
-    ITERATIVE,
-    POSE_TOLERANCE,
-    TOLERANCES,
-    shape_pair,
-    tolerance,
-)
 
 
 def state(*pairs: tuple[str, str], history: bool = False, **active: bool) -> Observation:

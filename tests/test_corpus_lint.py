@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from conformance.corpus.loader import Case, load_corpus
+from conformance._corpus.loader import Case, load_corpus
 
 FILES = load_corpus()
 CASES = [case for f in FILES for case in f.cases]

@@ -17,16 +17,16 @@ from typing import Any
 
 import pytest
 
-from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
-from conformance.corpus import loader
-from conformance.corpus.documents import MAX_DEPTH, TOO_DEEP
-from conformance.corpus.loader import (
+from conformance._corpus import loader
+from conformance._corpus.documents import MAX_DEPTH, TOO_DEEP
+from conformance._corpus.loader import (
     SCENARIO_SCHEMA,
     ScenarioError,
     default_corpus_root,
     load_corpus,
     load_file,
 )
+from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 
 DESCRIPTION = "exclude_within of two geometries empties C"
 SCENARIO: dict[str, Any] = {

@@ -1,4 +1,4 @@
-"""The fuzzer's coverage: which state-space features a run reached (conformance.fuzz.coverage).
+"""The fuzzer's coverage: which state-space features a run reached (conformance._fuzz.coverage).
 
 The books follow real pydrake's results, and the seed-1 campaign of issue 16
 reaches every feature of its table at least ten times.
@@ -11,13 +11,13 @@ import json
 from pathlib import Path
 from typing import Any
 
-from conformance.backends.loader import load_backend
+from conformance._backends.loader import load_backend
+from conformance._fuzz.campaign import Campaign
+from conformance._fuzz.coverage import Coverage, CoverageBook, campaign_features
+from conformance._fuzz.lockstep import LockstepMachine
+from conformance._fuzz.operations import issued_ops
 from conformance.cli.exit_codes import EXIT_OK
 from conformance.cli.main import main
-from conformance.fuzz.campaign import Campaign
-from conformance.fuzz.coverage import Coverage, CoverageBook, campaign_features
-from conformance.fuzz.lockstep import LockstepMachine
-from conformance.fuzz.operations import issued_ops
 from conformance.protocol import Command
 
 PYDRAKE = load_backend("pydrake")

@@ -19,18 +19,18 @@ from pathlib import Path
 
 import pytest
 
-from conformance.backends.environments import DrakeEnvironmentError, find_python
-from conformance.backends.loader import load_backend
+from conformance._backends.environments import DrakeEnvironmentError, find_python
+from conformance._backends.loader import load_backend
+from conformance._corpus.loader import default_corpus_root, load_file
+from conformance._engine import Divergence, Engine, Outcome
+from conformance._fuzz.campaign import Campaign
+from conformance._fuzz.findings import cross_release
+from conformance._fuzz.regression import drake_release, regression_scenario, write_regression
+from conformance._policy.divergences import match_step
+from conformance._policy.guards import arm_guards
+from conformance._run.runner import run_case
 from conformance.compare import Difference
-from conformance.corpus.loader import default_corpus_root, load_file
-from conformance.engine import Divergence, Engine, Outcome
-from conformance.fuzz.campaign import Campaign
-from conformance.fuzz.findings import cross_release
-from conformance.fuzz.regression import drake_release, regression_scenario, write_regression
-from conformance.policy.divergences import match_step
-from conformance.policy.guards import arm_guards
 from conformance.protocol import Backend, BackendId, Command, backend_id
-from conformance.run.runner import run_case
 
 EARLY, LATE = "1.51.1", "1.58.0"
 #: The 1.51 → 1.52 change: a failing apply_transient's earlier statement reaches C up to 1.51.1.

@@ -7,7 +7,7 @@ HasCollisions, the penetrating pairs with depths, the pairs within 2 cm with
 signed distances, and the signed distances to the wrist. It runs in a subprocess
 as written and with ``pydrake.`` switched to ``reimpl.`` in its imports: the
 two outputs must name the same pairs in the same lines, with every number within
-the tolerance of its shape pair (``conformance.tolerances``); the lines checked
+the tolerance of its shape pair (``conformance._tolerances``); the lines checked
 below are what pydrake 1.51.1 prints.
 
 Measured against pydrake 1.51.1 with the script's numbers printed to 17
@@ -23,7 +23,7 @@ import re
 
 import pytest
 
-from conformance.tolerances import tolerance
+from conformance._tolerances import tolerance
 from tests.dropin import ROOT, as_reimpl, run_script
 
 SCRIPT = (ROOT / "examples" / "mesh_robot_queries.py").read_text()

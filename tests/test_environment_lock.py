@@ -6,7 +6,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from conformance.backends.environments import _locked
+from conformance._backends.environments import _locked
 
 PROBE = """
 import fcntl, sys

@@ -1,7 +1,7 @@
 """``exec:CMD``: a backend in any language, over the worker protocol (docs/protocol.md).
 
 Three programs speak it here: the Python worker that ``drake==X`` runs
-(``python -m conformance.backends.worker``, on pydrake 1.51.1), the JavaScript
+(``python -m conformance._backends.worker``, on pydrake 1.51.1), the JavaScript
 backend of ``examples/node_backend`` (skipped where ``node`` is absent), and
 ``tests/fake_exec_backend.py``, reimpl with one fault on demand. Faults are
 driven through the real CLI in a subprocess, as a user meets them.
@@ -22,17 +22,18 @@ from typing import Any
 import jsonschema
 import pytest
 
-from conformance.backends import exec_backend
-from conformance.backends.calls import StepTimeoutError
-from conformance.backends.exec_backend import ExecBackend, ExecSpecError, exec_spec_command
-from conformance.backends.loader import BackendLoadError, load_backend
-from conformance.backends.wire import CALLS, PROTOCOL_VERSION
+from conformance._backends import exec_backend
+from conformance._backends.calls import StepTimeoutError
+from conformance._backends.exec_backend import ExecBackend, ExecSpecError, exec_spec_command
+from conformance._backends.loader import BackendLoadError, load_backend
+from conformance._backends.wire import CALLS, PROTOCOL_VERSION
+from conformance._corpus.loader import default_corpus_root, load_corpus, load_file
+from conformance._engine import Outcome
+from conformance._fuzz import operations
+from conformance._fuzz.lockstep import _supported
+from conformance._grammar import GRAMMAR, features_of
+from conformance._run.runner import run_case
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
-from conformance.corpus.loader import default_corpus_root, load_corpus, load_file
-from conformance.engine import Outcome
-from conformance.fuzz import operations
-from conformance.fuzz.lockstep import _supported
-from conformance.grammar import GRAMMAR, features_of
 from conformance.protocol import Command, ErrorKind
 from conformance.protocol_schemas import (
     command_schema,
@@ -41,7 +42,6 @@ from conformance.protocol_schemas import (
     schema,
     schema_folder,
 )
-from conformance.run.runner import run_case
 
 REPO = Path(__file__).resolve().parents[1]
 ROOT = default_corpus_root()
@@ -53,7 +53,7 @@ NODE_SPEC = f"exec:node {NODE_BACKEND}"
 #: What the node backend declares.
 NODE_FEATURES = frozenset({"core", "transient"})
 #: The Python worker that drake==X runs, on this interpreter's pydrake (1.51.1).
-WORKER_SPEC = "exec:" + shlex.join([sys.executable, "-m", "conformance.backends.worker"])
+WORKER_SPEC = "exec:" + shlex.join([sys.executable, "-m", "conformance._backends.worker"])
 
 needs_node = pytest.mark.skipif(
     shutil.which("node") is None,
@@ -305,7 +305,7 @@ def test_every_message_of_the_python_worker_on_the_whole_corpus_meets_its_schema
     contexts), to execute and observe, and an error answer for an unknown name."""
     transcript: list[tuple[str, Any]] = []
     worker = ExecBackend(
-        [sys.executable, "-m", "conformance.backends.worker"], transcript=transcript
+        [sys.executable, "-m", "conformance._backends.worker"], transcript=transcript
     )
     try:
         cases = [case for scenario in load_corpus() for case in scenario.cases]

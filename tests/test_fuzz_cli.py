@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
+from conformance._corpus.loader import load_file
 from conformance.cli.main import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, main
-from conformance.corpus.loader import load_file
 
 
 def fuzz(*argv: str) -> tuple[int, str, str]:
@@ -63,7 +63,7 @@ def test_fuzz_of_reimpl_against_pydrake_exits_0_and_writes_nothing(tmp_path: Pat
 
 
 def test_a_divergence_exits_1_and_is_written_as_a_valid_scenario(tmp_path: Path) -> None:
-    spec = "conformance.testing.mutants:reverse_statement_order"
+    spec = "conformance._testing.mutants:reverse_statement_order"
     # Bounded: at seed 1 it shrinks for minutes; the unbounded shrink is the next test's.
     argv = ("--seed", "1", "--max-examples", "300", "--shrink-time", "10")
     code, out, _ = fuzz("--backend", spec, *argv, "--out", str(tmp_path))
@@ -77,7 +77,7 @@ def test_a_divergence_exits_1_and_is_written_as_a_valid_scenario(tmp_path: Path)
 
 
 def test_the_same_seed_gives_the_same_finding_and_counts(tmp_path: Path) -> None:
-    spec = "conformance.testing.mutants:stale_has_transient_history"
+    spec = "conformance._testing.mutants:stale_has_transient_history"
     runs = []
     for attempt in ("a", "b"):
         code, out, _ = fuzz(
@@ -106,7 +106,7 @@ def test_ctrl_c_during_shrinking_keeps_the_finding(tmp_path: Path) -> None:
             "conformance",
             "fuzz",
             "--backend",
-            "conformance.testing.mutants:allow_between_clears_within",
+            "conformance._testing.mutants:allow_between_clears_within",
             "--seed",
             "1",
             "--max-examples",

@@ -1,6 +1,6 @@
 """Findings are never lost (issue 16): on disk when first seen, replaced as they shrink.
 
-Real pydrake against reimpl mutants (``conformance.testing.mutants``), through
+Real pydrake against reimpl mutants (``conformance._testing.mutants``), through
 the real command line: in-process for whole runs, in a subprocess for the
 signals. At seed 1 both mutants below are first seen within about a second,
 then shrink for 25 s or more (measured: ``allow_clears_invariants`` 73 -> 6
@@ -20,18 +20,18 @@ import sys
 import time
 from pathlib import Path
 
-from conformance.backends.loader import load_backend
+from conformance._backends.loader import load_backend
+from conformance._corpus.loader import load_file
+from conformance._engine import Divergence, Trace
+from conformance._fuzz.campaign import Campaign
+from conformance._fuzz.findings import FindingFile
+from conformance._fuzz.stats import interrupt_requested
 from conformance.cli.main import EXIT_FAILURE, EXIT_OK, main
 from conformance.compare import Difference
-from conformance.corpus.loader import load_file
-from conformance.engine import Divergence, Trace
-from conformance.fuzz.campaign import Campaign
-from conformance.fuzz.findings import FindingFile
-from conformance.fuzz.stats import interrupt_requested
 from conformance.protocol import Command, Observation, Result
 
-SLOW = "conformance.testing.mutants:allow_between_clears_within"
-QUICK = "conformance.testing.mutants:allow_clears_invariants"
+SLOW = "conformance._testing.mutants:allow_between_clears_within"
+QUICK = "conformance._testing.mutants:allow_clears_invariants"
 #: The stderr line of a first sighting: "divergence seen: ... written in N ms to PATH (...)".
 SEEN = re.compile(r"divergence seen: .* after step (\d+); written in (\d+) ms to (\S+) \(")
 

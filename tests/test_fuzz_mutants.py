@@ -1,12 +1,12 @@
 """Proof of power: ``fuzz`` catches every mutant of reimpl within 300 examples.
 
-Each mutant (conformance.testing.mutants) is reimpl with one deliberate bug. A
+Each mutant (conformance._testing.mutants) is reimpl with one deliberate bug. A
 campaign with seed 1 and at most 300 examples, against real pydrake, must find
 a divergence. The shrunk sequence is written as a scenario file, and
 ``python -m conformance run`` on that file must fail for the mutant and pass
 for reimpl: the file records pydrake's behaviour, which reimpl matches.
 
-The model mutants (conformance.testing.model_mutants) are proved the same way
+The model mutants (conformance._testing.model_mutants) are proved the same way
 by ``fuzz --models``, on the whole model grammar. They take minutes, so they
 are fuzz shards: ``pytest -m fuzz tests/test_fuzz_mutants.py``.
 """
@@ -19,13 +19,13 @@ from pathlib import Path
 
 import pytest
 
-from conformance.backends.loader import load_backend
+from conformance._backends.loader import load_backend
+from conformance._fuzz.campaign import Campaign
+from conformance._fuzz.model_campaign import ModelCampaign
+from conformance._fuzz.regression import write_regression
+from conformance._testing.model_mutants import MODEL_MUTANTS, model_mutant_backend
+from conformance._testing.mutants import MUTANTS, mutant_backend
 from conformance.cli.main import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, main
-from conformance.fuzz.campaign import Campaign
-from conformance.fuzz.model_campaign import ModelCampaign
-from conformance.fuzz.regression import write_regression
-from conformance.testing.model_mutants import MODEL_MUTANTS, model_mutant_backend
-from conformance.testing.mutants import MUTANTS, mutant_backend
 
 PYDRAKE = load_backend("pydrake")
 #: Shrinking bound per mutant: the coverage-weighted draws of issue 16 make longer
@@ -57,7 +57,7 @@ def test_fuzz_catches_the_mutant_within_300_examples_and_the_shrunk_file_replays
     record_property("shrunk_steps", len(divergence.trace))
     if not result.batches[0].shrink_stopped:
         assert len(divergence.trace) <= 20, "the sequence was shrunk"
-    spec = f"conformance.testing.mutants:{name}"
+    spec = f"conformance._testing.mutants:{name}"
     path = write_regression(
         divergence,
         tmp_path,
@@ -99,7 +99,7 @@ def test_fuzz_models_catches_the_model_mutant_within_300_examples_and_the_file_r
     assert len(result.divergences) == 1, f"model mutant {name} survived 300 examples"
     divergence = result.divergences[0]
     record_property("shrunk_steps", len(divergence.trace))
-    spec = f"conformance.testing.model_mutants:{name}"
+    spec = f"conformance._testing.model_mutants:{name}"
     path = write_regression(
         divergence,
         tmp_path,

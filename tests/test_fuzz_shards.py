@@ -20,9 +20,9 @@ from pathlib import Path
 
 import pytest
 
-from conformance.backends.loader import load_backend
-from conformance.fuzz.campaign import Campaign
-from conformance.fuzz.regression import write_regression
+from conformance._backends.loader import load_backend
+from conformance._fuzz.campaign import Campaign
+from conformance._fuzz.regression import write_regression
 
 
 def _seeds() -> range:

@@ -6,11 +6,10 @@ import json
 
 import pytest
 
-from conformance.backends.scene_graph import SceneGraphBackend
-from conformance.compare import Difference
-from conformance.engine import Divergence, Trace
-from conformance.fuzz.regression import regression_scenario
-from conformance.grammar import (
+from conformance._backends.scene_graph import SceneGraphBackend
+from conformance._engine import Divergence, Trace
+from conformance._fuzz.regression import regression_scenario
+from conformance._grammar import (
     GRAMMAR,
     ArgKind,
     Comparison,
@@ -19,9 +18,10 @@ from conformance.grammar import (
     declared_names,
     referenced_names,
 )
-from conformance.grammar import spec as command_spec
-from conformance.grammar.queries import SHAPES
-from conformance.grammar.schema import scenario_schema, schema_path
+from conformance._grammar import spec as command_spec
+from conformance._grammar.queries import SHAPES
+from conformance._grammar.schema import scenario_schema, schema_path
+from conformance.compare import Difference
 from conformance.protocol import Command, LocationState, Observation, Result
 
 

@@ -7,14 +7,14 @@ from pathlib import Path
 
 import pytest
 
-from conformance.backends.loader import load_backend
-from conformance.corpus.loader import Case, load_corpus
-from conformance.engine import Outcome
-from conformance.policy.divergences import KnownDivergence, known_divergences
-from conformance.policy.guards import GUARDS
-from conformance.policy.versions import version_in_range
+from conformance._backends.loader import load_backend
+from conformance._corpus.loader import Case, load_corpus
+from conformance._engine import Outcome
+from conformance._policy.divergences import KnownDivergence, known_divergences
+from conformance._policy.guards import GUARDS
+from conformance._policy.versions import version_in_range
+from conformance._run.runner import run_case
 from conformance.protocol import BackendId, Command, ErrorInfo, ErrorKind, Result
-from conformance.run.runner import run_case
 
 CASES: dict[str, Case] = {c.qualified_name: c for f in load_corpus() for c in f.cases}
 ENTRIES = known_divergences()

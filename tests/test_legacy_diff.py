@@ -12,10 +12,10 @@ from typing import ClassVar
 
 import pytest
 
-from conformance.backends.loader import load_backend
+from conformance._backends.loader import load_backend
+from conformance._legacy_diff import Rule, legacy_diff
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 from conformance.cli.main import main
-from conformance.legacy_diff import Rule, legacy_diff
 from conformance.protocol import MODEL, Command
 
 #: A world floor; world -revolute- base -revolute- l1 (3 geometries) -fixed- l2 -fixed- l3;

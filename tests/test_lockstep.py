@@ -8,11 +8,11 @@ import pytest
 from hypothesis import HealthCheck, Phase, settings
 from hypothesis.stateful import rule, run_state_machine_as_test
 
-from conformance.backends.loader import load_backend
-from conformance.engine import Divergence
-from conformance.fuzz.campaign import fuzz_settings
-from conformance.fuzz.lockstep import LockstepMachine, lockstep_machine
-from conformance.fuzz.operations import (
+from conformance._backends.loader import load_backend
+from conformance._engine import Divergence
+from conformance._fuzz.campaign import fuzz_settings
+from conformance._fuzz.lockstep import LockstepMachine, lockstep_machine
+from conformance._fuzz.operations import (
     HAND_WRITTEN,
     OPERATIONS,
     Operation,
@@ -20,11 +20,11 @@ from conformance.fuzz.operations import (
     issued_ops,
     planned_operation,
 )
-from conformance.fuzz.stats import FuzzStats
-from conformance.fuzz.strategies import DeclarationTemplate, GeometrySpec, Scene
-from conformance.grammar import GRAMMAR, ops_of
+from conformance._fuzz.stats import FuzzStats
+from conformance._fuzz.strategies import DeclarationTemplate, GeometrySpec, Scene
+from conformance._grammar import GRAMMAR, ops_of
+from conformance._testing.mutants import mutant_backend
 from conformance.protocol import Backend, Command, Result
-from conformance.testing.mutants import mutant_backend
 
 SETTINGS = settings(
     max_examples=40,

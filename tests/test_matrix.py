@@ -14,15 +14,15 @@ from pathlib import Path
 
 import pytest
 
-from conformance.backends.environments import cache_dir
-from conformance.backends.loader import load_backend
-from conformance.backends.releases import ReleaseSpecError, expand, releases_between
+from conformance._backends.environments import cache_dir
+from conformance._backends.loader import load_backend
+from conformance._backends.releases import ReleaseSpecError, expand, releases_between
+from conformance._corpus.loader import Case, load_corpus
+from conformance._run.bisect import By, Probe, bisect_case
+from conformance._run.matrix import Cell, Outcome, outcome_of, run_matrix
+from conformance._run.matrix_report import matrix_json, matrix_markdown, write_report
+from conformance._run.runner import run_case
 from conformance.cli.main import main
-from conformance.corpus.loader import Case, load_corpus
-from conformance.run.bisect import By, Probe, bisect_case
-from conformance.run.matrix import Cell, Outcome, outcome_of, run_matrix
-from conformance.run.matrix_report import matrix_json, matrix_markdown, write_report
-from conformance.run.runner import run_case
 from tests.test_worker_backend import RELEASE, needs_312
 
 INDEX = ["1.38.0", "1.39.0", "1.40.0", "1.40.1", "1.41.0", "1.45.0", "1.58.0"]

@@ -4,7 +4,7 @@ Each hull is compared with pydrake 1.51.1's ``GetConvexHull()`` on vendored mesh
 (.obj, .gltf, .vtk; planar ones too): the same vertex set (within 1e-12) and the same
 polygons, wound the same way. Each query scene is built on both implementations through
 the public API and posed at seeded random poses; pair sets and booleans must be equal,
-depths and distances within the tolerances of ``conformance.tolerances``.
+depths and distances within the tolerances of ``conformance._tolerances``.
 """
 
 from __future__ import annotations
@@ -15,10 +15,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conformance.backends.pydrake_api import pydrake_api
-from conformance.backends.reimpl_api import reimpl_api
-from conformance.backends.scene_graph import Api
-from conformance.tolerances import tolerance
+from conformance._backends.pydrake_api import pydrake_api
+from conformance._backends.reimpl_api import reimpl_api
+from conformance._backends.scene_graph import Api
+from conformance._tolerances import tolerance
 
 ROOT = Path(__file__).resolve().parents[1] / "scenarios" / "real_models"
 DRAKE = ROOT / "drake"

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conformance.backends.api import Api
+from conformance._backends.api import Api
 from reimpl.multibody._mobilizer_frames import from_one_unit_vector
 
 #: (name, body, is_ephemeral, X_BF as 3x4 rounded to 3 decimals), in the order Finalize adds

@@ -17,7 +17,7 @@ from typing import Any
 
 import pytest
 
-from conformance.backends.api import Api
+from conformance._backends.api import Api
 
 #: Where pydrake's messages print the joint headers (pydrake 1.51.1 and 1.58.0).
 TREE_H = (

@@ -14,19 +14,19 @@ from typing import Any
 
 import pytest
 
-from conformance.backends.environments import DrakeEnvironmentError, find_python
-from conformance.backends.loader import load_backend
-from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
-from conformance.cli.main import main
-from conformance.cli.models import model_file_cases
-from conformance.corpus.loader import default_corpus_root
-from conformance.corpus.model_files import (
+from conformance._backends.environments import DrakeEnvironmentError, find_python
+from conformance._backends.loader import load_backend
+from conformance._corpus.loader import default_corpus_root
+from conformance._corpus.model_files import (
     GROUPS_SUFFIX,
     find_model_files,
     is_model_file,
     model_cases,
 )
-from conformance.grammar.schema import scenario_schema
+from conformance._grammar.schema import scenario_schema
+from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.cli.main import main
+from conformance.cli.models import model_file_cases
 from conformance.protocol import Command, ErrorKind
 
 DRAKE = default_corpus_root() / "real_models" / "drake"
@@ -210,7 +210,7 @@ CAPSULES = (
     '<link name="b"><collision name="d"><geometry><box size="1 1 1"/></geometry></collision>'
     "</link></robot>\n"
 )
-MUTANT = "conformance.testing.model_mutants:drake_capsule_dropped"
+MUTANT = "conformance._testing.model_mutants:drake_capsule_dropped"
 
 
 def test_models_lists_each_difference_from_the_reference_by_scoped_name_and_exits_one(

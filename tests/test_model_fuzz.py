@@ -1,4 +1,4 @@
-"""conformance.fuzz.models draws kinematic trees that pydrake parses as drawn; ``fuzz --models``
+"""conformance._fuzz.models draws kinematic trees that pydrake parses as drawn; ``fuzz --models``
 compares them on two backends and writes a shrunk finding that ``run`` replays."""
 
 from __future__ import annotations
@@ -16,19 +16,19 @@ from pydrake.geometry import GeometryId, SceneGraph
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import MultibodyPlant
 
-from conformance.backends.loader import load_backend
-from conformance.backends.pydrake_api import pydrake_api
-from conformance.backends.reimpl_api import reimpl_api
-from conformance.backends.scene_graph import SceneGraphBackend
+from conformance._backends.loader import load_backend
+from conformance._backends.pydrake_api import pydrake_api
+from conformance._backends.reimpl_api import reimpl_api
+from conformance._backends.scene_graph import SceneGraphBackend
+from conformance._corpus.loader import load_file
+from conformance._engine import HarnessError
+from conformance._fuzz import models as fm
+from conformance._fuzz.model_campaign import ModelCampaign, model_cases
+from conformance._fuzz.model_coverage import MODEL_FEATURES
+from conformance._fuzz.models import Body, Geometry, Group, Joint, Model
+from conformance._testing.model_mutants import MODEL_MUTANTS, model_mutant_backend
 from conformance.cli.main import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, main
-from conformance.corpus.loader import load_file
-from conformance.engine import HarnessError
-from conformance.fuzz import models as fm
-from conformance.fuzz.model_campaign import ModelCampaign, model_cases
-from conformance.fuzz.model_coverage import MODEL_FEATURES
-from conformance.fuzz.models import Body, Geometry, Group, Joint, Model
 from conformance.protocol import Command
-from conformance.testing.model_mutants import MODEL_MUTANTS, model_mutant_backend
 from reimpl.multibody import tree as reimpl_tree
 
 PYDRAKE = load_backend("pydrake")
@@ -337,7 +337,7 @@ def test_fuzz_models_of_reimpl_against_pydrake_exits_0_and_writes_nothing(tmp_pa
     assert not out_dir.exists()
 
 
-MUTANT = "conformance.testing.model_mutants:rpy_floating_unfiltered"
+MUTANT = "conformance._testing.model_mutants:rpy_floating_unfiltered"
 #: Seeds 1-6 all meet the mutant's bug (an RpyFloatingJoint between two bodies with
 #: collision geometry) within 300 examples; seed 2 takes 156 runs, shrinking included.
 SEED_2 = ("--seed", "2", "--max-examples", "300")

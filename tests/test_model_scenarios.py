@@ -13,20 +13,20 @@ from typing import Any
 
 import pytest
 
-from conformance.backends.environments import cache_dir
-from conformance.backends.loader import load_backend
-from conformance.backends.multibody import JOINT_CLASSES
-from conformance.backends.scene_graph import SceneGraphBackend
+from conformance._backends.environments import cache_dir
+from conformance._backends.loader import load_backend
+from conformance._backends.multibody import JOINT_CLASSES
+from conformance._backends.scene_graph import SceneGraphBackend
+from conformance._corpus.loader import Case, ScenarioError, default_corpus_root, load_corpus
+from conformance._engine import Outcome
+from conformance._grammar import GRAMMAR, ops_of
+from conformance._grammar.multibody import JOINT_TYPES, MODEL_COMMANDS
+from conformance._grammar.schema import scenario_schema
+from conformance._policy.versions import parse_version
+from conformance._run.runner import run_case
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 from conformance.cli.main import main
-from conformance.corpus.loader import Case, ScenarioError, default_corpus_root, load_corpus
-from conformance.engine import Outcome
-from conformance.grammar import GRAMMAR, ops_of
-from conformance.grammar.multibody import JOINT_TYPES, MODEL_COMMANDS
-from conformance.grammar.schema import scenario_schema
-from conformance.policy.versions import parse_version
 from conformance.protocol import Command, ErrorKind, backend_id
-from conformance.run.runner import run_case
 
 MODELS = default_corpus_root() / "models"
 CASES = [case for f in load_corpus([MODELS]) for case in f.cases]
@@ -338,7 +338,7 @@ def test_a_release_without_a_binding_the_case_calls_skips_it_in_run() -> None:
 
 def test_a_model_case_that_no_backend_runs_is_no_input_error() -> None:
     case = _case("the parser reports each group's scoped members and each ignored pair once")
-    from conformance.engine import Trace  # noqa: PLC0415
-    from conformance.run.runner import _bad_model  # noqa: PLC0415 (the rule under test)
+    from conformance._engine import Trace  # noqa: PLC0415
+    from conformance._run.runner import _bad_model  # noqa: PLC0415 (the rule under test)
 
     assert _bad_model(case, Trace("pydrake"), [], "pydrake") is None

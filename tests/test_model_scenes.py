@@ -13,18 +13,18 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import seed as hypothesis_seed
 
-from conformance.backends.loader import load_backend
-from conformance.backends.pydrake_api import pydrake_api
-from conformance.backends.scene_graph import Api, SceneGraphBackend
-from conformance.fuzz import models as fm
-from conformance.fuzz.model_campaign import model_cases
-from conformance.fuzz.model_coverage import (
+from conformance._backends.loader import load_backend
+from conformance._backends.pydrake_api import pydrake_api
+from conformance._backends.scene_graph import Api, SceneGraphBackend
+from conformance._fuzz import models as fm
+from conformance._fuzz.model_campaign import model_cases
+from conformance._fuzz.model_coverage import (
     MODEL_FEATURES,
     case_features,
     error_category,
     expected_model_features,
 )
-from conformance.fuzz.model_scenes import (
+from conformance._fuzz.model_scenes import (
     MESH_OBJ,
     SCENE_FORMATS,
     Scene,
@@ -32,7 +32,7 @@ from conformance.fuzz.model_scenes import (
     package_xml,
     scene_faults,
 )
-from conformance.fuzz.xml_quirks import XML_QUIRKS, detect_quirks
+from conformance._fuzz.xml_quirks import XML_QUIRKS, detect_quirks
 from conformance.protocol import Command, ErrorInfo, ErrorKind, Result, UnknownNameError
 
 PYDRAKE = load_backend("pydrake")

@@ -24,7 +24,7 @@ from typing import Any
 
 import pytest
 
-from conformance.policy.versions import version_in_range
+from conformance._policy.versions import version_in_range
 from tests.conftest import IMPLEMENTATIONS
 
 MODELS = Path(__file__).parent / "models"

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conformance.backends.api import Api
+from conformance._backends.api import Api
 
 URDF = """<robot name="r">
 <link name="base"><collision><geometry><box size="1 1 1"/></geometry></collision>

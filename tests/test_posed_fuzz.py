@@ -12,27 +12,27 @@ from typing import Any
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from conformance.backends.loader import load_backend
-from conformance.backends.pydrake_api import pydrake_api
-from conformance.backends.reimpl_api import reimpl_api
-from conformance.backends.scene_graph import SceneGraphBackend
-from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
-from conformance.cli.fuzz import fuzz_command
-from conformance.cli.main import _parser
-from conformance.corpus.loader import load_file
-from conformance.engine import Divergence
-from conformance.fuzz import strategies as cs
-from conformance.fuzz.campaign import Campaign
-from conformance.fuzz.coverage import QUERY_FEATURES
-from conformance.fuzz.lockstep import PosedLockstepMachine
-from conformance.fuzz.operations import (
+from conformance._backends.loader import load_backend
+from conformance._backends.pydrake_api import pydrake_api
+from conformance._backends.reimpl_api import reimpl_api
+from conformance._backends.scene_graph import SceneGraphBackend
+from conformance._corpus.loader import load_file
+from conformance._engine import Divergence
+from conformance._fuzz import strategies as cs
+from conformance._fuzz.campaign import Campaign
+from conformance._fuzz.coverage import QUERY_FEATURES
+from conformance._fuzz.lockstep import PosedLockstepMachine
+from conformance._fuzz.operations import (
     QUERY_OPS,
     filter_in_clone,
     near_touch,
     register_posed_scene,
 )
-from conformance.fuzz.sequences import Recorder
-from conformance.fuzz.stats import FuzzStats
+from conformance._fuzz.sequences import Recorder
+from conformance._fuzz.stats import FuzzStats
+from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.cli.fuzz import fuzz_command
+from conformance.cli.main import _parser
 from conformance.protocol import MODEL, Result
 
 PYDRAKE = load_backend("pydrake")

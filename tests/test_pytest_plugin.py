@@ -1,4 +1,4 @@
-"""The pytest plugin (conformance.run.pytest_plugin), run as a user runs it.
+"""The pytest plugin (conformance._run.pytest_plugin), run as a user runs it.
 
 Every run is ``python -m pytest`` in a fresh directory of pytester's, with no
 pyproject of ours: the plugin comes in through its ``pytest11`` entry point,
@@ -18,8 +18,8 @@ from typing import Any
 
 import pytest
 
-from conformance.backends.loader import load_backend
-from conformance.run.pytest_plugin import FEATURE_TAGS
+from conformance._backends.loader import load_backend
+from conformance._run.pytest_plugin import FEATURE_TAGS
 
 pytest_plugins = ["pytester"]
 
@@ -28,7 +28,7 @@ CORPUS = REPO / "scenarios"
 
 #: Backends of the temporary directory: reimpl without one feature, under another name.
 PARTIAL_BACKENDS = """
-from conformance.backends.loader import load_backend
+from conformance._backends.loader import load_backend
 
 
 class Partial:
@@ -242,7 +242,7 @@ def test_a_default_backend_that_cannot_load_is_one_usage_error(user_dir: pytest.
     (user_dir.path / "case.json").write_text(scenario())
     # The defaults are reimpl and pydrake; this conftest makes one of them unloadable.
     user_dir.makeconftest(
-        "import conformance.run.pytest_plugin as plugin\n"
+        "import conformance._run.pytest_plugin as plugin\n"
         "plugin._DEFAULT_BACKENDS = ('reimpl', 'nosuch')\n"
     )
     result = run(user_dir, "case.json")

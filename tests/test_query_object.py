@@ -22,9 +22,9 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conformance.backends.pydrake_api import pydrake_api
-from conformance.backends.reimpl_api import reimpl_api
-from conformance.backends.scene_graph import Api
+from conformance._backends.pydrake_api import pydrake_api
+from conformance._backends.reimpl_api import reimpl_api
+from conformance._backends.scene_graph import Api
 from reimpl._release import release
 from reimpl.common._std_unordered_map import IdentifierUnorderedMap, identifier_set_order
 from tests.dropin import as_reimpl, run_script

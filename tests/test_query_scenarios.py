@@ -2,7 +2,7 @@
 
 The cases' expectations were measured on pydrake 1.51.1 (the activation
 cases on 1.58.0); the runner holds each backend to them, numbers within the
-tolerances of ``conformance.tolerances``, and reimpl to pydrake's answers.
+tolerances of ``conformance._tolerances``, and reimpl to pydrake's answers.
 """
 
 from __future__ import annotations
@@ -15,23 +15,23 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conformance.backends.loader import load_backend
-from conformance.backends.scene_graph import SceneGraphBackend
-from conformance.cli.exit_codes import EXIT_USAGE
-from conformance.cli.main import main
-from conformance.corpus.loader import (
+from conformance._backends.loader import load_backend
+from conformance._backends.scene_graph import SceneGraphBackend
+from conformance._corpus.loader import (
     Case,
     ScenarioError,
     default_corpus_root,
     load_corpus,
     load_file,
 )
-from conformance.engine import Outcome
-from conformance.grammar import GRAMMAR, Comparison, ops_of
-from conformance.grammar.queries import QUERY_COMMANDS, SHAPES
+from conformance._engine import Outcome
+from conformance._grammar import GRAMMAR, Comparison, ops_of
+from conformance._grammar.queries import QUERY_COMMANDS, SHAPES
+from conformance._run.expectations import check
+from conformance._run.runner import run_case
+from conformance.cli.exit_codes import EXIT_USAGE
+from conformance.cli.main import main
 from conformance.protocol import Command, Result
-from conformance.run.expectations import check
-from conformance.run.runner import run_case
 
 QUERIES = default_corpus_root() / "queries"
 FILES = load_corpus([QUERIES])

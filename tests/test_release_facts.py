@@ -13,14 +13,14 @@ from pathlib import Path
 import jsonschema
 import pytest
 
-from conformance.backends.loader import load_backend
-from conformance.backends.reimpl_worker import reimpl_spec_version
-from conformance.corpus.loader import load_corpus
-from conformance.engine import Outcome
-from conformance.policy import release_facts_doc
-from conformance.policy.divergences import known_divergences
-from conformance.policy.guards import GUARDS
-from conformance.policy.release_facts import (
+from conformance._backends.loader import load_backend
+from conformance._backends.reimpl_worker import reimpl_spec_version
+from conformance._corpus.loader import load_corpus
+from conformance._engine import Outcome
+from conformance._policy import release_facts_doc
+from conformance._policy.divergences import known_divergences
+from conformance._policy.guards import GUARDS
+from conformance._policy.release_facts import (
     FactKind,
     Side,
     fact_side,
@@ -29,12 +29,12 @@ from conformance.policy.release_facts import (
     release_facts,
     table_releases,
 )
-from conformance.run.runner import run_case
+from conformance._run.runner import run_case
 
 ROOT = Path(__file__).resolve().parent.parent
 FACTS = release_facts()
 CASES = {c.qualified_name for f in load_corpus() for c in f.cases}
-POLICY = resources.files("conformance.policy")
+POLICY = resources.files("conformance._policy")
 #: ``release.has("<id>")`` in reimpl's sources.
 _SWITCH = re.compile(r"""release\.has\(\s*"([a-z0-9.-]+)"\s*\)""")
 
@@ -189,7 +189,9 @@ def test_reimpl_at_a_release_gives_that_release_s_recorded_answers(
 
 def test_docs_release_facts_md_is_what_the_table_gives() -> None:
     page = (ROOT / "docs" / "release_facts.md").read_text("utf-8")
-    assert page == release_facts_doc.render(), "run: python -m conformance.policy.release_facts_doc"
+    assert page == release_facts_doc.render(), (
+        "run: python -m conformance._policy.release_facts_doc"
+    )
     for fact_id in FACTS:
         assert f"| `{fact_id}` |" in page
 

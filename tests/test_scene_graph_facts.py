@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from conformance.backends.scene_graph import Api
+from conformance._backends.scene_graph import Api
 from tests.conftest import Scene, all_pairs
 
 UNKNOWN_GEOMETRY_IN_SET = (

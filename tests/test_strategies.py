@@ -1,4 +1,4 @@
-"""conformance.fuzz.strategies draws valid scenario material; pydrake agrees with reimpl on it."""
+"""conformance._fuzz.strategies draws valid scenario material; pydrake agrees with reimpl on it."""
 
 from __future__ import annotations
 
@@ -8,13 +8,13 @@ from pathlib import Path
 from hypothesis import HealthCheck, assume, find, given, settings
 from hypothesis import strategies as st
 
-from conformance.backends.loader import load_backend
+from conformance._backends.loader import load_backend
+from conformance._corpus.loader import load_file
+from conformance._fuzz import strategies as cs
+from conformance._fuzz.operations import OPERATIONS, POSED_OPERATIONS, QUERY_OPS, issued_ops
+from conformance._fuzz.sequences import CONTEXT_OPS, command_sequences
+from conformance._policy.divergences import match_step
 from conformance.compare import diff
-from conformance.corpus.loader import load_file
-from conformance.fuzz import strategies as cs
-from conformance.fuzz.operations import OPERATIONS, POSED_OPERATIONS, QUERY_OPS, issued_ops
-from conformance.fuzz.sequences import CONTEXT_OPS, command_sequences
-from conformance.policy.divergences import match_step
 from conformance.protocol import Command, backend_id
 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=list(HealthCheck))
@@ -315,7 +315,7 @@ def test_touch_bytes_give_a_unit_direction_a_frame_rotation_and_a_gap_from_1e_9_
 def _pydrake_shape(shape: dict[str, object]) -> object:
     from pydrake import geometry  # noqa: PLC0415
 
-    from conformance.grammar.queries import SHAPES  # noqa: PLC0415
+    from conformance._grammar.queries import SHAPES  # noqa: PLC0415
 
     class_name, keys = SHAPES[str(shape["type"])]
     return getattr(geometry, class_name)(**{key: shape[key] for key in keys})

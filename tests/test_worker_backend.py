@@ -14,14 +14,14 @@ from collections.abc import Iterator
 
 import pytest
 
-from conformance.backends.calls import BackendCrashError, StepTimeoutError, call
-from conformance.backends.environments import DrakeEnvironmentError, find_python, pythons_for
-from conformance.backends.loader import load_backend
-from conformance.backends.subprocess_backend import WorkerBackend
-from conformance.corpus.loader import default_corpus_root, load_corpus
-from conformance.engine import Outcome
+from conformance._backends.calls import BackendCrashError, StepTimeoutError, call
+from conformance._backends.environments import DrakeEnvironmentError, find_python, pythons_for
+from conformance._backends.loader import load_backend
+from conformance._backends.subprocess_backend import WorkerBackend
+from conformance._corpus.loader import default_corpus_root, load_corpus
+from conformance._engine import Outcome
+from conformance._run.runner import run_case
 from conformance.protocol import Command, ErrorKind
-from conformance.run.runner import run_case
 
 RELEASE = "1.58.0"
 

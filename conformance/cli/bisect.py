@@ -17,21 +17,21 @@ import argparse
 from pathlib import Path
 from typing import TextIO
 
-from conformance.backends.calls import BackendError
-from conformance.backends.environments import DrakeEnvironmentError
-from conformance.backends.releases import (
+from conformance._backends.calls import BackendError
+from conformance._backends.environments import DrakeEnvironmentError
+from conformance._backends.releases import (
     ReleaseSpecError,
     check_release,
     drake_releases,
     releases_between,
 )
+from conformance._corpus.loader import ScenarioError
+from conformance._policy.versions import parse_version
+from conformance._run.bisect import Bisection, By, Probe, bisect_case, run_probe
+from conformance._run.matrix import label
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_python, add_step_timeout
 from conformance.cli.run import NoCaseError, corpus_cases
-from conformance.corpus.loader import ScenarioError
-from conformance.policy.versions import parse_version
-from conformance.run.bisect import Bisection, By, Probe, bisect_case, run_probe
-from conformance.run.matrix import label
 
 __all__ = ["add_bisect_parser", "bisect_command"]
 

@@ -4,19 +4,19 @@ Progress goes to stderr about once a second: elapsed time, examples and steps
 (with rates), and findings. Each divergence is written as soon as it is first
 seen, raw and unshrunk (a line on stderr names the file), then replaced by
 every smaller one while Hypothesis shrinks it, and by the final one when its
-batch ends (``conformance.fuzz.findings``): a run that is killed leaves the
+batch ends (``conformance._fuzz.findings``): a run that is killed leaves the
 best finding so far on disk. ``--shrink-time SEC`` ends shrinking SEC seconds
 after the first sighting, with the best so far. Ctrl-C and SIGTERM end the run
 with the best so far written. The final file is replayed under ``run`` to
-confirm it (``conformance.fuzz.findings``).
+confirm it (``conformance._fuzz.findings``).
 
-``--models`` runs a ``ModelCampaign`` (``conformance.fuzz.model_campaign``):
+``--models`` runs a ``ModelCampaign`` (``conformance._fuzz.model_campaign``):
 each example is a random model case run by the corpus runner, not a lockstep
 command sequence; everything else (seeds, budgets, findings, exit codes) is
 the same. ``--without ELEMENT,...`` leaves grammar elements out of its draws
-(``conformance.fuzz.model_scenes.SWITCHES``, and ``rename-then-parse``), and
+(``conformance._fuzz.model_scenes.SWITCHES``, and ``rename-then-parse``), and
 its ``--coverage`` table counts the model grammar features the drawn files
-and the reference's answers reached (``conformance.fuzz.model_coverage``).
+and the reference's answers reached (``conformance._fuzz.model_coverage``).
 
 ``--poses`` runs the lockstep machine on posed scenes
 (``PosedLockstepMachine``): random shapes and poses, near-touching offsets,
@@ -43,24 +43,24 @@ from typing import TextIO
 
 from hypothesis.errors import HypothesisException
 
-from conformance.backends.loader import BackendLoadError, load_backend
+from conformance._backends.loader import BackendLoadError, load_backend
+from conformance._corpus.loader import ScenarioError
+from conformance._engine import HarnessError
+from conformance._fuzz.campaign import Campaign, CampaignResult
+from conformance._fuzz.coverage import campaign_features
+from conformance._fuzz.findings import Findings, Origin, replay_command, write_finding
+from conformance._fuzz.lockstep import LockstepMachine, PosedLockstepMachine
+from conformance._fuzz.model_campaign import MODEL_SWITCHES, ModelCampaign
+from conformance._fuzz.model_coverage import expected_model_features
+from conformance._fuzz.operations import issued_ops
+from conformance._fuzz.regression import prepare_writing, write_reproducer
+from conformance._fuzz.stats import FuzzStats, interrupt_requested
+from conformance._grammar import GRAMMAR
+from conformance._run.outputs import unwritable, unwritable_dir, write_or_fall_back
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import refuse
 from conformance.cli.run import PROG
-from conformance.corpus.loader import ScenarioError
-from conformance.engine import HarnessError
-from conformance.fuzz.campaign import Campaign, CampaignResult
-from conformance.fuzz.coverage import campaign_features
-from conformance.fuzz.findings import Findings, Origin, replay_command, write_finding
-from conformance.fuzz.lockstep import LockstepMachine, PosedLockstepMachine
-from conformance.fuzz.model_campaign import MODEL_SWITCHES, ModelCampaign
-from conformance.fuzz.model_coverage import expected_model_features
-from conformance.fuzz.operations import issued_ops
-from conformance.fuzz.regression import prepare_writing, write_reproducer
-from conformance.fuzz.stats import FuzzStats, interrupt_requested
-from conformance.grammar import GRAMMAR
 from conformance.protocol import Backend
-from conformance.run.outputs import unwritable, unwritable_dir, write_or_fall_back
 
 __all__ = ["Progress", "fuzz_command"]
 

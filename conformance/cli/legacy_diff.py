@@ -12,10 +12,10 @@ import json
 from pathlib import Path
 from typing import TextIO
 
-from conformance.backends.calls import BackendError
-from conformance.backends.loader import BackendLoadError, load_backend
+from conformance._backends.calls import BackendError
+from conformance._backends.loader import BackendLoadError, load_backend
+from conformance._legacy_diff import LegacyDiffError, legacy_diff
 from conformance.cli.exit_codes import EXIT_OK, EXIT_USAGE
-from conformance.legacy_diff import LegacyDiffError, legacy_diff
 
 __all__ = ["add_legacy_diff_parser", "legacy_diff_command"]
 

@@ -24,6 +24,9 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any, TextIO
 
+from conformance._fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
+from conformance._fuzz.regression import DEFAULT_REGRESSIONS
+from conformance._grammar.schema import scenario_schema, write_schema
 from conformance.cli.bisect import add_bisect_parser, bisect_command
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
@@ -32,9 +35,6 @@ from conformance.cli.matrix import add_matrix_parser, matrix_command
 from conformance.cli.models import add_models_parser, models_command
 from conformance.cli.options import add_backend_options, seconds
 from conformance.cli.run import PROG, add_run_parser, run_command
-from conformance.fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
-from conformance.fuzz.regression import DEFAULT_REGRESSIONS
-from conformance.grammar.schema import scenario_schema, write_schema
 from conformance.protocol_schemas import write_command_schema
 
 __all__ = ["EXIT_FAILURE", "EXIT_OK", "EXIT_USAGE", "main", "main_console"]
@@ -132,7 +132,7 @@ def _add_fuzz(commands: Any) -> None:
         metavar="ELEMENT,...",
         default="",
         help="with --models: leave out these model grammar elements (e.g. "
-        "packages,sdf:merge-include; see conformance.fuzz.model_scenes.SWITCHES)",
+        "packages,sdf:merge-include; see conformance._fuzz.model_scenes.SWITCHES)",
     )
     fuzz.add_argument(
         "--poses",

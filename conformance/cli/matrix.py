@@ -22,14 +22,14 @@ import time
 from pathlib import Path
 from typing import TextIO
 
-from conformance.backends.releases import ReleaseSpecError, expand
+from conformance._backends.releases import ReleaseSpecError, expand
+from conformance._corpus.loader import ScenarioError
+from conformance._run.matrix import MATRIX_ORDER, Matrix, ReleaseRun, label, run_matrix
+from conformance._run.matrix_report import matrix_markdown, write_report
+from conformance._run.outputs import unwritable
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_backend_options, refuse
 from conformance.cli.run import NoCaseError, corpus_cases
-from conformance.corpus.loader import ScenarioError
-from conformance.run.matrix import MATRIX_ORDER, Matrix, ReleaseRun, label, run_matrix
-from conformance.run.matrix_report import matrix_markdown, write_report
-from conformance.run.outputs import unwritable
 
 __all__ = ["add_matrix_parser", "matrix_command"]
 

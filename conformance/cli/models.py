@@ -33,15 +33,12 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TextIO
 
-from conformance.backends.loader import BackendLoadError
-from conformance.backends.releases import ReleaseSpecError, expand
-from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
-from conformance.cli.options import add_backend_options, refuse
-from conformance.cli.run import load_backends
-from conformance.corpus.loader import PACKAGE_MANIFEST, Case, ScenarioError
-from conformance.corpus.model_files import find_model_files, is_model_file, model_scenario
-from conformance.run.matrix import Matrix, ReleaseRun, run_backends, run_matrix
-from conformance.run.models_report import (
+from conformance._backends.loader import BackendLoadError
+from conformance._backends.releases import ReleaseSpecError, expand
+from conformance._corpus.loader import PACKAGE_MANIFEST, Case, ScenarioError
+from conformance._corpus.model_files import find_model_files, is_model_file, model_scenario
+from conformance._run.matrix import Matrix, ReleaseRun, run_backends, run_matrix
+from conformance._run.models_report import (
     Comparison,
     GoldenError,
     change_lines,
@@ -51,8 +48,11 @@ from conformance.run.models_report import (
     save_golden,
     write_models_report,
 )
-from conformance.run.outputs import unwritable
-from conformance.run.runner import reference_name
+from conformance._run.outputs import unwritable
+from conformance._run.runner import reference_name
+from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from conformance.cli.options import add_backend_options, refuse
+from conformance.cli.run import load_backends
 
 __all__ = ["add_models_parser", "model_file_cases", "models_command"]
 

@@ -7,7 +7,7 @@ import math
 from collections.abc import Sequence
 from typing import TextIO
 
-from conformance.backends.calls import DEFAULT_STEP_TIMEOUT
+from conformance._backends.calls import DEFAULT_STEP_TIMEOUT
 
 __all__ = ["add_backend_options", "add_python", "add_step_timeout", "refuse", "seconds"]
 

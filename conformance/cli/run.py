@@ -15,16 +15,16 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TextIO
 
-from conformance.backends.calls import BackendError
-from conformance.backends.loader import BackendLoadError, load_backend
+from conformance._backends.calls import BackendError
+from conformance._backends.loader import BackendLoadError, load_backend
+from conformance._corpus.loader import Case, ScenarioError, load_corpus
+from conformance._engine import Outcome
+from conformance._run.outputs import unwritable, write_or_fall_back
+from conformance._run.report import RunReport, write_json, write_junit
+from conformance._run.runner import choose_reference, run_case
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import add_backend_options, refuse
-from conformance.corpus.loader import Case, ScenarioError, load_corpus
-from conformance.engine import Outcome
 from conformance.protocol import Backend
-from conformance.run.outputs import unwritable, write_or_fall_back
-from conformance.run.report import RunReport, write_json, write_junit
-from conformance.run.runner import choose_reference, run_case
 
 __all__ = [
     "PROG",

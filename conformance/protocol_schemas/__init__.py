@@ -28,7 +28,7 @@ import jsonschema
 import referencing
 import referencing.jsonschema
 
-from conformance.grammar.schema import scenario_schema
+from conformance._grammar.schema import scenario_schema
 
 __all__ = [
     "COMMAND_SCHEMA",
@@ -210,7 +210,7 @@ def command_schema() -> dict[str, Any]:
         "$id": _BASE + COMMAND_SCHEMA,
         "title": "Command",
         "description": "Command.to_json(): one op of the scenario grammar and its arguments, "
-        "by name. Generated from conformance.grammar (python -m conformance schema --write): "
+        "by name. Generated from conformance._grammar (python -m conformance schema --write): "
         "do not edit by hand.",
         **body,
         "$defs": {name: scenario["$defs"][name] for name in sorted(names)},

@@ -18,7 +18,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-from conformance.backends.loader import load_backend
+from conformance._backends.loader import load_backend
 from conformance.protocol import Command
 
 HERE = Path(__file__).resolve().parent
@@ -177,7 +177,7 @@ def _measured(case: dict[str, Any]) -> dict[str, Any]:
 
 
 #: The first release whose ComputeSignedDistanceToPoint measures to meshes (drake#21471).
-#: The release fact (conformance/policy/release_facts.json) that splits a point-distance step.
+#: The release fact (conformance/_policy/release_facts.json) that splits a point-distance step.
 MESH_POINT_FACT = "mesh-point-distance-since-1.36"
 
 

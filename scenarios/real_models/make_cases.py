@@ -5,7 +5,7 @@ Usage::
     python scenarios/real_models/make_cases.py [--drake 1.58.0 ...]
 
 Each model file below ``drake/`` and ``drake_models/`` is a case
-(``conformance.corpus.model_files``): parse, Finalize, the plant's inventory,
+(``conformance._corpus.model_files``): parse, Finalize, the plant's inventory,
 the candidate pairs after each step, and for files that may declare
 collision filter groups, the parser's group report. Every backend is
 compared with the reference step by step; this script adds what a case can
@@ -30,11 +30,11 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from conformance.backends.loader import load_backend
-from conformance.corpus.loader import scenario_from_data
-from conformance.corpus.model_files import find_model_files, model_cases
+from conformance._backends.loader import load_backend
+from conformance._corpus.loader import scenario_from_data
+from conformance._corpus.model_files import find_model_files, model_cases
+from conformance._run.runner import run_case
 from conformance.protocol import Backend
-from conformance.run.runner import run_case
 
 HERE = Path(__file__).resolve().parent
 #: Output file → (its description, the vendored folder whose model files it holds).

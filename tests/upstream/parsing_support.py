@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 
-from conformance.policy.versions import version_in_range
+from conformance._policy.versions import version_in_range
 
 __all__ = [
     "INVALID_DIRECTIVES",

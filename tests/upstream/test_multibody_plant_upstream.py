@@ -44,7 +44,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conformance.backends.api import Api
+from conformance._backends.api import Api
 
 
 def _demand_line(api: Api, lines: tuple[int, int]) -> int:

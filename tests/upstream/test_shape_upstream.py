@@ -54,7 +54,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conformance.policy.versions import version_in_range
+from conformance._policy.versions import version_in_range
 
 
 def _follows_1_51(drake: ModuleType) -> bool:

@@ -53,7 +53,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conformance.policy.versions import version_in_range
+from conformance._policy.versions import version_in_range
 
 TEST_DIR = "multibody/parsing/test/urdf_parser_test"
 

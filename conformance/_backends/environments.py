@@ -1,0 +1,268 @@
+"""Isolated, cached environments that each hold one Drake release, for worker backends.
+
+A release needs a Python that its wheels support (``PYTHONS_FOR``, as pip
+serves them):
+
+==============  =====================
+Drake           Python
+==============  =====================
+1.12 - 1.21     3.11
+1.22 - 1.51     3.11, 3.12
+1.52 - 1.58     3.12, 3.13
+==============  =====================
+
+Releases up to 1.30 also need ``numpy<2`` (``EXTRA_REQUIREMENTS``): their
+wheels ask for any numpy, were built against numpy 1, and under numpy 2
+``pydrake.multibody`` fails to import up to 1.23 ("initialization failed":
+``ndarray.itemset`` is gone) and 1.24-1.30 crash (SIGSEGV) on the first
+Eigen vector argument, e.g. ``RevoluteJoint(axis=...)``; ``pydrake.geometry``
+works either way. 1.31 and later run under numpy 2 (all measured).
+
+``find_python`` looks for such an interpreter on PATH (``python3.11`` ...)
+and in pyenv's versions, and checks each candidate by running it; a given
+``python`` overrides the search. ``ensure_environment`` builds
+``<cache>/drake-<version>-py<X.Y>`` once (``uv`` if it is on PATH, else
+``venv`` and ``pip``) and marks it complete; later runs reuse it. It holds a
+lock file (``<env>.lock``, ``fcntl.flock``) while it checks and builds, so
+processes that want the same environment at once (pytest-xdist workers, a
+matrix's jobs) wait for one build instead of removing it under each other.
+The cache is ``$DRAKE_FILTER_CONFORMANCE_CACHE``, else
+``~/.cache/drake-filter-conformance``.
+
+The worker imports only this harness's pure-Python modules plus the
+release's pydrake: the harness reaches it through a folder that links to the
+``conformance`` package and the corpus alone (``harness_path``), so nothing
+else of this environment (its own pydrake included) can leak in.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import fcntl
+import os
+import shutil
+import subprocess
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import conformance
+from conformance._policy.versions import version_in_range
+
+__all__ = [
+    "CACHE_VARIABLE",
+    "EXTRA_REQUIREMENTS",
+    "PYTHONS_FOR",
+    "DrakeEnvironment",
+    "DrakeEnvironmentError",
+    "cache_dir",
+    "ensure_environment",
+    "find_python",
+    "harness_path",
+    "requirements_for",
+]
+
+CACHE_VARIABLE = "DRAKE_FILTER_CONFORMANCE_CACHE"
+
+#: (since, until) Drake release → the Python versions its wheels support, preferred first.
+PYTHONS_FOR: tuple[tuple[str, str, tuple[str, ...]], ...] = (
+    ("1.12", "1.21", ("3.11",)),
+    ("1.22", "1.51", ("3.11", "3.12")),
+    ("1.52", "1.58", ("3.12", "3.13")),
+)
+
+#: (since, until) Drake release → what pip must install besides ``drake==X`` (see the module doc).
+EXTRA_REQUIREMENTS: tuple[tuple[str, str, tuple[str, ...]], ...] = (("1.12", "1.30", ("numpy<2",)),)
+
+#: Marks an environment whose install finished; it holds the requirements installed.
+_COMPLETE = ".complete"
+
+
+class DrakeEnvironmentError(RuntimeError):
+    """No usable interpreter, or the environment could not be built."""
+
+
+@dataclass(frozen=True)
+class DrakeEnvironment:
+    version: str
+    python: str  # "3.11"
+    path: Path
+
+    @property
+    def interpreter(self) -> Path:
+        return self.path / "bin" / "python"
+
+
+def cache_dir() -> Path:
+    """``$DRAKE_FILTER_CONFORMANCE_CACHE``, else ``~/.cache/drake-filter-conformance``."""
+    configured = os.environ.get(CACHE_VARIABLE)
+    if configured:
+        return Path(configured).expanduser()
+    return Path.home() / ".cache" / "drake-filter-conformance"
+
+
+def pythons_for(version: str) -> tuple[str, ...]:
+    """The Python versions Drake ``version``'s wheels support (empty if unknown)."""
+    for since, until, pythons in PYTHONS_FOR:
+        if version_in_range(version, since, until):
+            return pythons
+    return ()
+
+
+def requirements_for(version: str) -> tuple[str, ...]:
+    """What an environment for Drake ``version`` installs: ``drake==X`` and its extras."""
+    extras = (
+        r
+        for since, until, rs in EXTRA_REQUIREMENTS
+        if version_in_range(version, since, until)
+        for r in rs
+    )
+    return (f"drake=={version}", *extras)
+
+
+def _candidates(python: str) -> Iterator[str]:
+    """Interpreters that may be Python ``python``: on PATH, then pyenv's."""
+    found = shutil.which(f"python{python}")
+    if found:
+        yield found
+    roots = [os.environ.get("PYENV_ROOT"), str(Path.home() / ".pyenv")]
+    for root in filter(None, roots):
+        for version_dir in sorted(Path(root, "versions").glob(f"{python}.*"), reverse=True):
+            yield str(version_dir / "bin" / f"python{python}")
+
+
+def _is_python(executable: str, python: str) -> bool:
+    try:
+        done = subprocess.run(
+            [executable, "-c", "import sys; print('%d.%d' % sys.version_info[:2])"],
+            capture_output=True,
+            text=True,
+            timeout=30,
+            check=False,
+        )
+    except OSError:
+        return False
+    return done.returncode == 0 and done.stdout.strip() == python
+
+
+def find_python(version: str, *, override: str | Sequence[str] | None = None) -> tuple[str, str]:
+    """(Python version, interpreter) for Drake ``version``; see the module doc.
+
+    ``override``: the interpreter(s) given with ``--python``; the first that the
+    release supports is chosen, and if none is, that is an error (no search).
+    """
+    pythons = pythons_for(version)
+    if not pythons:
+        raise DrakeEnvironmentError(f"drake=={version}: no known Python for this release")
+    if override:
+        given = [override] if isinstance(override, str) else list(override)
+        for executable in given:
+            for python in pythons:
+                if _is_python(executable, python):
+                    return python, executable
+        raise DrakeEnvironmentError(
+            f"drake=={version} needs Python {' or '.join(pythons)}; "
+            f"--python {' '.join(given)} {'is' if len(given) == 1 else 'are'} not"
+        )
+    for python in pythons:
+        for candidate in _candidates(python):
+            if _is_python(candidate, python):
+                return python, candidate
+    raise DrakeEnvironmentError(
+        f"drake=={version} needs Python {' or '.join(pythons)}; none found on PATH or in pyenv "
+        "(install one, or name it with --python)"
+    )
+
+
+def _run(argv: list[str], log: Callable[[str], None]) -> None:
+    log("  $ " + " ".join(argv))
+    done = subprocess.run(argv, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        tail = "\n".join((done.stderr or done.stdout).strip().splitlines()[-5:])
+        raise DrakeEnvironmentError(f"{argv[0]} failed ({done.returncode}):\n{tail}")
+
+
+def ensure_environment(
+    version: str,
+    *,
+    python: str | Sequence[str] | None = None,
+    cache: Path | None = None,
+    log: Callable[[str], None] = lambda line: None,
+) -> DrakeEnvironment:
+    """The cached environment for Drake ``version``, built first if needed."""
+    python_version, interpreter = find_python(version, override=python)
+    path = (cache or cache_dir()) / f"drake-{version}-py{python_version}"
+    environment = DrakeEnvironment(version, python_version, path)
+    with _locked(path):
+        _build(environment, interpreter, log)
+    return environment
+
+
+@contextlib.contextmanager
+def _locked(path: Path) -> Iterator[None]:
+    """Holds an exclusive lock on ``<path>.lock`` (one builder of ``path`` at a time)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with path.with_name(path.name + ".lock").open("w") as handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
+
+
+def _build(environment: DrakeEnvironment, interpreter: str, log: Callable[[str], None]) -> None:
+    """Makes ``environment`` complete: builds it, or adds requirements it lacks."""
+    version, python_version, path = environment.version, environment.python, environment.path
+    requirements = requirements_for(version)
+    marker = path / _COMPLETE
+    if marker.exists():
+        missing = [r for r in requirements if r not in marker.read_text().split()]
+        if missing:  # built before its extras were known: add them once
+            log(f"adding {' '.join(missing)} to the environment for drake=={version}")
+            _install(environment, missing, log)
+            marker.write_text("\n".join(requirements) + "\n")
+        return
+    log(f"building the environment for drake=={version} (Python {python_version}) in {path}")
+    shutil.rmtree(path, ignore_errors=True)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    uv = shutil.which("uv")
+    if uv:
+        _run([uv, "venv", "--python", interpreter, str(path)], log)
+    else:
+        _run([interpreter, "-m", "venv", str(path)], log)
+    _install(environment, requirements, log)
+    marker.write_text("\n".join(requirements) + "\n")
+
+
+def _install(
+    environment: DrakeEnvironment, requirements: Sequence[str], log: Callable[[str], None]
+) -> None:
+    """pip-installs ``requirements`` into ``environment`` (with ``uv`` if it is on PATH)."""
+    uv = shutil.which("uv")
+    if uv:
+        _run([uv, "pip", "install", "--python", str(environment.interpreter), *requirements], log)
+    else:
+        _run([str(environment.interpreter), "-m", "pip", "install", "--quiet",
+              "--disable-pip-version-check", *requirements], log)  # fmt: skip
+
+
+def harness_path(cache: Path | None = None) -> Path:
+    """A folder holding only links to this harness's ``conformance`` package and its corpus
+    ``scenarios`` (a mesh command names a file below it), for PYTHONPATH."""
+    package = Path(conformance.__file__).resolve().parent
+    folder = (cache or cache_dir()) / "harness" / _slug(str(package))
+    for name, target in (
+        ("conformance", package),
+        ("scenarios", Path(str(resources.files("scenarios")))),
+    ):
+        link = folder / name
+        if not link.is_symlink() or link.resolve() != target.resolve():
+            folder.mkdir(parents=True, exist_ok=True)
+            link.unlink(missing_ok=True)
+            link.symlink_to(target.resolve(), target_is_directory=True)
+    return folder
+
+
+def _slug(text: str) -> str:
+    return "".join(c if c.isalnum() else "-" for c in text).strip("-")[-80:]
