@@ -17,7 +17,7 @@ from conformance._backends.loader import load_backend
 from conformance._backends.reimpl_worker import reimpl_spec_version
 from conformance._corpus.loader import load_corpus
 from conformance._engine import Outcome
-from conformance._policy import release_facts_doc
+from conformance._run import release_facts_doc
 from conformance._policy.divergences import known_divergences
 from conformance._policy.guards import GUARDS
 from conformance._policy.release_facts import (
@@ -190,7 +190,7 @@ def test_reimpl_at_a_release_gives_that_release_s_recorded_answers(
 def test_docs_release_facts_md_is_what_the_table_gives() -> None:
     page = (ROOT / "docs" / "release_facts.md").read_text("utf-8")
     assert page == release_facts_doc.render(), (
-        "run: python -m conformance._policy.release_facts_doc"
+        "run: python -m conformance._run.release_facts_doc"
     )
     for fact_id in FACTS:
         assert f"| `{fact_id}` |" in page
@@ -198,7 +198,7 @@ def test_docs_release_facts_md_is_what_the_table_gives() -> None:
 
 def test_no_hasattr_probe_decides_a_backend_s_capabilities() -> None:
     for name in ("scene_graph.py", "queries.py", "multibody.py", "reimpl_api.py"):
-        text = (ROOT / "conformance" / "backends" / name).read_text("utf-8")
+        text = (ROOT / "conformance" / "_backends" / name).read_text("utf-8")
         assert "hasattr(" not in text, name
     for path in (ROOT / "conformance" / "grammar").glob("*.py"):
         assert "hasattr(" not in path.read_text("utf-8"), path.name

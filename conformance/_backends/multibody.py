@@ -330,7 +330,11 @@ class MultibodyCommands:
         for name in package_names(folder):
             if package_map.Contains(package_name=name):
                 package_map.Remove(package_name=name)
-        package_map.PopulateFromFolder(path=str(folder))
+        try:
+            populate = package_map.PopulateFromFolder
+        except AttributeError:  # an implementation without the binding answers, not breaks
+            raise _missing(self.api, "PackageMap.PopulateFromFolder") from None
+        populate(path=str(folder))
 
     # ------------------------------------------------------------ commands
     def _parser(self, args: Mapping[str, Any]) -> Any:
