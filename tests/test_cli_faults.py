@@ -437,11 +437,12 @@ def test_a_bad_file_among_good_ones_is_reported_and_the_good_ones_still_run(
     assert "error: corpus/bad_name.json: case " in process.stderr
     assert "unknown geometry name 'zz'" in process.stderr
     assert "error: corpus/bad_schema.json: case " in process.stderr
-    # bad_name.json keeps its other case; bad_schema.json fails its schema as a whole.
+    # Each bad file keeps its other case: a name error and a schema error are per case.
     written = json.loads(report.read_text())
     assert len(written["input_errors"]) == 2
     assert [c["qualified_name"].split(" > ")[0] for c in written["cases"]] == [
         "corpus/bad_name",
+        "corpus/bad_schema",
         "corpus/good",
         "corpus/good",
     ]

@@ -594,3 +594,24 @@ def test_the_embedded_corpus_loads_without_reading_the_vendored_model_files() ->
     files = load_corpus(errors=errors)
     assert errors == []
     assert not [f for f in files if "real_models/drake/" in f.name]
+
+
+def test_a_schema_error_in_one_case_leaves_the_file_s_other_cases_loaded(tmp_path: Path) -> None:
+    good = {"description": "good", "steps": [{"op": "register_source", "name": "s"}]}
+    bad = {"description": "bad", "steps": [{"op": "register_source", "name": "s"}, {"op": "x"}]}
+    also_bad = {"description": "also bad", "steps": [{"op": "apply", "frob": 1}]}
+    path = write(tmp_path, "three.json", {"description": "d", "cases": [bad, good, also_bad]})
+    errors: list[ScenarioError] = []
+    loaded = load_file(path, errors=errors)
+    assert [c.description for c in loaded.cases] == ["good"]
+    assert [(e.case, e.message.split(",")[0]) for e in errors] == [
+        ("bad", "schema violation at step 2"),
+        ("also bad", "schema violation at step 1"),
+    ]
+
+
+def test_a_schema_error_outside_the_cases_fails_the_whole_file(tmp_path: Path) -> None:
+    good = {"description": "good", "steps": [{"op": "register_source", "name": "s"}]}
+    path = write(tmp_path, "f.json", {"description": 7, "cases": [good]})
+    with pytest.raises(ScenarioError, match=r"schema violation at field \.description"):
+        load_file(path, errors=[])

@@ -200,22 +200,40 @@ def _kind(value: Any) -> str:
     return next((name for types, name in _KINDS if isinstance(value, types)), type(value).__name__)
 
 
-def _validate(shown: str, data: Any) -> None:
-    """Raises ``ScenarioError`` unless ``data`` is a scenario object valid under the schema."""
+def _case_index(error: jsonschema.ValidationError) -> int | None:
+    """The index of the case an error lies in (None: it lies outside every case)."""
+    path = list(error.absolute_path)
+    return path[1] if len(path) >= 2 and path[0] == "cases" and isinstance(path[1], int) else None
+
+
+def _validate(shown: str, data: Any, errors: list[ScenarioError] | None = None) -> set[int]:
+    """Raises ``ScenarioError`` unless ``data`` is a scenario object valid under the schema.
+
+    With an ``errors`` list, a violation inside one case is recorded there, for that
+    case (the first by path), and the case's index returned among the bad ones: the
+    file's other cases still load. A violation outside the cases fails the file.
+    """
     if not isinstance(data, dict):
         raise ScenarioError(
             shown, f"the top level is {_kind(data)}, not an object with 'description' and 'cases'"
         )
     try:
-        errors = sorted(_validator().iter_errors(data), key=_error_order)
-        described = _describe_schema_error(data, errors[0]) if errors else None
+        found = sorted(_validator().iter_errors(data), key=_error_order)
+        by_case: dict[int | None, jsonschema.ValidationError] = {}
+        for error in found:
+            index = _case_index(error) if errors is not None else None
+            by_case.setdefault(index, error)
+        described = {i: _describe_schema_error(data, e) for i, e in by_case.items()}
     except RecursionError:
         raise ScenarioError(shown, TOO_DEEP) from None
     except ValueError as exc:  # repr() of an integer too long to print in decimal
         raise ScenarioError(shown, f"cannot be validated: {clip(str(exc))}") from None
-    if described is not None:
-        case, message = described
+    if None in described:
+        case, message = described[None]
         raise ScenarioError(shown, f"schema violation at {message}", case=case)
+    for case, message in described.values():
+        _record(ScenarioError(shown, f"schema violation at {message}", case=case), errors)
+    return {i for i in described if i is not None}
 
 
 def load_file(
@@ -225,8 +243,9 @@ def load_file(
 
     Its ``name`` is the path below ``root`` if given and the file is under it,
     else the stable name of the module docstring. With an ``errors`` list, a
-    case that names something undeclared is recorded there and left out, and
-    the file's other cases are kept; a file that fails its schema still raises.
+    case that fails the schema or names something undeclared is recorded there
+    and left out, and the file's other cases are kept; a file whose own fields
+    (outside its cases) fail the schema still raises.
     """
     try:
         data = read_document(path)
@@ -245,12 +264,14 @@ def scenario_from_data(
     """A ScenarioFile of scenario data (as a document holds it) standing at ``path``: what
     ``load_file`` does after reading, for cases a program writes (``corpus.model_files``)."""
     shown = str(path)
-    _validate(shown, data)
+    bad = _validate(shown, data, errors)
     file = ScenarioFile(path=path, name=_name(path, root), description=data["description"])
     file_features = frozenset(data.get("features", ["core"]))
     cases = []
     seen: set[str] = set()
-    for raw in data["cases"]:
+    for index, raw in enumerate(data["cases"]):
+        if index in bad:
+            continue
         description = raw["description"]
         if description in seen:
             raise ScenarioError(shown, "duplicate case description", case=description)
