@@ -22,7 +22,11 @@ tests) calls ``diff``. Two answers agree iff ``diff`` is empty:
   the same candidate set C, the same IsActive of every declaration label and
   the same ``has_transient_history()``. Two filters are equivalent iff they
   report the same CanCollideWith for every pair (collision_filter.h), so C is
-  compared as a set of name pairs.
+  compared as a set of name pairs. Where both backends report them
+  (``LocationState``: None is "not reported"), also the same
+  ``CollisionFiltered`` answer for every sampled pair both asked, the same
+  inspector count under every key both report, and at the model the same
+  collision filter group report.
 
 Differences are ordered (result first, then locations by name) and carry the
 *reference*'s value first, so a report can say what the oracle did.
@@ -39,7 +43,7 @@ from typing import Any
 
 from conformance._grammar import GRAMMAR, Comparison
 from conformance._tolerances import POSE_TOLERANCE, tolerance
-from conformance.protocol import ErrorKind, Observation, Pair, Result
+from conformance.protocol import ErrorKind, LocationState, Observation, Pair, Result
 
 __all__ = [
     "CHOICE",
@@ -309,6 +313,49 @@ def _observation_differences(reference: Observation, other: Observation) -> Iter
                 ra.has_transient_history,
                 rb.has_transient_history,
             )
+        yield from _reported_differences(location, ra, rb)
+
+
+def _common(
+    reference: Mapping[Any, Any] | None, other: Mapping[Any, Any] | None
+) -> tuple[dict[Any, Any], dict[Any, Any]]:
+    """The entries of two optional reports under the keys both have ({} if either is None)."""
+    if reference is None or other is None:
+        return {}, {}
+    keys = reference.keys() & other.keys()
+    return {k: reference[k] for k in keys}, {k: other[k] for k in keys}
+
+
+def _reported_differences(
+    location: str, ra: LocationState, rb: LocationState
+) -> Iterator[Difference]:
+    """The optional observables (``LocationState.filtered``, ``counts``, ``filter_groups``)."""
+    ours, theirs = _common(ra.filtered, rb.filtered)
+    if ours != theirs:
+        wrong = sorted(pair for pair in ours if ours[pair] != theirs[pair])
+        yield Difference(
+            f"CollisionFiltered at {location}",
+            {f"{a}-{b}": ours[(a, b)] for a, b in wrong},
+            {f"{a}-{b}": theirs[(a, b)] for a, b in wrong},
+        )
+    ours, theirs = _common(ra.counts, rb.counts)
+    if ours != theirs:
+        wrong = sorted(key for key in ours if ours[key] != theirs[key])
+        yield Difference(
+            f"inspector counts at {location}",
+            {key: ours[key] for key in wrong},
+            {key: theirs[key] for key in wrong},
+        )
+    if (
+        ra.filter_groups is not None
+        and rb.filter_groups is not None
+        and ra.filter_groups != rb.filter_groups
+    ):
+        yield Difference(
+            f"collision filter groups at {location}",
+            dict(ra.filter_groups),
+            dict(rb.filter_groups),
+        )
 
 
 def diff_observations(reference: Observation, other: Observation) -> list[Difference]:

@@ -12,7 +12,15 @@ equivalent iff they report the same CanCollideWith for every pair"):
 - candidate pairs, as sorted name pairs, for the model and for every context;
 - for every declaration label, whether its FilterId is active, per location;
 - ``has_transient_history()`` per location;
+- ``CollisionFiltered`` on a sample of geometry pairs per location
+  (``sample_pairs``: every registered name, removed, non-proximity and world
+  geometry included), a bool or the normalised message of its error;
+- the inspector's counts per location (``LocationState.counts``);
+- at the model, the last Parser's collision filter group report;
 - errors as (kind, message), with id values normalised out of the message.
+
+The last three are optional: a backend that does not report them (None) is
+not compared on them (``compare``).
 
 Write a third-party backend as a class with these methods (no base class is
 required) and load it with ``--backend package.module:attribute``, where the
@@ -44,6 +52,7 @@ __all__ = [
     "classify_assertion",
     "classify_error",
     "normalise_message",
+    "sample_pairs",
 ]
 
 #: The location name of the model (contexts are named by the scenario).
@@ -170,27 +179,85 @@ class Result:
         return cls(value=data.get("value"))
 
 
+#: At most this many pairs in ``sample_pairs``.
+SAMPLE_PAIRS = 48
+
+
+def sample_pairs(names: Sequence[str], limit: int = SAMPLE_PAIRS) -> list[Pair]:
+    """The geometry pairs whose ``CollisionFiltered`` a backend reports, by name.
+
+    With ``g_0 < ... < g_{n-1}`` the sorted names (every geometry name a
+    command made: removed, non-proximity, anchored and context-only ones
+    too), the ring ``(g_i, g_{i+1 mod n})`` and, for ``n >= 4``, the chords
+    ``(g_i, g_{i+n//2 mod n})``, each pair once (as ``(a, b)`` with ``a < b``)
+    in that order, the first ``limit``. Every name is in a pair while
+    ``n <= limit / 2``. Depends on the names alone, so every backend asks the
+    same pairs.
+    """
+    ordered = sorted(set(names))
+    n = len(ordered)
+    steps = (1, n // 2) if n >= 4 else (1,)
+    pairs: dict[Pair, None] = {}
+    for step in steps:
+        for i, a in enumerate(ordered):
+            b = ordered[(i + step) % n]
+            if a != b:
+                pairs[(a, b) if a < b else (b, a)] = None
+    return list(pairs)[:limit]
+
+
+#: A sampled CollisionFiltered answer: the bool, or the normalised message of its error.
+Filtered = bool | str
+
+
 @dataclass(frozen=True)
 class LocationState:
-    """The observable filter state of the model or of one context."""
+    """The observable filter state of the model or of one context.
+
+    ``filtered``: ``CollisionFiltered`` of the ``sample_pairs`` (a bool, or
+    ``"error: <normalised message>"``). ``counts``: the inspector's counts
+    (``num_sources``, ``num_frames``, ``num_geometries``, anchored, dynamic,
+    per role, per frame, per source; an int or ``"error: ..."``).
+    ``filter_groups``: at the model, the last Parser's
+    ``GetCollisionFilterGroups()`` as the ``collision_filter_groups`` op
+    returns it. Each is None when the backend does not report it.
+    """
 
     candidates: frozenset[Pair]
     has_transient_history: bool
     active: Mapping[str, bool] = field(default_factory=dict)
+    filtered: Mapping[Pair, Filtered] | None = None
+    counts: Mapping[str, int | str] | None = None
+    filter_groups: Mapping[str, Any] | None = None
 
     def to_json(self) -> dict[str, Any]:
-        return {
+        data: dict[str, Any] = {
             "candidates": sorted(list(p) for p in self.candidates),
             "has_transient_history": self.has_transient_history,
             "active": dict(sorted(self.active.items())),
         }
+        if self.filtered is not None:
+            data["filtered"] = [[a, b, v] for (a, b), v in sorted(self.filtered.items())]
+        if self.counts is not None:
+            data["counts"] = dict(sorted(self.counts.items()))
+        if self.filter_groups is not None:
+            data["filter_groups"] = dict(self.filter_groups)
+        return data
 
     @classmethod
     def from_json(cls, data: Mapping[str, Any]) -> LocationState:
+        filtered = data.get("filtered")
+        counts = data.get("counts")
+        groups = data.get("filter_groups")
         return cls(
             candidates=frozenset((a, b) if a < b else (b, a) for a, b in data["candidates"]),
             has_transient_history=bool(data["has_transient_history"]),
             active={str(k): bool(v) for k, v in data.get("active", {}).items()},
+            filtered=None
+            if filtered is None
+            else {((a, b) if a < b else (b, a)): v for a, b, v in filtered},
+            counts=None if counts is None else dict(counts),
+            filter_groups=None if groups is None else dict(groups),
         )
 
 

@@ -395,7 +395,18 @@ class MultibodyCommands:
             raise UnknownNameError(
                 "parser", "(collision_filter_groups needs an earlier add_models)"
             )
-        groups = self.parser.GetCollisionFilterGroups()
+        return self._group_report(self.parser)
+
+    def _filter_groups(self) -> dict[str, Any] | None:
+        """The last Parser's group report for ``observe`` (None: no parse yet, or a
+        release without GetCollisionFilterGroups, before 1.31)."""
+        if self.parser is None or not hasattr(self.parser, "GetCollisionFilterGroups"):
+            return None
+        return self._group_report(self.parser)
+
+    @staticmethod
+    def _group_report(parser: Any) -> dict[str, Any]:
+        groups = parser.GetCollisionFilterGroups()
         return {
             "groups": {name: sorted(members) for name, members in sorted(groups.groups().items())},
             "pairs": sorted(sorted(pair) for pair in groups.exclusion_pairs()),

@@ -15,8 +15,10 @@ are ``backends.queries``'s.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import partial
 from typing import Any
 
 from conformance._backends.api import Api
@@ -37,6 +39,8 @@ from conformance.protocol import (
     UnknownNameError,
     classify_assertion,
     classify_error,
+    normalise_message,
+    sample_pairs,
 )
 
 __all__ = [
@@ -60,6 +64,22 @@ _IMPLEMENTATION_ERRORS = (RuntimeError, TypeError, ValueError, IndexError)
 BASE_FEATURES = frozenset({"core", "transient", "contexts", "errors", "roles", "quirk", "queries"})
 #: SceneGraph feature tags that some releases lack (``grammar.FEATURE_BINDINGS``).
 _RELEASED_FEATURES = frozenset({"activation", "scope"})
+
+
+#: The roles whose geometries ``LocationState.counts`` counts.
+_COUNTED_ROLES = ("proximity", "illustration", "perception")
+
+
+def _answer(read: Callable[[], Any]) -> Any:
+    """``read()``, or ``"error: <normalised message>"`` if the implementation rejects it."""
+    try:
+        return read()
+    except _IMPLEMENTATION_ERRORS as exc:
+        return f"error: {classify_error(exc).message}"
+
+
+def _count(read: Callable[[], Any]) -> int:
+    return int(read())
 
 
 class RefusedCallError(Exception):
@@ -141,9 +161,11 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
             return Result(error=assertion)
 
     def observe(self) -> Observation:
-        locations = {MODEL: self._observe(None)}
+        sample = sample_pairs(list(self.geometries))
+        model = replace(self._observe(None, sample), filter_groups=self._filter_groups())
+        locations = {MODEL: model}
         for name, context in self.contexts.items():
-            locations[name] = self._observe(context)
+            locations[name] = self._observe(context, sample)
         return Observation(locations)
 
     # ------------------------------------------------------------- helpers
@@ -152,7 +174,7 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
         if not fact_holds(fact, self.version()):
             raise binding_error(self.api, fact)
 
-    def _observe(self, context: Any) -> LocationState:
+    def _observe(self, context: Any, sample: Sequence[Pair]) -> LocationState:
         inspector = self._inspector(context)
         manager = self._manager(context)
         pairs: set[Pair] = set()
@@ -163,7 +185,51 @@ class SceneGraphBackend(QueryCommands, MultibodyCommands):
             label: bool(manager.IsActive(filter_id=entry.filter_id))
             for label, entry in self.labels.items()
         }
-        return LocationState(frozenset(pairs), bool(manager.has_transient_history()), active)
+        return LocationState(
+            frozenset(pairs),
+            bool(manager.has_transient_history()),
+            active,
+            filtered={pair: self._filtered(inspector, pair) for pair in sample},
+            counts=self._counts(inspector),
+        )
+
+    def _filtered(self, inspector: Any, pair: Pair) -> bool | str:
+        """CollisionFiltered of a sampled pair, or ``"error: <message>"``, the message
+        normalised after the two ids in it are replaced by their names (so it still says
+        which geometry was at fault)."""
+        ids = [self.geometries[name] for name in pair]
+        try:
+            return bool(inspector.CollisionFiltered(geometry_id1=ids[0], geometry_id2=ids[1]))
+        except _IMPLEMENTATION_ERRORS as exc:
+            message = str(exc).splitlines()[0] if str(exc) else ""
+            for name, geometry_id in zip(pair, ids, strict=True):
+                message = re.sub(rf"\b{geometry_id.get_value()}\b", name, message)
+            return f"error: {normalise_message(message)}"
+
+    def _counts(self, inspector: Any) -> dict[str, int | str]:
+        """The inspector's counts (``LocationState.counts``), by key."""
+        g = self.api.geometry
+        reads: dict[str, Callable[[], Any]] = {
+            "sources": inspector.num_sources,
+            "frames": inspector.num_frames,
+            "geometries": inspector.num_geometries,
+            "anchored": inspector.NumAnchoredGeometries,
+            "dynamic": inspector.NumDynamicGeometries,
+        }
+        for role in _COUNTED_ROLES:
+            value = self._role(role)
+            reads[f"role {role}"] = partial(inspector.NumGeometriesWithRole, role=value)
+        proximity = g.Role.kProximity
+        for name, frame_id in self.frames.items():
+            reads[f"frame {name}"] = partial(inspector.NumGeometriesForFrame, frame_id=frame_id)
+            reads[f"frame {name} proximity"] = partial(
+                inspector.NumGeometriesForFrameWithRole, frame_id=frame_id, role=proximity
+            )
+        for name, source_id in self.sources.items():
+            reads[f"source {name} frames"] = partial(
+                inspector.NumFramesForSource, source_id=source_id
+            )
+        return {key: _answer(partial(_count, read)) for key, read in reads.items()}
 
     def _context(self, args: Mapping[str, Any]) -> Any:
         name = args.get("context")
