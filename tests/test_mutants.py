@@ -19,6 +19,7 @@ import pytest
 
 import conformance._testing.mutants
 import conformance._testing.mutants_basic
+import conformance._testing.mutants_order
 import conformance._testing.mutants_state
 import reimpl.geometry
 import reimpl.math
@@ -405,6 +406,114 @@ WITNESSES = [
         pydrake=True,
         mutated=False,
     ),
+    # Order across locations (mutants_order, issue 30): values measured on pydrake 1.51.1.
+    Witness(
+        "context_after_apply_stale",
+        [
+            *on_own_frames("a", "b"),
+            apply(exclude_within(gset("a", "b"))),
+            Command("create_context", {"name": "c"}),
+        ],
+        candidates("c"),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "context_after_removal_stale",
+        [
+            *on_own_frames("a", "b"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            remove_declaration("t1"),
+            Command("create_context", {"name": "c"}),
+        ],
+        active("t1", "c"),
+        pydrake=False,
+        mutated=True,
+    ),
+    Witness(
+        "copy_under_history_drops_own",
+        [
+            *on_own_frames("a", "b", "x", "y"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            Command("create_context", {"name": "c"}),
+            in_context("c", apply_transient("t2", exclude_within(gset("x", "y")))),
+            in_context("c", remove_declaration("t1")),
+        ],
+        active("t2", "c"),
+        pydrake=True,
+        mutated=False,
+    ),
+    Witness(
+        "clone_drops_partial_apply",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            in_context(
+                "c", apply(exclude_within(gset("a", "b")), exclude_within(gset("@unknown")))
+            ),
+            Command("clone_context", {"name": "d", "from": "c"}),
+        ],
+        candidates("d"),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "clone_keeps_removed_inherited",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            in_context("c", apply_transient("t1", exclude_within(gset("a", "b")))),
+            Command("clone_context", {"name": "d", "from": "c"}),
+            in_context("d", remove_declaration("t1")),
+        ],
+        active("t1", "d"),
+        pydrake=False,
+        mutated=True,
+    ),
+    Witness(
+        "clone_frames_resolve_at_clone_time",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            Command("clone_context", {"name": "d", "from": "c"}),
+            Command(
+                "register_geometry",
+                {"name": "x", "frame": "f_a", "roles": ["proximity"], "context": "d"},
+            ),
+            in_context("d", apply(exclude_between(gset(frames=["f_a"]), gset("b")))),
+        ],
+        candidates("d"),
+        pydrake=set(),
+        mutated={"b-x"},
+    ),
+    Witness(
+        "context_reassign_takes_model_filters",
+        [
+            *on_own_frames("a", "b"),
+            apply(exclude_within(gset("a", "b"))),
+            Command("create_context", {"name": "c"}),
+            Command("remove_role", {"frame": "f_a", "role": "proximity", "context": "c"}),
+            Command("assign_role", {"geometry": "a", "role": "proximity", "context": "c"}),
+        ],
+        candidates("c"),
+        pydrake={"a-b"},
+        mutated=set(),
+    ),
+    Witness(
+        "ring_replay_after_oldest_removed",
+        [
+            *on_own_frames("a", "b"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            apply_transient("t2", allow_within(gset("a", "b"))),
+            apply_transient("t3", exclude_within(gset("a", "b"))),
+            apply_transient("t4", allow_within(gset("a", "b"))),
+            apply_transient("t5", exclude_within(gset("a", "b"))),
+            remove_declaration("t1"),
+        ],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
 ]
 
 
@@ -492,9 +601,10 @@ def test_a_mutant_replaces_public_classes_by_subclasses_only(name: str) -> None:
     [
         conformance._testing.mutants,
         conformance._testing.mutants_basic,
+        conformance._testing.mutants_order,
         conformance._testing.mutants_state,
     ],
-    ids=["mutants", "mutants_basic", "mutants_state"],
+    ids=["mutants", "mutants_basic", "mutants_order", "mutants_state"],
 )
 def test_the_mutants_modules_use_only_reimpls_public_names(mutants_module: ModuleType) -> None:
     source = Path(str(mutants_module.__file__)).read_text(encoding="utf-8")

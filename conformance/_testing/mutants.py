@@ -1,6 +1,7 @@
 """Mutants: reimpl with one deliberate bug each, to measure the harness itself.
 
-This module is the registry; the mutants are in ``mutants_basic`` and ``mutants_state``.
+This module is the registry; the mutants are in ``mutants_basic``, ``mutants_state`` and
+``mutants_order`` (order across locations, issue 30).
 
 Mutation testing of the harness: a differential fuzzer that cannot tell these
 backends from real pydrake cannot be trusted to catch a real regression either.
@@ -31,13 +32,15 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from conformance._testing.mutants_basic import BASIC_MUTANTS, Mutant, MutantBackend
+from conformance._testing.mutants_order import ORDER_MUTANTS
 from conformance._testing.mutants_state import STATE_MUTANTS
 
 __all__ = ["MUTANTS", "Mutant", "MutantBackend", "mutant_backend"]
 
 #: Every mutant by name: the basic ones (``mutants_basic``), then those whose bug
-#: needs a reached state (``mutants_state``).
-MUTANTS: dict[str, Mutant] = {m.name: m for m in (*BASIC_MUTANTS, *STATE_MUTANTS)}
+#: needs a reached state (``mutants_state``), then an order across locations
+#: (``mutants_order``).
+MUTANTS: dict[str, Mutant] = {m.name: m for m in (*BASIC_MUTANTS, *STATE_MUTANTS, *ORDER_MUTANTS)}
 
 
 def mutant_backend(name: str) -> MutantBackend:
