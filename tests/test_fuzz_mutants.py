@@ -21,6 +21,7 @@ import pytest
 
 from conformance._backends.loader import load_backend
 from conformance._fuzz.campaign import Campaign
+from conformance._fuzz.lockstep import LockstepMachine, PosedLockstepMachine
 from conformance._fuzz.model_campaign import ModelCampaign
 from conformance._fuzz.regression import write_regression
 from conformance._testing.model_mutants import MODEL_MUTANTS, model_mutant_backend
@@ -37,20 +38,23 @@ def _run(*argv: str) -> int:
     return main(["run", *argv, "-q"], out=io.StringIO(), err=io.StringIO())
 
 
-def test_there_are_at_least_twenty_four_mutants() -> None:
-    assert len(MUTANTS) >= 24
+def test_there_are_at_least_thirty_eight_mutants() -> None:
+    assert len(MUTANTS) >= 38
 
 
 @pytest.mark.parametrize("name", sorted(MUTANTS))
 def test_fuzz_catches_the_mutant_within_300_examples_and_the_shrunk_file_replays(
     name: str, tmp_path: Path, record_property: Callable[[str, object], None]
 ) -> None:
+    # A mutant whose bug is in a query (mutants_boundary) is fuzzed as fuzz --poses.
+    base = PosedLockstepMachine if MUTANTS[name].posed else LockstepMachine
     result = Campaign(
         backend=lambda: mutant_backend(name),
         reference=lambda: PYDRAKE,
         seed=1,
         max_examples=300,
         shrink_time=SHRINK_SECONDS,
+        machine_base=base,
     ).run()
     assert len(result.divergences) == 1, f"mutant {name} survived 300 examples"
     divergence = result.divergences[0]

@@ -9,6 +9,7 @@ mutant gives, so a mutant that stops injecting its bug fails here.
 from __future__ import annotations
 
 import ast
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,7 +20,9 @@ import pytest
 
 import conformance._testing.mutants
 import conformance._testing.mutants_basic
+import conformance._testing.mutants_boundary
 import conformance._testing.mutants_order
+import conformance._testing.mutants_report
 import conformance._testing.mutants_state
 import reimpl.geometry
 import reimpl.math
@@ -120,6 +123,61 @@ def in_context(context: str, command: Command) -> Command:
 
 #: 17 geometries: one past a 16-wide word.
 CROWD = [f"g{i:02}" for i in range(17)]
+
+
+# ------------------------------------------------ posed scenes (boundaries)
+def ball(name: str, frame: str) -> list[Command]:
+    """A sphere of radius 0.5 named ``name``, alone on a new frame ``frame``."""
+    return [
+        Command("register_frame", {"name": frame}),
+        Command(
+            "register_geometry",
+            {
+                "name": name,
+                "frame": frame,
+                "roles": ["proximity"],
+                "shape": {"type": "sphere", "radius": 0.5},
+            },
+        ),
+    ]
+
+
+def last_pairs(r: Run) -> list[list[str]]:
+    """The pairs of the last step's query records."""
+    return [rec["pair"] for rec in r[0][-1].value]
+
+
+def last_value(r: Run) -> Any:
+    return r[0][-1].value
+
+
+#: Spheres a and c of radius 0.5, exactly 0.5 apart.
+APART = [
+    *ball("a", "f_a"),
+    *ball("c", "f_c"),
+    Command("set_poses", {"poses": {"f_c": {"xyz": [0.0, 1.5, 0.0]}}}),
+]
+#: Spheres a and b overlapping by 0.2, the pair excluded by transient t1.
+OVERLAP = [
+    *ball("a", "f_a"),
+    *ball("b", "f_b"),
+    Command("set_poses", {"poses": {"f_b": {"xyz": [0.8, 0.0, 0.0]}}}),
+    apply_transient("t1", exclude_within(gset("a", "b"))),
+]
+
+
+# ------------------------------------------------- reports only observe has
+def filtered(a: str, b: str, location: str = MODEL) -> Callable[[Run], object]:
+    """The sampled CollisionFiltered answer of ``(a, b)`` at ``location``."""
+    return lambda r: (r[1].locations[location].filtered or {})[(a, b)]
+
+
+STATUS_ERROR = "error: Can't report collision filter status between geometries a and b; "
+
+
+def count_of(key: str, location: str = MODEL) -> Callable[[Run], object]:
+    """The inspector's count ``key`` at ``location``."""
+    return lambda r: (r[1].locations[location].counts or {})[key]
 
 
 # ---------------------------------------------------------------- witnesses
@@ -514,6 +572,56 @@ WITNESSES = [
         pydrake=set(),
         mutated={"a-b"},
     ),
+    # Boundaries (mutants_boundary, issue 30): values measured on pydrake 1.51.1.
+    Witness(
+        "pairwise_strict_at_max_distance",
+        [*APART, Command("compute_signed_distance_pairwise_closest_points", {"max_distance": 0.5})],
+        last_pairs,
+        pydrake=[["a", "c"]],
+        mutated=[],
+    ),
+    Witness(
+        "pairwise_one_ulp_wide",
+        [
+            *APART,
+            Command(
+                "compute_signed_distance_pairwise_closest_points",
+                {"max_distance": math.nextafter(0.5, 0.0)},
+            ),
+        ],
+        last_pairs,
+        pydrake=[],
+        mutated=[["a", "c"]],
+    ),
+    Witness(
+        "has_collisions_ignores_transient_filters",
+        [*OVERLAP, Command("has_collisions", {})],
+        last_value,
+        pydrake=False,
+        mutated=True,
+    ),
+    Witness(
+        "pairwise_distances_ignore_transient_filters",
+        [*OVERLAP, Command("compute_signed_distance_pairwise_closest_points", {})],
+        last_pairs,
+        pydrake=[],
+        mutated=[["a", "b"]],
+    ),
+    # Reports only observe has (mutants_report, issue 30): measured on pydrake 1.51.1.
+    Witness(
+        "collision_filtered_blames_the_first",
+        [*on_own_frames("a"), geometry("b", "f_a", roles=["illustration"])],
+        filtered("a", "b"),
+        pydrake=STATUS_ERROR + "b does not have a proximity role",
+        mutated=STATUS_ERROR + "a does not have a proximity role",
+    ),
+    Witness(
+        "frame_role_count_keeps_removed",
+        [*on_own_frames("a"), Command("remove_role", {"geometry": "a", "role": "proximity"})],
+        count_of("frame f_a proximity"),
+        pydrake=0,
+        mutated=1,
+    ),
 ]
 
 
@@ -601,10 +709,12 @@ def test_a_mutant_replaces_public_classes_by_subclasses_only(name: str) -> None:
     [
         conformance._testing.mutants,
         conformance._testing.mutants_basic,
+        conformance._testing.mutants_boundary,
         conformance._testing.mutants_order,
+        conformance._testing.mutants_report,
         conformance._testing.mutants_state,
     ],
-    ids=["mutants", "mutants_basic", "mutants_order", "mutants_state"],
+    ids=lambda module: module.__name__.rsplit(".", 1)[-1],
 )
 def test_the_mutants_modules_use_only_reimpls_public_names(mutants_module: ModuleType) -> None:
     source = Path(str(mutants_module.__file__)).read_text(encoding="utf-8")

@@ -1,7 +1,8 @@
 """Mutants: reimpl with one deliberate bug each, to measure the harness itself.
 
-This module is the registry; the mutants are in ``mutants_basic``, ``mutants_state`` and
-``mutants_order`` (order across locations, issue 30).
+This module is the registry; the mutants are in ``mutants_basic``, ``mutants_state``, and
+(issue 30) ``mutants_order`` (an order across locations), ``mutants_boundary`` (a query's
+edges) and ``mutants_report`` (what only ``observe`` reports).
 
 Mutation testing of the harness: a differential fuzzer that cannot tell these
 backends from real pydrake cannot be trusted to catch a real regression either.
@@ -32,15 +33,21 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from conformance._testing.mutants_basic import BASIC_MUTANTS, Mutant, MutantBackend
+from conformance._testing.mutants_boundary import BOUNDARY_MUTANTS
 from conformance._testing.mutants_order import ORDER_MUTANTS
+from conformance._testing.mutants_report import REPORT_MUTANTS
 from conformance._testing.mutants_state import STATE_MUTANTS
 
 __all__ = ["MUTANTS", "Mutant", "MutantBackend", "mutant_backend"]
 
 #: Every mutant by name: the basic ones (``mutants_basic``), then those whose bug
 #: needs a reached state (``mutants_state``), then an order across locations
-#: (``mutants_order``).
-MUTANTS: dict[str, Mutant] = {m.name: m for m in (*BASIC_MUTANTS, *STATE_MUTANTS, *ORDER_MUTANTS)}
+#: (``mutants_order``), then the edges of a query (``mutants_boundary``: ``fuzz --poses``),
+#: then reports no command asks for (``mutants_report``).
+MUTANTS: dict[str, Mutant] = {
+    m.name: m
+    for m in (*BASIC_MUTANTS, *STATE_MUTANTS, *ORDER_MUTANTS, *BOUNDARY_MUTANTS, *REPORT_MUTANTS)
+}
 
 
 def mutant_backend(name: str) -> MutantBackend:

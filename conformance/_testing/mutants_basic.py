@@ -826,6 +826,8 @@ class Mutant:
     bug: str
     scene_graph: type[MutantSceneGraph]
     declaration: type[RecordingDeclaration] = RecordingDeclaration
+    #: Its bug is in a query: its campaign is ``fuzz --poses``.
+    posed: bool = False
 
     def api(self) -> Api:
         """reimpl's Api with this mutant's SceneGraph and CollisionFilterDeclaration."""
