@@ -14,6 +14,7 @@ from conformance.backends.loader import load_backend
 from conformance.backends.scene_graph import SceneGraphBackend
 from conformance.compare import diff_observations
 from conformance.protocol import MODEL, Command, LocationState, Observation, sample_pairs
+from conformance.testing.model_mutants import model_mutant_backend
 
 #: Proximity g0 on f0, anchored proximity g1, illustration-only g2 on f0, g3 removed.
 SCENE: tuple[dict[str, Any], ...] = (
@@ -169,3 +170,58 @@ def test_the_observables_survive_the_wire() -> None:
         filter_groups={"groups": {}, "pairs": []},
     )
     assert Observation.from_json(state.to_json()) == state
+
+
+# ------------------------------------------- the group report's model mutants (issue 30)
+def _urdf(name: str) -> str:
+    return GROUPS_URDF.replace('name="r"', f'name="{name}"').replace(
+        '<drake:ignored_collision_filter_group name="ga"/>',
+        '<drake:ignored_collision_filter_group name="gb"/>',
+    )
+
+
+#: r1, then r2 by the same Parser: each with ga = {a} and gb = {b} ignoring itself.
+TWO_PARSES = (
+    {"op": "add_models", "text": _urdf("r1"), "format": "urdf"},
+    {"op": "add_models", "text": _urdf("r2"), "format": "urdf", "reuse_parser": True},
+)
+#: pydrake 1.51.1's report after TWO_PARSES: both parses' groups, and gb's self-exclusion.
+TWO_REPORTS = {
+    "groups": {
+        "r1::ga": ["r1::a"],
+        "r1::gb": ["r1::b"],
+        "r2::ga": ["r2::a"],
+        "r2::gb": ["r2::b"],
+    },
+    "pairs": [["r1::gb", "r1::gb"], ["r2::gb", "r2::gb"]],
+}
+
+
+@pytest.mark.parametrize(
+    ("mutant", "mutated"),
+    [
+        (
+            "group_report_drops_self_exclusion",
+            {**TWO_REPORTS, "pairs": []},
+        ),
+        (
+            "group_report_of_last_parse",
+            {
+                "groups": {"r2::ga": ["r2::a"], "r2::gb": ["r2::b"]},
+                "pairs": [["r2::gb", "r2::gb"]],
+            },
+        ),
+    ],
+)
+def test_a_group_report_mutant_differs_from_pydrake_in_the_observed_report_alone(
+    mutant: str, mutated: dict[str, Any]
+) -> None:
+    oracle = _observe(load_backend("pydrake"), TWO_PARSES)
+    plain = _observe(load_backend("reimpl"), TWO_PARSES)
+    wrong = _observe(model_mutant_backend(mutant), TWO_PARSES)
+    assert oracle.locations[MODEL].filter_groups == TWO_REPORTS
+    assert plain.locations[MODEL].filter_groups == TWO_REPORTS
+    assert wrong.locations[MODEL].filter_groups == mutated
+    assert [d.what for d in diff_observations(oracle, wrong)] == [
+        "collision filter groups at model"
+    ]

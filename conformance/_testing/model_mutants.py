@@ -305,6 +305,60 @@ def _welds_unfiltered(plant_module: ModuleType) -> Mapping[str, type]:
     return {"MultibodyPlant": MultibodyPlant}
 
 
+def _report_without_self_pairs(parsing: ModuleType) -> Mapping[str, type]:
+    """A Parser whose group report leaves out a group's exclusion of itself."""
+
+    class Parser(parsing.Parser):  # type: ignore[name-defined,misc]
+        def GetCollisionFilterGroups(self) -> Any:
+            report = super().GetCollisionFilterGroups()
+            out = parsing.CollisionFilterGroups()
+            for name, members in report.groups().items():
+                out.AddGroup(name=name, members=set(members))
+            for a, b in report.exclusion_pairs():
+                if a != b:
+                    out.AddExclusionPair(pair=(a, b))
+            return out
+
+    return {"Parser": Parser}
+
+
+def _report_of_last_parse(parsing: ModuleType) -> Mapping[str, type]:
+    """A Parser whose group report holds the groups of its last parse only."""
+
+    class Parser(parsing.Parser):  # type: ignore[name-defined,misc]
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            super().__init__(*args, **kwargs)
+            self.mutant_before: tuple[set[str], set[tuple[str, str]]] = (set(), set())
+
+        def _forget_earlier(self) -> None:
+            report = super().GetCollisionFilterGroups()
+            self.mutant_before = (set(report.groups()), set(report.exclusion_pairs()))
+
+        def AddModelsFromString(self, file_contents: str, file_type: str) -> list[Any]:
+            self._forget_earlier()
+            return super().AddModelsFromString(  # type: ignore[no-any-return]
+                file_contents=file_contents, file_type=file_type
+            )
+
+        def AddModels(self, *args: Any, **kwargs: Any) -> list[Any]:
+            self._forget_earlier()
+            return super().AddModels(*args, **kwargs)  # type: ignore[no-any-return]
+
+        def GetCollisionFilterGroups(self) -> Any:
+            report = super().GetCollisionFilterGroups()
+            groups, pairs = self.mutant_before
+            out = parsing.CollisionFilterGroups()
+            for name, members in report.groups().items():
+                if name not in groups:
+                    out.AddGroup(name=name, members=set(members))
+            for pair in report.exclusion_pairs():
+                if pair not in pairs:
+                    out.AddExclusionPair(pair=pair)
+            return out
+
+    return {"Parser": Parser}
+
+
 @dataclass(frozen=True)
 class ModelMutant:
     """One injected bug: its name, what is wrong, and the classes that carry it.
@@ -474,6 +528,24 @@ MODEL_MUTANTS: dict[str, ModelMutant] = {
             witness="An anchored sphere w0, directives adding d0 (link d0l0 with a sphere) and "
             "add_weld world to d0::d0l0, Finalize: pydrake 1.51.1 has no candidate pairs (the "
             "mutant: d0::d0l0/Sphere with w0).",
+        ),
+        ModelMutant(
+            "group_report_drops_self_exclusion",
+            "The group report leaves out the exclusion pair of a group that ignores itself "
+            "(the filters are right).",
+            "parsing",
+            _report_without_self_pairs,
+            witness="URDF r with group g = {a, b} ignoring g: pydrake 1.51.1 reports "
+            "pairs [['r::g', 'r::g']] (the mutant: []).",
+        ),
+        ModelMutant(
+            "group_report_of_last_parse",
+            "A Parser's group report holds the groups of its last parse only (the filters are "
+            "right).",
+            "parsing",
+            _report_of_last_parse,
+            witness="URDF r1 with group g, then URDF r2 with group g by the same Parser: pydrake "
+            "1.51.1 reports groups 'r1::g' and 'r2::g' (the mutant: 'r2::g' only).",
         ),
     )
 }
