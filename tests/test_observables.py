@@ -34,10 +34,8 @@ INVALID = _STATUS + "is not a valid geometry"
 #: pydrake 1.51.1's answers for SCENE (validity is checked before the role: g2-g3).
 FILTERED = {
     ("g0", "g1"): False,
-    ("g0", "g2"): NO_ROLE.format("g0", "g2", "g2"),
     ("g0", "g3"): INVALID.format("g0", "g3", "g3"),
     ("g1", "g2"): NO_ROLE.format("g1", "g2", "g2"),
-    ("g1", "g3"): INVALID.format("g1", "g3", "g3"),
     ("g2", "g3"): INVALID.format("g2", "g3", "g3"),
 }
 COUNTS = {
@@ -57,22 +55,15 @@ COUNTS = {
 }
 
 
-def test_the_sample_is_the_ring_of_sorted_names_and_its_chords_through_the_middle() -> None:
-    assert sample_pairs(["d", "b", "a", "c"]) == [
-        ("a", "b"),
-        ("b", "c"),
-        ("c", "d"),
-        ("a", "d"),
-        ("a", "c"),
-        ("b", "d"),
-    ]
+def test_the_sample_is_the_ring_of_sorted_names() -> None:
+    assert sample_pairs(["d", "b", "a", "c"]) == [("a", "b"), ("b", "c"), ("c", "d"), ("a", "d")]
     assert sample_pairs(["b", "a"]) == [("a", "b")]
     assert sample_pairs(["a"]) == []
-    assert len(sample_pairs([f"g{i}" for i in range(100)])) == 48
+    assert len(sample_pairs([f"g{i}" for i in range(100)])) == 32
 
 
-def test_every_name_of_up_to_24_is_in_the_sample() -> None:
-    names = [f"g{i}" for i in range(24)]
+def test_every_name_of_up_to_32_is_in_the_sample() -> None:
+    names = [f"g{i}" for i in range(32)]
     assert {n for pair in sample_pairs(names) for n in pair} == set(names)
 
 

@@ -35,6 +35,9 @@ rules a subclass adds may take the Bundles as arguments as usual.
 Why one rule over a table, picks rather than Bundle draws, and two
 operations per step: see ``conformance._fuzz.step_draws``.
 
+Both machines also run the rows of ``across_locations`` (an order of events
+across the model, contexts and clones, as one operation), after their own.
+
 Subclass it to fuzz other pairs, to add operations (extend ``OPERATIONS``)
 or to add rules; ``lockstep_machine()`` makes a subclass for two backend
 factories.
@@ -69,6 +72,7 @@ from conformance._backends.loader import load_backend
 from conformance._engine import Divergence, Engine, HarnessError, Trace, outcome_of_break
 from conformance._fuzz import operations as ops
 from conformance._fuzz import strategies as cs
+from conformance._fuzz.across_locations import with_orders
 from conformance._fuzz.coverage import CoverageBook
 from conformance._fuzz.names import NameBook, register_scene
 from conformance._fuzz.operations import PoseBook, register_posed_scene
@@ -108,7 +112,7 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
     scene_frames: ClassVar[tuple[int, int]] = (1, 4)
     scene_geometries: ClassVar[tuple[int, int]] = (2, 8)
     #: What a step can do (``conformance._fuzz.operations``); extend it in a subclass.
-    OPERATIONS: ClassVar[dict[str, ops.Operation]] = ops.OPERATIONS
+    OPERATIONS: ClassVar[dict[str, ops.Operation]] = with_orders(ops.OPERATIONS)
     #: The initial scene has shapes and poses (``PosedLockstepMachine``).
     posed: ClassVar[bool] = False
     #: Operations per Hypothesis step (each is compared on its own).
@@ -320,7 +324,7 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
 class PosedLockstepMachine(LockstepMachine):
     """The lockstep machine on posed scenes, with the query ops (see the module doc)."""
 
-    OPERATIONS: ClassVar[dict[str, ops.Operation]] = ops.POSED_OPERATIONS
+    OPERATIONS: ClassVar[dict[str, ops.Operation]] = with_orders(ops.POSED_OPERATIONS)
     posed: ClassVar[bool] = True
 
 

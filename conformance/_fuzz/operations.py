@@ -28,7 +28,11 @@ so that the geometry sits at a drawn gap of 1e-9 to 1e-3 m from another
 (``strategies.Touch``, ``strategies.touching_position``), then queries
 there, so the decision between colliding and not is made at the boundary;
 and ``filter_in_clone``: a clone of a context, a persistent declaration
-applied in it, and a query there (picks alone rarely reach a clone).
+applied in it, and a query there (picks alone rarely reach a clone);
+``query_through_filter``: a transient declaration, every query the filter
+decides, its removal, every query again; ``query_at_max_distance``: the
+pairwise signed distances with ``max_distance`` at a sphere pair's own
+distance and 1 ulp either side.
 ``PoseBook`` follows the commands to know where everything is: every
 frame's parent, every geometry's frame, shape and ``X_FG``, and the poses
 ``set_poses`` stored at each location. The query ops run only when both
@@ -37,6 +41,7 @@ backends have the ``queries`` feature.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
@@ -609,32 +614,93 @@ def near_touch(m: Machine, picks: bytes, touch: cs.Touch) -> None:
 
 
 def query_through_filter(m: Machine, picks: bytes, template: cs.DeclarationTemplate) -> None:
-    """A transient declaration, a query (as ``near_touch`` picks one) there, then its removal.
+    """A transient declaration, every query there, its removal, then every query again.
 
-    Filters exist to shape what the queries return: this puts a fresh
-    declaration and a query side by side, at the picked location. One time
-    in two, if the last penetration query there found pairs
-    (``PoseBook.colliding``), the declaration excludes one of them
-    (``ExcludeBetween({A}, {B})``) and the query is the penetration again;
-    else the declaration is the drawn one.
+    Filters exist to shape what the queries return: this asks each query
+    the filter decides (``_FILTER_QUERIES``, and a pair's signed distance)
+    right after the filter changes the answer, and again once it is gone, at
+    the picked location. One time in two, if the last penetration query there
+    found pairs (``PoseBook.colliding``), the declaration excludes one of them
+    (``ExcludeBetween({A}, {B})``), or (one time in two of those) every one of
+    them, so that ``HasCollisions`` is asked where the only overlapping pairs
+    are filtered; else the declaration is the drawn one.
     """
     label, where = m.fresh("t"), m.name("context", picks[0])
     colliding = m.poses.colliding.get(where or MODEL, [])
-    query = _TOUCH_QUERIES[picks[1] % len(_TOUCH_QUERIES)]
+    pair: tuple[str, str] | None = None
     if colliding and picks[3] & 1:
-        a, b = colliding[picks[3] // 2 % len(colliding)]
-        statement = {"op": "exclude_between", "a": {"geometries": [a]}, "b": {"geometries": [b]}}
-        declaration: dict[str, Any] = {"statements": [statement]}
-        query = "compute_point_pair_penetration"
+        chosen = colliding if picks[3] & 2 else [colliding[picks[3] // 4 % len(colliding)]]
+        pair = chosen[0]
+        declaration: dict[str, Any] = {
+            "statements": [
+                {"op": "exclude_between", "a": {"geometries": [a]}, "b": {"geometries": [b]}}
+                for a, b in chosen
+            ]
+        }
     else:
         declaration = m.declaration(template)
     result = m.step("apply_transient", declaration=declaration, label=label, context=where)
-    if query == "compute_signed_distance_pair_closest_points":
-        signed_distance_pair(m, picks[2:] + picks[:1])
-    else:
-        m.step(query, context=where)
+    _every_query(m, picks, where, pair)
     if result.error is None:
         m.step("remove_declaration", label=label, context=where)
+        _every_query(m, picks, where, pair)
+
+
+#: The queries a filter decides (``query_through_filter`` asks each, and a pair's distance).
+_FILTER_QUERIES = (
+    "compute_point_pair_penetration",
+    "has_collisions",
+    "compute_signed_distance_pairwise_closest_points",
+    "find_collision_candidates",
+)
+
+
+def _every_query(m: Machine, picks: bytes, where: str | None, pair: tuple[str, str] | None) -> None:
+    """Each of ``_FILTER_QUERIES`` at ``where``, then the signed distance of ``pair`` (or of
+    a picked pair: ``signed_distance_pair``)."""
+    for query in _FILTER_QUERIES:
+        m.step(query, context=where)
+    if pair is None:
+        signed_distance_pair(m, picks[2:] + picks[:1])
+    else:
+        m.step("compute_signed_distance_pair_closest_points", pair=list(pair), context=where)
+
+
+def query_at_max_distance(m: Machine, picks: bytes) -> None:
+    """The pairwise signed distances, then again with ``max_distance`` aimed at a
+    sphere-sphere pair's own distance φ: exactly φ, or 1 ulp below or above it (by pick).
+
+    φ is the reference's answer in the first (unbounded) query, at the picked
+    location; a pair at ``φ = max_distance`` is in the answer, 1 ulp beyond it
+    is not (measured on pydrake 1.51.1). Only sphere-sphere pairs are aimed
+    at: their distance is a closed form that both sides compute to the same
+    double. N.B. Other shape pairs differ by an ulp or so between pydrake's
+    pair query and its pairwise one (measured on 1.51.1: a sphere-box pair at
+    0.29908944793552783 from ComputeSignedDistancePairClosestPoints is left
+    out of ComputeSignedDistancePairwiseClosestPoints at exactly that
+    max_distance, where reimpl keeps it), so an aim at them finds rounding,
+    not filtering.
+    """
+    where = m.name("context", picks[0])
+    result = m.step("compute_signed_distance_pairwise_closest_points", context=where)
+    records = result.value if result.error is None and isinstance(result.value, list) else []
+    spheres = [
+        r["distance"]
+        for r in records
+        if isinstance(r, Mapping)
+        and r.get("shapes") == ["sphere", "sphere"]
+        and isinstance(r.get("distance"), float)
+        and math.isfinite(r["distance"])
+    ]
+    if not spheres:
+        return
+    distance = spheres[picks[1] % len(spheres)]
+    aim = (distance, math.nextafter(distance, -math.inf), math.nextafter(distance, math.inf))
+    m.step(
+        "compute_signed_distance_pairwise_closest_points",
+        max_distance=aim[picks[2] % len(aim)],
+        context=where,
+    )
 
 
 #: The queries ``filter_in_clone`` asks in the clone (none needs a pair of its own).
@@ -959,12 +1025,24 @@ POSED_OPERATIONS: dict[str, Operation] = {
         query_through_filter,
         (_DECLARATION,),
         enabled=_pairs_queryable,
-        issues=frozenset({"apply_transient", "remove_declaration", *_TOUCH_QUERIES}),
+        issues=frozenset(
+            {
+                "apply_transient",
+                "remove_declaration",
+                "compute_signed_distance_pair_closest_points",
+                *_FILTER_QUERIES,
+            }
+        ),
     ),
     "filter_in_clone": Operation(
         filter_in_clone,
         (_DECLARATION,),
         enabled=lambda m: _pairs_queryable(m) and _can_clone(m),
         issues=frozenset({"clone_context", "apply", *_CLONE_QUERIES}),
+    ),
+    "query_at_max_distance": Operation(
+        query_at_max_distance,
+        enabled=_pairs_queryable,
+        issues=frozenset({"compute_signed_distance_pairwise_closest_points"}),
     ),
 }
