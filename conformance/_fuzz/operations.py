@@ -30,9 +30,9 @@ there, so the decision between colliding and not is made at the boundary;
 and ``filter_in_clone``: a clone of a context, a persistent declaration
 applied in it, and a query there (picks alone rarely reach a clone);
 ``query_through_filter``: a transient declaration, every query the filter
-decides, its removal, every query again; ``query_at_max_distance``: the
-pairwise signed distances with ``max_distance`` at a sphere pair's own
-distance and 1 ulp either side.
+decides, its removal, every query again; ``query_at_max_distance``: two new
+spheres, then the pairwise signed distances with ``max_distance`` at their
+own distance and 1 ulp either side.
 ``PoseBook`` follows the commands to know where everything is: every
 frame's parent, every geometry's frame, shape and ``X_FG``, and the poses
 ``set_poses`` stored at each location. The query ops run only when both
@@ -666,40 +666,54 @@ def _every_query(m: Machine, picks: bytes, where: str | None, pair: tuple[str, s
         m.step("compute_signed_distance_pair_closest_points", pair=list(pair), context=where)
 
 
-def query_at_max_distance(m: Machine, picks: bytes) -> None:
-    """The pairwise signed distances, then again with ``max_distance`` aimed at a
-    sphere-sphere pair's own distance φ: exactly φ, or 1 ulp below or above it (by pick).
+#: Radii and gaps (m) of ``query_at_max_distance``'s spheres.
+_EXACT_RADII = (0.05, 0.1, 0.275)
+_EXACT_GAPS = (0.125, 0.25, 0.5, 1.0)
 
-    φ is the reference's answer in the first (unbounded) query, at the picked
-    location; a pair at ``φ = max_distance`` is in the answer, 1 ulp beyond it
-    is not (measured on pydrake 1.51.1). Only sphere-sphere pairs are aimed
-    at: their distance is a closed form that both sides compute to the same
-    double. N.B. Other shape pairs differ by an ulp or so between pydrake's
-    pair query and its pairwise one (measured on 1.51.1: a sphere-box pair at
-    0.29908944793552783 from ComputeSignedDistancePairClosestPoints is left
-    out of ComputeSignedDistancePairwiseClosestPoints at exactly that
-    max_distance, where reimpl keeps it), so an aim at them finds rounding,
-    not filtering.
+
+def query_at_max_distance(m: Machine, picks: bytes) -> None:
+    """Two new spheres a drawn gap apart along x, then the pairwise signed distances, then
+    again with ``max_distance`` aimed at their distance φ: exactly φ, or 1 ulp below or
+    above it (by pick).
+
+    φ is the reference's answer in the first (unbounded) query: a pair at
+    ``φ = max_distance`` is in the answer, 1 ulp beyond it is not (measured on
+    pydrake 1.51.1). The spheres are made for it (new frames of the world,
+    identity rotations, centres ``(0, 0, 0)`` and ``(d, 0, 0)``), so that both
+    sides compute φ to the same double (measured: 196 of 196 radius and gap
+    pairs). N.B. An aim at the scene's own pairs finds rounding, not
+    filtering: their φ differs by an ulp between pydrake and reimpl
+    (measured at seed 1 on 1.51.1: a sphere pair under rotated frames, reimpl
+    1 ulp lower), and even between pydrake's pair and pairwise queries (a
+    sphere-box pair at 0.29908944793552783 from the pair query is left out of
+    the pairwise one at exactly that ``max_distance``).
     """
-    where = m.name("context", picks[0])
-    result = m.step("compute_signed_distance_pairwise_closest_points", context=where)
+    frames, names = (m.fresh("f"), m.fresh("f")), (m.fresh("g"), m.fresh("g"))
+    radii = (_EXACT_RADII[picks[0] % 3], _EXACT_RADII[picks[0] // 3 % 3])
+    for frame, name, radius in zip(frames, names, radii, strict=True):
+        made = m.step("register_frame", name=frame)
+        m.keep_if_made("frames", frame, made)
+        sphere = {"type": "sphere", "radius": radius}
+        result = m.step(
+            "register_geometry", name=name, frame=frame, roles=["proximity"], shape=sphere
+        )
+        if made.error is not None or not _registered(result):
+            return
+        m.keep("geometries", name)
+    d = radii[0] + radii[1] + _EXACT_GAPS[picks[1] % len(_EXACT_GAPS)]
+    poses = {frames[0]: {"xyz": [0.0, 0.0, 0.0]}, frames[1]: {"xyz": [d, 0.0, 0.0]}}
+    m.step("set_poses", poses=poses)
+    result = m.step("compute_signed_distance_pairwise_closest_points")
     records = result.value if result.error is None and isinstance(result.value, list) else []
-    spheres = [
-        r["distance"]
-        for r in records
-        if isinstance(r, Mapping)
-        and r.get("shapes") == ["sphere", "sphere"]
-        and isinstance(r.get("distance"), float)
-        and math.isfinite(r["distance"])
-    ]
-    if not spheres:
+    pair = sorted(names)
+    found = [r["distance"] for r in records if isinstance(r, Mapping) and r.get("pair") == pair]
+    if not found or not isinstance(found[0], float):
         return
-    distance = spheres[picks[1] % len(spheres)]
+    distance = found[0]
     aim = (distance, math.nextafter(distance, -math.inf), math.nextafter(distance, math.inf))
     m.step(
         "compute_signed_distance_pairwise_closest_points",
         max_distance=aim[picks[2] % len(aim)],
-        context=where,
     )
 
 
@@ -1042,7 +1056,14 @@ POSED_OPERATIONS: dict[str, Operation] = {
     ),
     "query_at_max_distance": Operation(
         query_at_max_distance,
-        enabled=_pairs_queryable,
-        issues=frozenset({"compute_signed_distance_pairwise_closest_points"}),
+        enabled=lambda m: m.queries,
+        issues=frozenset(
+            {
+                "register_frame",
+                "register_geometry",
+                "set_poses",
+                "compute_signed_distance_pairwise_closest_points",
+            }
+        ),
     ),
 }
