@@ -138,7 +138,13 @@ def frame_named_in_clone(m: Machine, picks: bytes) -> None:
 
 def disagreeing_stack(m: Machine, picks: bytes, geometry_set: cs.SetTemplate) -> None:
     """Five or six transient declarations on one drawn set, Exclude and Allow in turn, then
-    the oldest removed: every pair of the set is decided by the replay order."""
+    the oldest removed: every pair of the set is decided by the replay order.
+
+    CollisionFiltered of the set's first two geometries is asked at once; then, one time
+    in two, the rest are removed too (newest first), so that the stacks do not pile up
+    (``hypothesis.target`` rewards deep stacks: with them all left, ``fuzz --seed 1
+    --max-examples 300`` ran 127,318 commands, against 27,709 without this module).
+    """
     where, members = m.name("context", picks[0]), m.geometry_set(geometry_set)
     count = 5 + (picks[1] & 1)
     labels = []
@@ -154,8 +160,15 @@ def disagreeing_stack(m: Machine, picks: bytes, geometry_set: cs.SetTemplate) ->
         m.keep_if_made("filter_ids", label, made)
         if made.error is None:
             labels.append(label)
-    if labels:
-        m.step("remove_declaration", label=labels[0], context=where)
+    if not labels:
+        return
+    m.step("remove_declaration", label=labels[0], context=where)
+    named = members.get("geometries", [])
+    if len(named) > 1:
+        m.step("collision_filtered", pair=named[:2], context=where)
+    if picks[3] & 1:  # the rest too, newest first: the stack does not outlive the operation
+        for label in reversed(labels[1:]):
+            m.step("remove_declaration", label=label, context=where)
 
 
 _DECLARATION = cs.declaration_templates()
@@ -188,7 +201,7 @@ ACROSS_LOCATIONS: dict[str, Operation] = {
     "disagreeing_stack": Operation(
         disagreeing_stack,
         (cs.set_templates(),),
-        issues=frozenset({"apply_transient", "remove_declaration"}),
+        issues=frozenset({"apply_transient", "remove_declaration", "collision_filtered"}),
     ),
 }
 

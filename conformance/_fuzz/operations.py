@@ -683,8 +683,9 @@ def query_at_max_distance(m: Machine, picks: bytes) -> None:
     sides compute φ to the same double (measured: 196 of 196 radius and gap
     pairs). N.B. An aim at the scene's own pairs finds rounding, not
     filtering: their φ differs by an ulp between pydrake and reimpl
-    (measured at seed 1 on 1.51.1: a sphere pair under rotated frames, reimpl
-    1 ulp lower), and even between pydrake's pair and pairwise queries (a
+    (measured at seed 1 on 1.51.1: a sphere pair under rotated frames at
+    0.3664313250317046 in pydrake, 0.3664313250317045 in reimpl), and even
+    between pydrake's pair and pairwise queries (a
     sphere-box pair at 0.29908944793552783 from the pair query is left out of
     the pairwise one at exactly that ``max_distance``).
     """
