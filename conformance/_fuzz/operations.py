@@ -672,16 +672,20 @@ _EXACT_GAPS = (0.125, 0.25, 0.5, 1.0)
 
 
 def query_at_max_distance(m: Machine, picks: bytes) -> None:
-    """Two new spheres a drawn gap apart along x, then the pairwise signed distances, then
-    again with ``max_distance`` aimed at their distance φ: exactly φ, or 1 ulp below or
-    above it (by pick).
+    """Two new spheres on a diagonal, then the pairwise signed distances, then again with
+    ``max_distance`` aimed at their distance φ: exactly φ, or 1 ulp below or above it
+    (by pick).
 
     φ is the reference's answer in the first (unbounded) query: a pair at
     ``φ = max_distance`` is in the answer, 1 ulp beyond it is not (measured on
     pydrake 1.51.1). The spheres are made for it (new frames of the world,
-    identity rotations, centres ``(0, 0, 0)`` and ``(d, 0, 0)``), so that both
-    sides compute φ to the same double (measured: 196 of 196 radius and gap
-    pairs). N.B. An aim at the scene's own pairs finds rounding, not
+    identity rotations, centres ``(0, 0, 0)`` and ``(x, x, 0)``), so that both
+    sides compute φ to the same double and answer the three aims alike
+    (measured: 36 of 36 radius and gap pairs, 108 of 108 aims). On a diagonal,
+    not an axis: there the gap between the spheres' bounding boxes is φ too,
+    and the broadphase's pruning at exactly ``max_distance`` then decides, not
+    the distance (measured at seed 1: an answer that changed on replay). N.B.
+    An aim at the scene's own pairs finds rounding, not
     filtering: their φ differs by an ulp between pydrake and reimpl
     (measured at seed 1 on 1.51.1: a sphere pair under rotated frames at
     0.3664313250317046 in pydrake, 0.3664313250317045 in reimpl), and even
@@ -701,8 +705,8 @@ def query_at_max_distance(m: Machine, picks: bytes) -> None:
         if made.error is not None or not _registered(result):
             return
         m.keep("geometries", name)
-    d = radii[0] + radii[1] + _EXACT_GAPS[picks[1] % len(_EXACT_GAPS)]
-    poses = {frames[0]: {"xyz": [0.0, 0.0, 0.0]}, frames[1]: {"xyz": [d, 0.0, 0.0]}}
+    x = (radii[0] + radii[1] + _EXACT_GAPS[picks[1] % len(_EXACT_GAPS)]) / 2
+    poses = {frames[0]: {"xyz": [0.0, 0.0, 0.0]}, frames[1]: {"xyz": [x, x, 0.0]}}
     m.step("set_poses", poses=poses)
     result = m.step("compute_signed_distance_pairwise_closest_points")
     records = result.value if result.error is None and isinstance(result.value, list) else []
