@@ -1,0 +1,181 @@
+"""The operations that compose an order across locations, and the boundary operations
+(issue 30): each issues its order, and on pydrake 1.51.1 each answers as the rule says."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from conformance.backends.loader import load_backend
+from conformance.fuzz.across_locations import (
+    ACROSS_LOCATIONS,
+    context_under_history,
+    disagreeing_stack,
+    frame_named_in_clone,
+    model_edit_then_context,
+    partial_apply_then_clone,
+)
+from conformance.fuzz.lockstep import LockstepMachine, PosedLockstepMachine
+from conformance.fuzz.operations import (
+    OPERATIONS,
+    POSED_OPERATIONS,
+    query_at_max_distance,
+    query_through_filter,
+)
+from conformance.fuzz.sequences import Recorder
+from conformance.protocol import Command
+
+PYDRAKE = load_backend("pydrake")
+
+
+class _Fixed:
+    """A drawn template that resolves to one fixed declaration or set."""
+
+    def __init__(self, value: dict[str, Any]) -> None:
+        self.value = value
+
+    def resolve(self, *_: Any) -> dict[str, Any]:
+        return self.value
+
+
+#: Exclude within a, b and c (all three geometries of ``_recorder``'s scene).
+EVERYTHING = _Fixed(
+    {"statements": [{"op": "exclude_within", "set": {"geometries": ["a", "b", "c"]}}]}
+)
+
+
+def _recorder(*, posed: bool = False) -> Recorder:
+    """pydrake with frames fa, fb; proximity spheres a on fa, b and c on fb (names no
+    ``fresh`` name can take)."""
+    recorder = Recorder(backend=PYDRAKE, queries=posed, special=False)
+    recorder.keep("sources", "source")
+    recorder.keep("frames", "world")
+    for frame in ("fa", "fb"):
+        recorder.step("register_frame", name=frame)
+        recorder.keep("frames", frame)
+    for name, frame in (("a", "fa"), ("b", "fb"), ("c", "fb")):
+        recorder.step("register_geometry", name=name, frame=frame, roles=["proximity"])
+        recorder.keep("geometries", name)
+    return recorder
+
+
+def _ops(recorder: Recorder, since: int) -> list[str]:
+    return [c.op for c in recorder.commands[since:]]
+
+
+def test_the_rows_come_after_every_other_row_of_both_machines() -> None:
+    for machine, table in ((LockstepMachine, OPERATIONS), (PosedLockstepMachine, POSED_OPERATIONS)):
+        assert list(machine.OPERATIONS) == [*table, *ACROSS_LOCATIONS]
+
+
+def test_a_model_edit_is_followed_at_once_by_a_new_context() -> None:
+    recorder = _recorder()
+    since = len(recorder.commands)
+    model_edit_then_context(recorder, bytes(4), EVERYTHING)
+    assert _ops(recorder, since) == ["apply", "create_context"]
+    model_edit_then_context(recorder, bytes([1, 0, 0, 0]), EVERYTHING)
+    assert _ops(recorder, since)[2:] == ["apply_transient", "remove_declaration", "create_context"]
+
+
+def test_a_context_made_under_history_removes_the_inherited_declaration_after_its_own() -> None:
+    recorder = _recorder()
+    since = len(recorder.commands)
+    context_under_history(recorder, bytes(4), EVERYTHING, EVERYTHING)
+    commands = recorder.commands[since:]
+    assert [c.op for c in commands] == [
+        "apply_transient",
+        "create_context",
+        "apply_transient",
+        "remove_declaration",
+    ]
+    inherited, context = commands[0].args["label"], commands[1].args["name"]
+    assert commands[3].args == {"label": inherited, "context": context}
+    assert (
+        PYDRAKE.execute(
+            Command("is_active", {"label": commands[2].args["label"], "context": context})
+        ).value
+        is True
+    )
+
+
+def test_a_partial_apply_fails_at_its_last_statement_then_its_context_is_cloned() -> None:
+    recorder = _recorder()
+    recorder.step("create_context", name="c0")
+    recorder.keep("contexts", "c0")
+    since = len(recorder.commands)
+    partial_apply_then_clone(recorder, bytes([255, 0, 0, 0]), EVERYTHING)
+    commands = recorder.commands[since:]
+    assert [c.op for c in commands] == ["apply", "clone_context"]
+    assert commands[0].args["declaration"]["statements"][-1] == {
+        "op": "exclude_within",
+        "set": {"geometries": ["@unknown"]},
+    }
+    clone = commands[1].args["name"]
+    # pydrake 1.51.1: the statements before the failing one were applied, and the clone has them.
+    state = PYDRAKE.observe().locations[clone]
+    assert state.candidates == frozenset()
+
+
+def test_a_clone_gets_geometry_on_a_frame_then_a_declaration_naming_the_frame() -> None:
+    recorder = _recorder()
+    recorder.step("create_context", name="c0")
+    recorder.keep("contexts", "c0")
+    since = len(recorder.commands)
+    frame_named_in_clone(
+        recorder,
+        bytes([255, 0, 255, 0]),
+    )
+    assert _ops(recorder, since) == ["clone_context", "register_geometry", "apply"]
+
+
+def test_a_disagreeing_stack_of_five_has_its_oldest_removed_and_is_checked_at_once() -> None:
+    recorder = _recorder()
+    since = len(recorder.commands)
+    members = _Fixed({"geometries": ["a", "b"]})
+    disagreeing_stack(recorder, bytes(4), members)
+    commands = recorder.commands[since:]
+    ops = [c.op for c in commands]
+    assert ops == [*["apply_transient"] * 5, "remove_declaration", "collision_filtered"]
+    kinds = [c.args["declaration"]["statements"][0]["op"] for c in commands[:5]]
+    assert kinds == ["exclude_within", "allow_within"] * 2 + ["exclude_within"]
+    # pydrake 1.51.1 replays the four left oldest first: the newest (Exclude) decides.
+    assert PYDRAKE.execute(commands[-1]).value is True
+    disagreeing_stack(recorder, bytes([0, 1, 0, 1]), members)
+    assert _ops(recorder, since)[7:].count("remove_declaration") == 6
+
+
+def test_query_through_filter_asks_every_query_after_the_filter_and_after_its_removal() -> None:
+    recorder = _recorder(posed=True)
+    since = len(recorder.commands)
+    query_through_filter(recorder, bytes([0, 0, 1, 0]), EVERYTHING)
+    queries = [
+        "compute_point_pair_penetration",
+        "has_collisions",
+        "compute_signed_distance_pairwise_closest_points",
+        "find_collision_candidates",
+        "compute_signed_distance_pair_closest_points",
+    ]
+    assert _ops(recorder, since) == ["apply_transient", *queries, "remove_declaration", *queries]
+
+
+def test_query_at_max_distance_aims_at_the_pairs_own_distance_and_one_ulp_either_side() -> None:
+    answers = []
+    for aim in range(3):
+        recorder = _recorder(posed=True)
+        query_at_max_distance(recorder, bytes([0, 0, aim, 0]))
+        first, aimed = recorder.commands[-2], recorder.commands[-1]
+        assert first.op == aimed.op == "compute_signed_distance_pairwise_closest_points"
+        made = [c.args["name"] for c in recorder.commands if c.op == "register_geometry"]
+        pair = sorted(made[-2:])
+        distance = next(r["distance"] for r in PYDRAKE.execute(first).value if r["pair"] == pair)
+        assert (
+            aimed.args["max_distance"]
+            == [
+                distance,
+                math.nextafter(distance, -math.inf),
+                math.nextafter(distance, math.inf),
+            ][aim]
+        )
+        answers.append([r["pair"] for r in PYDRAKE.execute(aimed).value if r["pair"] == pair])
+    # pydrake 1.51.1: at exactly φ the pair is in, 1 ulp below it is out, 1 ulp above in.
+    assert [bool(a) for a in answers] == [True, False, True]
