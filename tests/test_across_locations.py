@@ -14,6 +14,7 @@ from conformance.fuzz.across_locations import (
     frame_named_in_clone,
     model_edit_then_context,
     partial_apply_then_clone,
+    reassign_by_frame_in_context,
 )
 from conformance.fuzz.lockstep import LockstepMachine, PosedLockstepMachine
 from conformance.fuzz.operations import (
@@ -179,3 +180,22 @@ def test_query_at_max_distance_aims_at_the_pairs_own_distance_and_one_ulp_either
         answers.append([r["pair"] for r in PYDRAKE.execute(aimed).value if r["pair"] == pair])
     # pydrake 1.51.1: at exactly φ the pair is in, 1 ulp below it is out, 1 ulp above in.
     assert [bool(a) for a in answers] == [True, False, True]
+
+
+def test_a_frame_filtered_at_the_model_is_reassigned_by_frame_in_a_new_context() -> None:
+    recorder = _recorder()
+    since = len(recorder.commands)
+    reassign_by_frame_in_context(recorder, bytes([1, 0, 0, 0]), _Fixed({"geometries": ["a"]}))
+    commands = recorder.commands[since:]
+    assert [c.op for c in commands] == [
+        "apply",
+        "create_context",
+        "remove_role",
+        "assign_role",
+        "assign_role",
+    ]
+    context = commands[1].args["name"]
+    # pydrake 1.51.1: b and c start unfiltered in the context; the model keeps a-b, a-c filtered.
+    state = PYDRAKE.observe()
+    assert state.locations[context].candidates == frozenset({("a", "b"), ("a", "c")})
+    assert state.locations["model"].candidates == frozenset()

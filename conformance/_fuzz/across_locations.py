@@ -21,14 +21,17 @@ operation                              the order
                                        clone of that context
 ``frame_named_in_clone``               a clone, geometry registered into it on a
                                        frame, then a declaration naming the frame there
+``reassign_by_frame_in_context``       a model filter on a frame's geometries, then in
+                                       a context RemoveRole by that frame and
+                                       AssignRole to each of them again
 ``disagreeing_stack``                  five or six transient declarations on one set,
                                        Exclude and Allow in turn, then the oldest
                                        removed
 =====================================  ============================================
 
-(Roles removed by frame and assigned again in a context: ``operations.
-reassign_proximity``; a clone's inherited declarations removed in it:
-``operations.clone_with_history``.) ``with_orders`` adds ``ACROSS_LOCATIONS``
+(A clone's inherited declarations removed in it: ``operations.clone_with_history``;
+``operations.reassign_proximity`` reassigns by frame too, but at seed 1 × 300 never
+in a context whose geometry the model filters.) ``with_orders`` adds ``ACROSS_LOCATIONS``
 after the rows of a table (``operations.OPERATIONS``, ``POSED_OPERATIONS``), so
 the swarm weights of the rows before them stay as they were.
 """
@@ -170,6 +173,33 @@ def disagreeing_stack(m: Machine, picks: bytes, geometry_set: cs.SetTemplate) ->
             m.step("remove_declaration", label=label, context=where)
 
 
+def reassign_by_frame_in_context(m: Machine, picks: bytes, others: cs.SetTemplate) -> None:
+    """A persistent filter at the model between a frame's geometries and a drawn set, then
+    in a context (a picked one, or a new one) RemoveRole of proximity by that frame and
+    AssignRole of proximity to each geometry on it: there they start unfiltered (but for
+    the invariants), whatever the model holds."""
+    frames = _frames(m)
+    if not frames:
+        return
+    frame = frames[picks[0] % len(frames)]
+    statement = {"op": "exclude_between", "a": {"frames": [frame]}, "b": m.geometry_set(others)}
+    m.step("apply", declaration={"statements": [statement]})
+    where = m.name("origin", picks[1]) if picks[2] & 1 or not _room_for_a_context(m) else None
+    if where is None:
+        if not _room_for_a_context(m):
+            return
+        where = m.fresh("c")
+        m.contexts_made += 1
+        created = m.step("create_context", name=where)
+        m.keep_if_made("contexts", where, created)
+        if created.error is not None:
+            return
+    m.step("remove_role", frame=frame, role="proximity", context=where)
+    for name, placed in list(m.poses.geometries.items()):
+        if placed.frame == frame:
+            m.step("assign_role", geometry=name, role="proximity", context=where)
+
+
 _DECLARATION = cs.declaration_templates()
 
 #: The rows of this module (see the module doc), added after ``operations.OPERATIONS``.
@@ -196,6 +226,14 @@ ACROSS_LOCATIONS: dict[str, Operation] = {
         frame_named_in_clone,
         enabled=lambda m: _can_clone(m) and bool(_frames(m)),
         issues=frozenset({"clone_context", "register_geometry", "apply", "apply_transient"}),
+    ),
+    "reassign_by_frame_in_context": Operation(
+        reassign_by_frame_in_context,
+        (cs.set_templates(),),
+        enabled=lambda m: (
+            bool(_frames(m)) and (_room_for_a_context(m) or bool(m.names["contexts"]))
+        ),
+        issues=frozenset({"apply", "create_context", "remove_role", "assign_role"}),
     ),
     "disagreeing_stack": Operation(
         disagreeing_stack,

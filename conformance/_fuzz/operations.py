@@ -679,9 +679,11 @@ def query_at_max_distance(m: Machine, picks: bytes) -> None:
     φ is the reference's answer in the first (unbounded) query: a pair at
     ``φ = max_distance`` is in the answer, 1 ulp beyond it is not (measured on
     pydrake 1.51.1). The spheres are made for it (new frames of the world,
-    identity rotations, centres ``(0, 0, 0)`` and ``(x, x, 0)``), so that both
+    identity rotations, centres ``(a, 10, 0)`` and ``(a + x, 10 + x, 0)``, ``a`` apart
+    from every other such pair: measured at seed 1, pydrake 1.51.1's pairwise query
+    leaves out pairs of a sphere coincident with another, which reimpl reports), so that both
     sides compute φ to the same double and answer the three aims alike
-    (measured: 36 of 36 radius and gap pairs, 108 of 108 aims). On a diagonal,
+    (measured: 108 of 108 radius, gap and offset triples, 324 of 324 aims). On a diagonal,
     not an axis: there the gap between the spheres' bounding boxes is φ too,
     and the broadphase's pruning at exactly ``max_distance`` then decides, not
     the distance (measured at seed 1: an answer that changed on replay). N.B.
@@ -706,7 +708,8 @@ def query_at_max_distance(m: Machine, picks: bytes) -> None:
             return
         m.keep("geometries", name)
     x = (radii[0] + radii[1] + _EXACT_GAPS[picks[1] % len(_EXACT_GAPS)]) / 2
-    poses = {frames[0]: {"xyz": [0.0, 0.0, 0.0]}, frames[1]: {"xyz": [x, x, 0.0]}}
+    at = 10.0 + 2.0 * len(m.names["frames"])  # each pair apart from the scene and the others
+    poses = {frames[0]: {"xyz": [at, 10.0, 0.0]}, frames[1]: {"xyz": [at + x, 10.0 + x, 0.0]}}
     m.step("set_poses", poses=poses)
     result = m.step("compute_signed_distance_pairwise_closest_points")
     records = result.value if result.error is None and isinstance(result.value, list) else []
