@@ -38,6 +38,16 @@ def _run(*argv: str) -> int:
     return main(["run", *argv, "-q"], out=io.StringIO(), err=io.StringIO())
 
 
+#: What only ``observe`` holds and a written case's expectations do not (issue 30's
+#: sampled CollisionFiltered, inspector counts, group report): a file whose first
+#: difference is one of these fails only beside pydrake, not alone.
+_OBSERVED_ONLY = ("CollisionFiltered at ", "inspector counts at ", "collision filter groups at ")
+
+
+def _only_observed(what: str) -> bool:
+    return what.startswith(_OBSERVED_ONLY)
+
+
 def test_there_are_at_least_thirty_eight_mutants() -> None:
     assert len(MUTANTS) >= 38
 
@@ -71,7 +81,8 @@ def test_fuzz_catches_the_mutant_within_300_examples_and_the_shrunk_file_replays
         seed=1,
     )
     assert _run(str(path), "--backend", spec, "--backend", "pydrake") == EXIT_FAILURE
-    assert _run(str(path), "--backend", spec) == EXIT_FAILURE
+    if not _only_observed(divergence.what):
+        assert _run(str(path), "--backend", spec) == EXIT_FAILURE
     assert _run(str(path), "--backend", "reimpl", "--backend", "pydrake") == EXIT_OK
 
 
@@ -116,5 +127,6 @@ def test_fuzz_models_catches_the_model_mutant_within_300_examples_and_the_file_r
     assert _run(str(path), "--backend", spec, "--backend", "pydrake") == EXIT_FAILURE
     # Alone, a mutant that refuses a model pydrake parses exits 2: run takes a model every
     # backend of the run rejects for the user's bad model.
-    assert _run(str(path), "--backend", spec) in (EXIT_FAILURE, EXIT_USAGE)
+    if not _only_observed(divergence.what):
+        assert _run(str(path), "--backend", spec) in (EXIT_FAILURE, EXIT_USAGE)
     assert _run(str(path), "--backend", "reimpl", "--backend", "pydrake") == EXIT_OK
