@@ -6,8 +6,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from conformance.backends.loader import load_backend
-from conformance.fuzz.across_locations import (
+from conformance._backends.loader import load_backend
+from conformance._fuzz.across_locations import (
     ACROSS_LOCATIONS,
     context_under_history,
     disagreeing_stack,
@@ -16,14 +16,14 @@ from conformance.fuzz.across_locations import (
     partial_apply_then_clone,
     reassign_by_frame_in_context,
 )
-from conformance.fuzz.lockstep import LockstepMachine, PosedLockstepMachine
-from conformance.fuzz.operations import (
+from conformance._fuzz.lockstep import LockstepMachine, PosedLockstepMachine
+from conformance._fuzz.operations import (
     OPERATIONS,
     POSED_OPERATIONS,
     query_at_max_distance,
     query_through_filter,
 )
-from conformance.fuzz.sequences import Recorder
+from conformance._fuzz.sequences import Recorder
 from conformance.protocol import Command
 
 PYDRAKE = load_backend("pydrake")

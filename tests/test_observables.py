@@ -10,11 +10,11 @@ from typing import Any
 
 import pytest
 
-from conformance.backends.loader import load_backend
-from conformance.backends.scene_graph import SceneGraphBackend
+from conformance._backends.loader import load_backend
+from conformance._backends.scene_graph import SceneGraphBackend
+from conformance._testing.model_mutants import model_mutant_backend
 from conformance.compare import diff_observations
 from conformance.protocol import MODEL, Command, LocationState, Observation, sample_pairs
-from conformance.testing.model_mutants import model_mutant_backend
 
 #: Proximity g0 on f0, anchored proximity g1, illustration-only g2 on f0, g3 removed.
 SCENE: tuple[dict[str, Any], ...] = (

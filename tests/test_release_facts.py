@@ -17,7 +17,6 @@ from conformance._backends.loader import load_backend
 from conformance._backends.reimpl_worker import reimpl_spec_version
 from conformance._corpus.loader import load_corpus
 from conformance._engine import Outcome
-from conformance._run import release_facts_doc
 from conformance._policy.divergences import known_divergences
 from conformance._policy.guards import GUARDS
 from conformance._policy.release_facts import (
@@ -29,6 +28,7 @@ from conformance._policy.release_facts import (
     release_facts,
     table_releases,
 )
+from conformance._run import release_facts_doc
 from conformance._run.runner import run_case
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -189,9 +189,7 @@ def test_reimpl_at_a_release_gives_that_release_s_recorded_answers(
 
 def test_docs_release_facts_md_is_what_the_table_gives() -> None:
     page = (ROOT / "docs" / "release_facts.md").read_text("utf-8")
-    assert page == release_facts_doc.render(), (
-        "run: python -m conformance._run.release_facts_doc"
-    )
+    assert page == release_facts_doc.render(), "run: python -m conformance._run.release_facts_doc"
     for fact_id in FACTS:
         assert f"| `{fact_id}` |" in page
 

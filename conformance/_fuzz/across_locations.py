@@ -40,8 +40,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from conformance.fuzz import strategies as cs
-from conformance.fuzz.operations import (
+from conformance._fuzz import strategies as cs
+from conformance._fuzz.operations import (
     MAX_CONTEXTS,
     Machine,
     Operation,

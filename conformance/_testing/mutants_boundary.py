@@ -1,7 +1,7 @@
 """Mutants at the edge of a query's parameters, and where a filter decides a query (issue 30).
 
 Each one is reimpl with one deliberate bug in its QueryObject (as
-``conformance.testing.mutants``, whose ``MUTANTS`` registry lists them),
+``conformance._testing.mutants``, whose ``MUTANTS`` registry lists them),
 written with public calls only: a wrapper of reimpl's QueryObject that the
 mutant's query output port hands out. They need posed scenes and the query
 ops, so ``fuzz --poses`` is their campaign (``Mutant.posed``).
@@ -11,7 +11,7 @@ ops, so ``fuzz --poses`` is their campaign (``Mutant.posed``).
 - the filter deciding: ``HasCollisions`` and the pairwise signed distances
   blind to transient declarations.
 
-``tests/test_mutants_unit.py`` holds each one's witness (pydrake's exact value).
+``tests/test_mutants.py`` holds each one's witness (pydrake's exact value).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from conformance.testing.mutants_basic import (
+from conformance._testing.mutants_basic import (
     Mutant,
     MutantSceneGraph,
     Pair,

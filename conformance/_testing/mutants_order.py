@@ -1,6 +1,6 @@
 """Mutants whose bug needs an order of events *across* locations (issue 30).
 
-Each one is reimpl with one deliberate bug (as ``conformance.testing.mutants``,
+Each one is reimpl with one deliberate bug (as ``conformance._testing.mutants``,
 whose ``MUTANTS`` registry lists them), written with public calls only. Each
 answers exactly as reimpl does until its combination happens: a context made
 right after a model edit, a context copied under the model's history, a
@@ -9,7 +9,7 @@ declaration removed there, geometry registered into a clone then named by
 frame, roles removed by frame and assigned again in a context, five
 disagreeing transient declarations with the oldest removed.
 
-``tests/test_mutants_unit.py`` holds each one's witness (pydrake's exact value).
+``tests/test_mutants.py`` holds each one's witness (pydrake's exact value).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any, cast
 
-from conformance.testing.mutants_basic import (
+from conformance._testing.mutants_basic import (
     Manager,
     Mutant,
     MutantSceneGraph,
@@ -29,7 +29,7 @@ from conformance.testing.mutants_basic import (
     _pair,
     _statements,
 )
-from conformance.testing.mutants_state import (
+from conformance._testing.mutants_state import (
     Replay,
     _as_declaration,
     _live,

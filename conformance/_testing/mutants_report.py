@@ -1,13 +1,13 @@
 """Mutants whose only wrong answer is a report that no command asks for (issue 30).
 
 Each one is reimpl with one deliberate bug in its inspector (as
-``conformance.testing.mutants``, whose ``MUTANTS`` registry lists them),
+``conformance._testing.mutants``, whose ``MUTANTS`` registry lists them),
 written with public calls only. Their filters and candidate sets are right:
 only ``observe``'s sampled ``CollisionFiltered`` answers and the inspector's
 counts (``protocol.LocationState``) show them. The group report's mutants
 are model mutants (``model_mutants``).
 
-``tests/test_mutants_unit.py`` holds each one's witness (pydrake's exact value).
+``tests/test_mutants.py`` holds each one's witness (pydrake's exact value).
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from conformance.testing.mutants_basic import Inspector, Mutant, MutantSceneGraph, _context_of
+from conformance._testing.mutants_basic import Inspector, Mutant, MutantSceneGraph, _context_of
 from reimpl.geometry import FrameId, GeometryId, Role
 
 __all__ = ["REPORT_MUTANTS"]
