@@ -73,9 +73,11 @@ from conformance._engine import Divergence, Engine, HarnessError, Trace, outcome
 from conformance._fuzz import operations as ops
 from conformance._fuzz import strategies as cs
 from conformance._fuzz.across_locations import with_orders
+from conformance._fuzz.branch_coverage import example_feedback
 from conformance._fuzz.coverage import CoverageBook
 from conformance._fuzz.names import NameBook, register_scene
 from conformance._fuzz.operations import PoseBook, register_posed_scene
+from conformance._fuzz.sequence_coverage import SequenceBook
 from conformance._fuzz.stats import FuzzStats, HarnessAbort, stop_point
 from conformance._fuzz.step_draws import (
     SWARM_BYTES,
@@ -152,6 +154,8 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         self.poses = PoseBook()
         #: What the example reached (``coverage.CoverageBook``).
         self.coverage = CoverageBook()
+        #: Its consecutive located events (``sequence_coverage.SequenceBook``).
+        self.sequence = SequenceBook()
         #: Operations switched off for this example (swarm testing).
         self.switched_off: frozenset[str] = frozenset()
         #: Each operation's weight for this example (swarm testing).
@@ -223,6 +227,7 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
         want = record.results[self.reference.name]
         self.poses.record(command, want)
         stats.coverage.add(self.coverage.follow(command, want))
+        self.sequence.follow(command, want)
         differences = self.engine.differences(record)[self.backend.name]
         if differences:
             self._diverge(differences, self._observe())
@@ -300,12 +305,16 @@ class LockstepMachine(NameBook, RuleBasedStateMachine):
 
         ``hypothesis.target`` (the ``target`` phase) then favours examples
         that crowd a location, stack transient declarations, and reach the
-        compound features (``CoverageBook.targets``).
+        compound features (``CoverageBook.targets``); in a measuring campaign
+        also the examples that take new reimpl branches
+        (``branch_coverage.example_feedback``).
         """
         book = self.coverage
         type(self).stats.coverage.close(book)
+        type(self).stats.sequences.close(self.sequence)
         for label, score in book.targets().items():
             target(score, label=label)
+        example_feedback()
 
     @rule(plan=step_plans())
     def command(self, plan: StepPlan) -> None:

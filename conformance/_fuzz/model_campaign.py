@@ -71,6 +71,7 @@ from hypothesis import strategies as st
 from conformance._corpus.loader import Case, ScenarioFile, Step
 from conformance._engine import Divergence, HarnessError, Outcome, known_in
 from conformance._fuzz import strategies as cs
+from conformance._fuzz.branch_coverage import example_feedback
 from conformance._fuzz.campaign import BatchResult, Campaign, CampaignResult, fuzz_settings
 from conformance._fuzz.model_coverage import ModelCoverage
 from conformance._fuzz.model_scenes import (
@@ -82,6 +83,7 @@ from conformance._fuzz.model_scenes import (
     scene_faults,
 )
 from conformance._fuzz.models import WORLD
+from conformance._fuzz.sequence_coverage import SequenceBook
 from conformance._fuzz.stats import FuzzStats, HarnessAbort, ShrinkTimeUp, stop_point
 from conformance._grammar import GRAMMAR, features_of
 from conformance._grammar.multibody import JOINT_TYPES
@@ -94,6 +96,7 @@ __all__ = [
     "ADDED_BODY",
     "MODEL_FEATURES",
     "MODEL_SWITCHES",
+    "SEQUENCE_OPS_ISSUED",
     "ModelCampaign",
     "model_case",
     "model_cases",
@@ -107,6 +110,8 @@ _CASE_SWITCHES = frozenset({"rename-then-parse", "dmd:prefix", "dmd:again"})
 MODEL_SWITCHES: tuple[str, ...] = (*SWITCHES, *sorted(_CASE_SWITCHES))
 #: What a backend needs for ``fuzz --models`` at all.
 MODEL_FEATURES = frozenset({"multibody", "parsing"})
+#: The sequence ops (``sequence_coverage.SEQUENCE_OPS``) a model case issues: its apply steps.
+SEQUENCE_OPS_ISSUED = frozenset({"apply"})
 #: The names of the bodies a case adds, their collision geometries and joints, before the
 #: index: B0, b0, J0.
 ADDED_BODY, _ADDED_GEOMETRY, _ADDED_JOINT = "B", "b", "J"
@@ -480,6 +485,13 @@ class ModelCampaign(Campaign):
             stats.coverage = ModelCoverage()
         coverage = stats.coverage
 
+        def follow(commands: list[Command], results: list[Result]) -> None:
+            coverage.follow_case(commands, results)
+            book = SequenceBook()
+            for command, result in zip(commands, results, strict=False):
+                book.follow(command, result)
+            stats.sequences.close(book)
+
         @hypothesis_seed(seed)
         @fuzz_settings(max_examples=size or 100, database=self.database)
         @given(strategy)
@@ -492,7 +504,7 @@ class ModelCampaign(Campaign):
                     backend,
                     reference,
                     step_timeout=self.step_timeout,
-                    on_results=coverage.follow_case,
+                    on_results=follow,
                 )
             except HarnessError as exc:
                 raise HarnessAbort(exc) from None
@@ -502,6 +514,7 @@ class ModelCampaign(Campaign):
                 stats.steps += len(commands)
                 if stats.on_step is not None:
                     stats.on_step(stats)
+            example_feedback()
             if divergence is None:
                 return
             if not self.strict_divergences and _known(divergence, backend, reference, stats):

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 from conformance._engine import Divergence, HarnessError
 from conformance._fuzz.coverage import Coverage
+from conformance._fuzz.sequence_coverage import SequenceCoverage
 
 __all__ = [
     "FuzzStats",
@@ -85,6 +86,8 @@ class FuzzStats:
     shrink_seconds: float | None = None
     #: The state-space features reached (``conformance._fuzz.coverage``).
     coverage: Coverage = field(default_factory=Coverage)
+    #: Pairs and triples of consecutive located events (``conformance.fuzz.sequence_coverage``).
+    sequences: SequenceCoverage = field(default_factory=SequenceCoverage)
     on_step: Callable[[FuzzStats], None] | None = field(default=None, repr=False)
     #: Called with every new ``best`` at once (for writing the finding before shrinking ends).
     on_best: Callable[[Divergence], None] | None = field(default=None, repr=False)

@@ -36,7 +36,7 @@ import signal
 import threading
 import time
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import contextmanager, nullcontext
 from pathlib import Path
 from types import FrameType
 from typing import TextIO
@@ -46,21 +46,24 @@ from hypothesis.errors import HypothesisException
 from conformance._backends.loader import BackendLoadError, load_backend
 from conformance._corpus.loader import ScenarioError
 from conformance._engine import HarnessError
+from conformance._fuzz.branch_coverage import BranchCoverage, BranchReport
 from conformance._fuzz.campaign import Campaign, CampaignResult
 from conformance._fuzz.coverage import campaign_features
 from conformance._fuzz.findings import Findings, Origin, replay_command, write_finding
 from conformance._fuzz.lockstep import LockstepMachine, PosedLockstepMachine
-from conformance._fuzz.model_campaign import MODEL_SWITCHES, ModelCampaign
+from conformance._fuzz.model_campaign import MODEL_SWITCHES, SEQUENCE_OPS_ISSUED, ModelCampaign
 from conformance._fuzz.model_coverage import expected_model_features
 from conformance._fuzz.operations import issued_ops
 from conformance._fuzz.regression import prepare_writing, write_reproducer
+from conformance._fuzz.sequence_coverage import expected_pairs
+from conformance._fuzz.sequence_tour import guided
 from conformance._fuzz.stats import FuzzStats, interrupt_requested
 from conformance._grammar import GRAMMAR
 from conformance._run.outputs import unwritable, unwritable_dir, write_or_fall_back
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import refuse
 from conformance.cli.run import PROG
-from conformance.protocol import Backend
+from conformance.protocol import MODEL, Backend
 
 __all__ = ["Progress", "fuzz_command"]
 
@@ -173,8 +176,31 @@ def _expected(args: argparse.Namespace, pair: tuple[Backend, Backend]) -> list[s
     return campaign_features(issued_ops(machine.OPERATIONS), shared)
 
 
-def _coverage(result: CampaignResult, expected: list[str] | None, out: TextIO) -> None:
-    """``--coverage``: the table of features reached, gaps last."""
+def _expected_pairs(
+    args: argparse.Namespace, pair: tuple[Backend, Backend]
+) -> list[tuple[str, str]]:
+    """The reachable sequence pairs of this campaign (``sequence_coverage.expected_pairs``)."""
+    if args.models:
+        return expected_pairs(SEQUENCE_OPS_ISSUED, kinds=[MODEL])  # a model case has no context
+    shared = pair[0].features() & pair[1].features()
+    machine = PosedLockstepMachine if _posed(args) else LockstepMachine
+    optional = {"activation", "queries"} - shared
+    ops = issued_ops(machine.OPERATIONS)
+    return expected_pairs(op for op in ops if GRAMMAR[op].feature not in optional)
+
+
+def _coverage(
+    result: CampaignResult,
+    expected: list[str] | None,
+    pairs: list[tuple[str, str]],
+    branches: BranchReport | None,
+    out: TextIO,
+) -> None:
+    """``--coverage``: reimpl's lines and branches never run, by function; the sequence
+    pairs; then the table of features reached, gaps last."""
+    if branches is not None:
+        out.write(branches.table() + "\n")
+    out.write(result.stats.sequences.table(pairs) + "\n")
     if expected is not None:
         out.write(result.stats.coverage.table(expected) + "\n")
 
@@ -249,6 +275,16 @@ def _interrupts() -> Iterator[None]:
         interrupt_requested.clear()
 
 
+def _guide(args: argparse.Namespace, campaign: Campaign) -> BranchCoverage | None:
+    """``--coverage``: a guided campaign (``sequence_tour.guided`` for the lockstep
+    machines) and the branch coverage to measure it with; None without it."""
+    if not getattr(args, "coverage", False):
+        return None
+    if not isinstance(campaign, ModelCampaign):
+        campaign.machine_base = guided(campaign.machine_base)
+    return BranchCoverage()
+
+
 def _posed(args: argparse.Namespace) -> bool:
     """``--poses`` was given (a parser without the option means no)."""
     return bool(getattr(args, "poses", False))
@@ -309,6 +345,7 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         campaign.without = _without(args)
     else:
         campaign.machine_base = PosedLockstepMachine if _posed(args) else LockstepMachine
+    branches = _guide(args, campaign)
     err.write(
         f"fuzz{_mode(args)}: {backend.name} {backend.version()} against "
         f"{reference.name} {reference.version()}, seed {args.seed}, "
@@ -318,7 +355,7 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     prepare_writing()
     watching = progress.watch()
     try:
-        with _interrupts():
+        with _interrupts(), branches.measuring() if branches else nullcontext():
             result = campaign.run()
     except HarnessError as exc:
         findings.kept(err)
@@ -334,13 +371,32 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     finally:
         watching.set()
     _summary(result, out, progress)
-    expected = _expected(args, (backend, reference))
-    if getattr(args, "coverage", False):
-        _coverage(result, expected, out)
-    if json_path is not None:
-        text = json.dumps(_stats_json(result, expected, args), indent=1) + "\n"
-        _write_statistics(json_path, text, err)
+    _report(args, result, (backend, reference), branches, out=out, err=err)
     return _exit_code(result, findings.written, err)
+
+
+def _report(
+    args: argparse.Namespace,
+    result: CampaignResult,
+    pair: tuple[Backend, Backend],
+    branches: BranchCoverage | None,
+    *,
+    out: TextIO,
+    err: TextIO,
+) -> None:
+    """After the run: the coverage tables (``--coverage``) and the statistics (``--json``)."""
+    expected = _expected(args, pair)
+    pairs = _expected_pairs(args, pair)
+    report = branches.report() if branches else None
+    if branches:
+        _coverage(result, expected, pairs, report, out)
+    json_path: Path | None = getattr(args, "json", None)
+    if json_path is not None:
+        stats_json = _stats_json(result, expected, args)
+        stats_json["sequences"] = result.stats.sequences.to_json(pairs)
+        stats_json["branches"] = None if report is None else report.to_json()
+        text = json.dumps(stats_json, indent=1) + "\n"
+        _write_statistics(json_path, text, err)
 
 
 def _without_problems(args: argparse.Namespace) -> list[str]:

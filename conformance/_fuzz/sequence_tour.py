@@ -1,0 +1,241 @@
+"""Steering towards every pair of located events: ``sequence_tour``.
+
+A walk of consecutive events (``conformance.fuzz.sequence_coverage``) along
+an Euler circuit of the complete directed graph, loops included, on the
+campaign's events (``tour``): every ordered pair of events is two
+consecutive entries of the circuit, so a run of ``TOUR_LENGTH`` events from
+any point reaches ``TOUR_LENGTH - 1`` pairs, each in its principal relation.
+The walk keeps one context and a clone of it (making them first if the
+example has none), so the model, the context and the clone are always
+related as model → context → clone. A clone of the context becomes the
+clone slot (the next events at a clone run in a fresh one); a clone of the
+clone does not (the next event at a clone is at the same location, as the
+pair's principal relation says).
+
+Drawn pairs alone would need thousands of tries to meet 676 pairs (a coupon
+collector); a run of 12 from a drawn point of the circuit needs about 330.
+A removal names a label active at its location where there is one
+(``SequenceBook.active``), a role op a drawn geometry; refusals for a reason
+of state (transient history, a role twice) are events too.
+
+``guided`` adds the walk to a machine class as the operation
+``sequence_tour``. Only a guided campaign (``fuzz --coverage``) has it, so
+``fuzz --seed S`` draws what it always drew.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from functools import cache
+from typing import Any, ClassVar, Protocol
+
+from conformance.fuzz import strategies as cs
+from conformance.fuzz.lockstep import LockstepMachine
+from conformance.fuzz.operations import Operation
+from conformance.fuzz.sequence_coverage import (
+    CLONE,
+    CONTEXT,
+    MODEL,
+    SequenceBook,
+    sequence_events,
+)
+from conformance.protocol import Result
+
+__all__ = ["SEQUENCE_TOUR", "TOUR", "TOUR_LENGTH", "TOUR_WEIGHT", "guided", "sequence_tour", "tour"]
+
+
+#: Events per ``sequence_tour``: a run of this many reaches this many less one pairs.
+TOUR_LENGTH = 12
+#: The tour makes no context once the example has made this many.
+_MAX_CONTEXTS = 8
+
+
+@cache
+def tour(events: tuple[str, ...]) -> tuple[str, ...]:
+    """An Euler circuit of the complete directed graph (loops included) on ``events``:
+    every ordered pair appears once as consecutive entries (Hierholzer's algorithm)."""
+    if not events:
+        return ()
+    unused = {e: list(reversed(events)) for e in events}
+    stack, circuit = [events[0]], []
+    while stack:
+        node = stack[-1]
+        if unused[node]:
+            stack.append(unused[node].pop())
+        else:
+            circuit.append(stack.pop())
+    return tuple(reversed(circuit))
+
+
+class _Tourist(Protocol):
+    """What ``sequence_tour`` needs of the machine (a ``LockstepMachine``)."""
+
+    sequence: SequenceBook
+    names: dict[str, list[str]]
+    contexts_made: int
+    activation: bool
+    special: bool
+    OPERATIONS: ClassVar[dict[str, Operation]]
+
+    def step(self, op: str, **args: Any) -> Result: ...
+    def fresh(self, prefix: str) -> str: ...
+    def keep_if_made(self, bundle: str, name: str, result: Result) -> None: ...
+    def name(self, kind: str, pick: int) -> str | None: ...
+    def declaration(self, template: cs.DeclarationTemplate) -> dict[str, Any]: ...
+    def geometry_set(self, template: cs.SetTemplate) -> dict[str, list[str]]: ...
+
+
+def _machine_events(m: _Tourist) -> tuple[str, ...]:
+    ops = {op for name, o in m.OPERATIONS.items() for op in (o.issues or {name})}
+    if not m.activation:
+        ops -= {"activate", "deactivate"}
+    return tuple(sequence_events(ops))
+
+
+def _made(m: _Tourist, op: str, **args: Any) -> str | None:
+    """create_context or clone_context under a fresh name: the name if made."""
+    name = m.fresh("c")
+    m.contexts_made += 1
+    result = m.step(op, name=name, **args)
+    m.keep_if_made("contexts", name, result)
+    return name if result.error is None else None
+
+
+def _slots(m: _Tourist) -> dict[str, str | None] | None:
+    """A location of each kind, the clone descending from the context; made if missing."""
+    book = m.sequence
+    contexts = [c for c in m.names["contexts"] if c not in book.clones]
+    context = contexts[-1] if contexts else _made(m, "create_context")
+    if context is None:
+        return None
+    clones = [c for c in m.names["contexts"] if context in book.ancestors(c)]
+    clone = clones[-1] if clones else _made(m, "clone_context", **{"from": context})
+    if clone is None:
+        return None
+    return {MODEL: None, CONTEXT: context, CLONE: clone}
+
+
+def sequence_tour(
+    m: _Tourist,
+    picks: bytes,
+    declaration: cs.DeclarationTemplate,
+    geometry_set: cs.SetTemplate,
+) -> None:
+    """``TOUR_LENGTH`` consecutive events from a point of ``tour`` the picks choose."""
+    events = _machine_events(m)
+    circuit = tour(events)
+    slots = _slots(m)
+    if not circuit or slots is None:
+        return
+    start = (picks[0] << 8 | picks[1]) % (len(circuit) - 1)
+    special, m.special = m.special, False  # no @unknown names: each event is one
+    try:
+        _walk(m, circuit[start : start + TOUR_LENGTH], slots, picks, (declaration, geometry_set))
+    finally:
+        m.special = special
+
+
+def _walk(
+    m: _Tourist,
+    events: tuple[str, ...],
+    slots: dict[str, str | None],
+    picks: bytes,
+    drawn: tuple[cs.DeclarationTemplate, cs.SetTemplate],
+) -> None:
+    declaration, geometry_set = drawn
+    for i, event in enumerate(events):
+        op, _, kind = event.rpartition("@")
+        made = _issue(
+            m,
+            op,
+            slots[kind],
+            picks[(2 + i) % len(picks)],
+            declaration=declaration,
+            geometry_set=geometry_set,
+        )
+        if made is not None and kind == CONTEXT:  # a fresh clone of the context
+            slots[CLONE] = made
+
+
+def _issue(
+    m: _Tourist,
+    op: str,
+    where: str | None,
+    pick: int,
+    *,
+    declaration: cs.DeclarationTemplate,
+    geometry_set: cs.SetTemplate,
+) -> str | None:
+    """Issues ``op`` at ``where`` (None: the model); the name of a clone it made."""
+    if op == "clone_context":
+        return _made(m, "clone_context", **{"from": where})
+    if op == "create_context":
+        _made(m, "create_context")
+    elif op in ("apply", "activate", "deactivate"):
+        value = m.declaration(declaration) if op == "apply" else m.geometry_set(geometry_set)
+        m.step(op, **{"declaration" if op == "apply" else "set": value}, context=where)
+    elif op == "apply_transient":
+        label = m.fresh("t")
+        result = m.step(op, declaration=m.declaration(declaration), label=label, context=where)
+        m.keep_if_made("filter_ids", label, result)
+    elif op == "remove_declaration":
+        active = m.sequence.active.get(where or MODEL) or []
+        removed = active[pick % len(active)] if active else m.name("label", pick)
+        if removed is not None:
+            m.step(op, label=removed, context=where)
+    elif op == "set_default_context":
+        m.step(op, context=where)
+    else:  # assign_role, remove_role
+        geometry = m.name("geometry", pick)
+        role = "proximity" if pick & 1 else cs.ROLES[pick % len(cs.ROLES)]
+        m.step(op, geometry=geometry, role=role, context=where)
+    return None
+
+
+def _can_tour(m: Any) -> bool:
+    return bool(m.names["geometries"]) and m.contexts_made < _MAX_CONTEXTS
+
+
+#: The steering operation a guided machine adds (see the module doc), and its name.
+TOUR = "sequence_tour"
+SEQUENCE_TOUR = Operation(
+    sequence_tour,
+    (cs.declaration_templates(), cs.set_templates()),
+    enabled=_can_tour,
+    issues=frozenset({"create_context", "clone_context"}),
+)
+
+
+#: How many times its swarm weight ``sequence_tour`` weighs in a guided machine.
+TOUR_WEIGHT = 4
+
+
+def _weights(self: Any) -> dict[str, int]:
+    return dict(self.__dict__.get("_weights", {}))
+
+
+def _set_weights(self: Any, weights: dict[str, int]) -> None:
+    self.__dict__["_weights"] = {**weights, TOUR: weights.get(TOUR, 1) * TOUR_WEIGHT}
+
+
+def _switched_off(self: Any) -> frozenset[str]:
+    return frozenset(self.__dict__.get("_switched_off", frozenset()))
+
+
+def _set_switched_off(self: Any, names: frozenset[str]) -> None:
+    self.__dict__["_switched_off"] = names - {TOUR}
+
+
+def guided(base: type[LockstepMachine]) -> type[LockstepMachine]:
+    """A subclass of the machine class ``base`` that also runs ``sequence_tour``: never
+    switched off by the swarm draw, and ``TOUR_WEIGHT`` times its drawn weight."""
+    operations: Mapping[str, Operation] = base.OPERATIONS
+    return type(
+        f"Guided{base.__name__}",
+        (base,),
+        {
+            "OPERATIONS": {**operations, TOUR: SEQUENCE_TOUR},
+            "weights": property(_weights, _set_weights),
+            "switched_off": property(_switched_off, _set_switched_off),
+        },
+    )
