@@ -161,6 +161,10 @@ class SequenceBook:
     active: dict[str, list[str]] = field(default_factory=lambda: {MODEL: []})
     pairs: Counter[tuple[str, Relation, str]] = field(default_factory=Counter)
     triples: Counter[tuple[str, str, str]] = field(default_factory=Counter)
+    #: How many events the example has had.
+    events: int = 0
+    #: Geometries removed (``sequence_tour`` names live ones).
+    removed: set[str] = field(default_factory=set)
 
     def kind(self, location: str) -> str:
         if location == MODEL:
@@ -188,6 +192,8 @@ class SequenceBook:
         """Counts the pair and triple ``command`` ends, given the reference's ``result``."""
         if command.op in BREAKERS:
             self.last.clear()
+            if command.op == "remove_geometry" and result.error is None:
+                self.removed.add(str(command.args["geometry"]))
             return
         if command.op not in SEQUENCE_OPS:
             return
@@ -198,6 +204,7 @@ class SequenceBook:
             MODEL,
         )
         event = f"{command.op}@{self.kind(where)}"
+        self.events += 1
         if self.last:
             before, at = self.last[-1]
             self.pairs[(before, self.relation(at, where), event)] += 1

@@ -26,6 +26,14 @@ so that ``fuzz --seed S`` draws what it always drew: the findings already
 written name their command (``fuzz --seed S``), and a backend without the
 queries (an older Drake release in a worker, a mutant) still fuzzes the
 filters. A finding's file name starts with ``poses-``.
+
+``--coverage`` runs the campaign guided and prints what it reached:
+reimpl's lines and branches never run, by function
+(``conformance.fuzz.branch_coverage``, whose new branches each example
+feeds to ``hypothesis.target``), the pairs of consecutive located events
+(``conformance.fuzz.sequence_coverage``; the lockstep machines also get
+``sequence_tour``, ``conformance.fuzz.sequence_tour``), then the feature
+table. A guided campaign draws differently from the same seed without it.
 """
 
 from __future__ import annotations
