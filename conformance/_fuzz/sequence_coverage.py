@@ -163,8 +163,8 @@ class SequenceBook:
     triples: Counter[tuple[str, str, str]] = field(default_factory=Counter)
     #: How many events the example has had.
     events: int = 0
-    #: Geometries removed (``sequence_tour`` names live ones).
-    removed: set[str] = field(default_factory=set)
+    #: The frames and geometries each location has (``sequence_tour`` names only these).
+    names: dict[str, set[str]] = field(default_factory=lambda: {MODEL: {"world"}})
 
     def kind(self, location: str) -> str:
         if location == MODEL:
@@ -190,19 +190,19 @@ class SequenceBook:
 
     def follow(self, command: Command, result: Result) -> None:
         """Counts the pair and triple ``command`` ends, given the reference's ``result``."""
+        where = next(
+            (str(command.args[k]) for k in _location_keys(command.op) if k in command.args),
+            MODEL,
+        )
+        if result.error is None:
+            self._track(command, where)
         if command.op in BREAKERS:
             self.last.clear()
-            if command.op == "remove_geometry" and result.error is None:
-                self.removed.add(str(command.args["geometry"]))
             return
         if command.op not in SEQUENCE_OPS:
             return
         if result.error is not None and result.error.kind in UNKNOWN_KINDS:
             return
-        where = next(
-            (str(command.args[k]) for k in _location_keys(command.op) if k in command.args),
-            MODEL,
-        )
         event = f"{command.op}@{self.kind(where)}"
         self.events += 1
         if self.last:
@@ -211,8 +211,6 @@ class SequenceBook:
             if len(self.last) == 2:
                 self.triples[(self.last[0][0], before, event)] += 1
         self.last = [*self.last[-1:], (event, where)]
-        if result.error is None:
-            self._track(command, where)
 
     def _track(self, command: Command, where: str) -> None:
         args = command.args
@@ -220,8 +218,13 @@ class SequenceBook:
             name = str(args["name"])
             self.parent[name] = where
             self.active[name] = list(self.active.get(where, ())) if where != MODEL else []
+            self.names[name] = set(self.names.get(where, ()))
             if command.op == "clone_context":
                 self.clones.add(name)
+        elif command.op in ("register_frame", "register_geometry"):
+            self.names.setdefault(where, set()).add(str(args["name"]))
+        elif command.op == "remove_geometry":
+            self.names.setdefault(where, set()).discard(str(args["geometry"]))
         elif command.op == "apply_transient":
             self.active.setdefault(where, []).append(str(args["label"]))
         elif command.op == "remove_declaration":

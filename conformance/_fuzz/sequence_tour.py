@@ -191,12 +191,11 @@ def _issue(
     if op == "create_context":
         _made(m, "create_context")
     elif op in ("apply", "activate", "deactivate"):
-        template = declaration if op == "apply" else geometry_set
-        value = template.resolve(lambda p: _live(m, p), lambda p: m.name("any_frame", p))
+        value = _resolve(m, declaration if op == "apply" else geometry_set, where)
         m.step(op, **{"declaration" if op == "apply" else "set": value}, context=where)
     elif op == "apply_transient":
         label = m.fresh("t")
-        value = declaration.resolve(lambda p: _live(m, p), lambda p: m.name("any_frame", p))
+        value = _resolve(m, declaration, where)
         result = m.step(op, declaration=value, label=label, context=where)
         m.keep_if_made("filter_ids", label, result)
     elif op == "remove_declaration":
@@ -207,16 +206,26 @@ def _issue(
     elif op == "set_default_context":
         m.step(op, context=where)
     else:  # assign_role, remove_role
-        geometry = _live(m, pick)
+        geometry = _known(m, "geometries", where, pick)
         role = "proximity" if pick & 1 else cs.ROLES[pick % len(cs.ROLES)]
         m.step(op, geometry=geometry, role=role, context=where)
     return None
 
 
-def _live(m: _Tourist, pick: int) -> str | None:
-    """A geometry not removed, or None if none is left."""
-    live = [g for g in m.names["geometries"] if g not in m.sequence.removed]
-    return live[pick % len(live)] if live else None
+def _known(m: _Tourist, bundle: str, where: str | None, pick: int) -> str | None:
+    """A frame or geometry (``bundle``) that location ``where`` has, or None if none."""
+    there = m.sequence.names.get(where or MODEL, set())
+    known = [name for name in m.names[bundle] if name in there]
+    return known[pick % len(known)] if known else None
+
+
+def _resolve(
+    m: _Tourist, template: cs.DeclarationTemplate | cs.SetTemplate, where: str | None
+) -> dict[str, Any]:
+    """The template with names the location has (a name it lacks is no event)."""
+    return template.resolve(
+        lambda p: _known(m, "geometries", where, p), lambda p: _known(m, "frames", where, p)
+    )
 
 
 def _can_tour(m: Any) -> bool:
