@@ -76,6 +76,12 @@ def test_consecutive_events_count_as_pairs_with_the_relation_of_their_locations(
     # the registration of g3 ends the run: its apply starts a new one
     assert not any(b == "apply@context" for _, _, b in book.pairs)
     assert len(book.triples) == 8
+    # what each location has: c2 was made before g3, k1 lost g1's role but not g1
+    assert book.names["c2"] == {"world", "f1", "g1", "g2"}
+    assert book.names["model"] == {"world", "f1", "g1", "g2", "g3"}
+    assert book.names["k1"] == {"world", "f1", "g1", "g2"}
+    assert book.parent == {"c1": "model", "k1": "c1", "c2": "model"}
+    assert book.active == {"model": [], "c1": ["t1"], "k1": [], "c2": []}
     assert book.triples[("apply@model", "create_context@model", "assign_role@clone")] == 1
 
 

@@ -161,8 +161,9 @@ class SequenceBook:
     active: dict[str, list[str]] = field(default_factory=lambda: {MODEL: []})
     pairs: Counter[tuple[str, Relation, str]] = field(default_factory=Counter)
     triples: Counter[tuple[str, str, str]] = field(default_factory=Counter)
-    #: How many events the example has had.
+    #: How many events the example has had, and how many commands.
     events: int = 0
+    commands: int = 0
     #: The frames and geometries each location has (``sequence_tour`` names only these).
     names: dict[str, set[str]] = field(default_factory=lambda: {MODEL: {"world"}})
 
@@ -190,6 +191,7 @@ class SequenceBook:
 
     def follow(self, command: Command, result: Result) -> None:
         """Counts the pair and triple ``command`` ends, given the reference's ``result``."""
+        self.commands += 1
         where = next(
             (str(command.args[k]) for k in _location_keys(command.op) if k in command.args),
             MODEL,
