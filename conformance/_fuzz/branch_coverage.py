@@ -14,7 +14,8 @@ given to ``hypothesis.target`` under the label ``NEW_BRANCHES``. Hypothesis's
 branches, and keeps a mutation only where it finds more: coverage-guided
 search on top of the generator. Only a measuring campaign calls ``target``
 with it, so ``fuzz --seed S`` without ``--coverage`` draws what it always
-drew.
+drew; the model campaign measures without it unless asked
+(``ModelCampaign.branch_feedback``).
 
 Why this and not HypoFuzz or atheris (tried in May 2026 on this machine):
 HypoFuzz 25.11 is under its own non-commercial licence (no modification or

@@ -12,11 +12,20 @@ clone slot (the next events at a clone run in a fresh one); a clone of the
 clone does not (the next event at a clone is at the same location, as the
 pair's principal relation says).
 
-Drawn pairs alone would need thousands of tries to meet 676 pairs (a coupon
-collector); a run of 12 from a drawn point of the circuit needs about 330.
-A removal names a label active at its location where there is one
-(``SequenceBook.active``), a role op a drawn geometry; refusals for a reason
-of state (transient history, a role twice) are events too.
+Drawn pairs alone would need thousands of tries to meet 400 pairs (a coupon
+collector); a walk of 12 reaches 11 at once. Where a walk starts is a hash
+of its picks and of the example's command count (``_start``). Once the
+example has made ``_MAX_CONTEXTS`` contexts the walk skips the events that
+make one (the events either side of it become a pair), so it goes on for
+the whole example: Hypothesis's examples share long prefixes, and only
+walks after the point where two examples part differ. Every name a walk
+uses is one its location has (``SequenceBook.names``): a refusal for an
+unknown name is no event. A removal names a label active at its location
+where there is one (``SequenceBook.active``); refusals for a reason of state
+(transient history, a role twice) are events.
+
+Measured at seed 1 x 300, reimpl against pydrake 1.51.1: 400 of 400 pairs of
+the default campaign (87 of 400 in 100 examples without the walk).
 
 ``guided`` adds the walk to a machine class as the operation
 ``sequence_tour``. Only a guided campaign (``fuzz --coverage``) has it, so
