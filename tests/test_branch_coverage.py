@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from conformance.backends.loader import load_backend
+from conformance._backends.loader import load_backend
+from conformance._fuzz.branch_coverage import BranchCoverage, _ranges
+from conformance._fuzz.campaign import Campaign
 from conformance.cli.main import EXIT_OK, main
-from conformance.fuzz.branch_coverage import BranchCoverage, _ranges
-from conformance.fuzz.campaign import Campaign
 
 
 def test_a_filter_campaign_never_calls_the_parser_and_runs_the_collision_filter() -> None:

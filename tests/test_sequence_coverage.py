@@ -7,11 +7,11 @@ from collections import Counter
 
 import pytest
 
-from conformance.backends.loader import load_backend
-from conformance.fuzz.campaign import Campaign
-from conformance.fuzz.lockstep import LockstepMachine
-from conformance.fuzz.operations import issued_ops
-from conformance.fuzz.sequence_coverage import (
+from conformance._backends.loader import load_backend
+from conformance._fuzz.campaign import Campaign
+from conformance._fuzz.lockstep import LockstepMachine
+from conformance._fuzz.operations import issued_ops
+from conformance._fuzz.sequence_coverage import (
     PRINCIPAL,
     Relation,
     SequenceBook,
@@ -19,7 +19,7 @@ from conformance.fuzz.sequence_coverage import (
     expected_pairs,
     sequence_events,
 )
-from conformance.fuzz.sequence_tour import TOUR, guided, tour
+from conformance._fuzz.sequence_tour import TOUR, guided, tour
 from conformance.protocol import Command
 
 _EXCLUDE_G1_G2 = {"exclude_between": [{"geometries": ["g1"]}, {"geometries": ["g2"]}]}

@@ -1,6 +1,6 @@
 """Sequence coverage: which pairs and triples of consecutive located events a campaign ran.
 
-The feature table (``conformance.fuzz.coverage``) counts each event on its
+The feature table (``conformance._fuzz.coverage``) counts each event on its
 own, so it reads "reached" while the *combinations* never happen. Here an
 **event** is one command of the grammar's filter, context and role ops
 (``SEQUENCE_OPS``) with the kind of location it ran at (``op@kind``: the
@@ -30,7 +30,7 @@ reachable pair is ``expected_pairs``; ``SequenceCoverage.table`` lists the
 ones never reached. Pairs of other relations, and triples (three consecutive
 events, with both relations), are counted and reported as numbers.
 
-Steering towards the pairs never reached: ``conformance.fuzz.sequence_tour``.
+Steering towards the pairs never reached: ``conformance._fuzz.sequence_tour``.
 """
 
 from __future__ import annotations
@@ -42,8 +42,8 @@ from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
 
-from conformance.fuzz.coverage import EDITS, LocationKind, located_ops
-from conformance.grammar import GRAMMAR, ArgKind
+from conformance._fuzz.coverage import EDITS, LocationKind, located_ops
+from conformance._grammar import GRAMMAR, ArgKind
 from conformance.protocol import Command, ErrorKind, Result
 
 __all__ = [

@@ -1,6 +1,6 @@
 """Steering towards every pair of located events: ``sequence_tour``.
 
-A walk of consecutive events (``conformance.fuzz.sequence_coverage``) along
+A walk of consecutive events (``conformance._fuzz.sequence_coverage``) along
 an Euler circuit of the complete directed graph, loops included, on the
 campaign's events (``tour``): every ordered pair of events is two
 consecutive entries of the circuit, so a run of ``TOUR_LENGTH`` events from
@@ -39,10 +39,10 @@ from collections.abc import Mapping
 from functools import cache
 from typing import Any, ClassVar, Protocol
 
-from conformance.fuzz import strategies as cs
-from conformance.fuzz.lockstep import LockstepMachine
-from conformance.fuzz.operations import Operation
-from conformance.fuzz.sequence_coverage import (
+from conformance._fuzz import strategies as cs
+from conformance._fuzz.lockstep import LockstepMachine
+from conformance._fuzz.operations import Operation
+from conformance._fuzz.sequence_coverage import (
     CLONE,
     CONTEXT,
     MODEL,

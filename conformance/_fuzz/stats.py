@@ -86,7 +86,7 @@ class FuzzStats:
     shrink_seconds: float | None = None
     #: The state-space features reached (``conformance._fuzz.coverage``).
     coverage: Coverage = field(default_factory=Coverage)
-    #: Pairs and triples of consecutive located events (``conformance.fuzz.sequence_coverage``).
+    #: Pairs and triples of consecutive located events (``conformance._fuzz.sequence_coverage``).
     sequences: SequenceCoverage = field(default_factory=SequenceCoverage)
     on_step: Callable[[FuzzStats], None] | None = field(default=None, repr=False)
     #: Called with every new ``best`` at once (for writing the finding before shrinking ends).

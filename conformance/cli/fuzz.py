@@ -29,11 +29,11 @@ filters. A finding's file name starts with ``poses-``.
 
 ``--coverage`` runs the campaign guided and prints what it reached:
 reimpl's lines and branches never run, by function
-(``conformance.fuzz.branch_coverage``; each lockstep example feeds its new
+(``conformance._fuzz.branch_coverage``; each lockstep example feeds its new
 branches to ``hypothesis.target``, a model case does not, so that ``--models
 --coverage`` draws what ``--models`` draws), the pairs of consecutive located events
-(``conformance.fuzz.sequence_coverage``; the lockstep machines also get
-``sequence_tour``, ``conformance.fuzz.sequence_tour``), then the feature
+(``conformance._fuzz.sequence_coverage``; the lockstep machines also get
+``sequence_tour``, ``conformance._fuzz.sequence_tour``), then the feature
 table. A guided campaign draws differently from the same seed without it.
 """
 
