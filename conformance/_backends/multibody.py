@@ -400,7 +400,9 @@ class MultibodyCommands:
     def _filter_groups(self) -> dict[str, Any] | None:
         """The last Parser's group report for ``observe`` (None: no parse yet, or a
         release without GetCollisionFilterGroups, before 1.31)."""
-        if self.parser is None or not hasattr(self.parser, "GetCollisionFilterGroups"):
+        if self.parser is None or not fact_holds(
+            "filter-groups-report-since-1.31", self.api.version
+        ):
             return None
         return self._group_report(self.parser)
 
