@@ -231,6 +231,8 @@ def test_the_report_lists_the_1_52_filter_store_change_as_a_behaviour_change() -
             "what": "candidates at model (only in one side)",
             "from": [],
             "to": ["g0-g1"],
-            "differences": 3,
+            # 6 since observations carry CollisionFiltered samples and the inspector's counts
+            # (measured on 1.51.1 and 1.52.0 workers; 3 before).
+            "differences": 6,
         }
     ]
