@@ -175,7 +175,7 @@ def test_a_bounded_posed_campaign_of_reimpl_against_pydrake_issues_every_query_a
         backend=lambda: REIMPL,
         reference=lambda: PYDRAKE,
         seed=1,
-        max_examples=60,
+        max_examples=100,
         machine_base=_Recording,
     )
     result = campaign.run()
