@@ -350,6 +350,14 @@ class MutantSceneGraph(SceneGraph):
             return super().model_inspector()
         return cast(SceneGraphInspector, super().get_query_output_port().Eval(context).inspector())
 
+    def remove_role_noting_unroled(self, context: Context | None, *args: Any, **kwargs: Any) -> int:
+        """The real RemoveRole; the proximity ids it unroled join ``memory_of(context).ids``."""
+        before = set(self.real_inspector(context).GetAllGeometryIds(role=Role.kProximity))
+        count = super().RemoveRole(*args, **kwargs)
+        after = set(self.real_inspector(context).GetAllGeometryIds(role=Role.kProximity))
+        self.memory_of(context).ids |= before - after
+        return count
+
     def real_manager(self, context: Context | None) -> CollisionFilterManager:
         if context is None:
             return super().collision_filter_manager()

@@ -77,12 +77,7 @@ class FrameRoleCountKeepsRemoved(MutantSceneGraph):
 
     def RemoveRole(self, *args: Any, **kwargs: Any) -> int:
         context = _context_of(args, kwargs)
-        inspector = self.real_inspector(context)
-        before = set(inspector.GetAllGeometryIds(role=Role.kProximity))
-        count = super().RemoveRole(*args, **kwargs)
-        after = set(self.real_inspector(context).GetAllGeometryIds(role=Role.kProximity))
-        self.memory_of(context).ids |= before - after
-        return count
+        return self.remove_role_noting_unroled(context, *args, **kwargs)
 
     def AssignRole(self, *args: Any, **kwargs: Any) -> None:
         context = _context_of(args, kwargs)
