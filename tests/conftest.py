@@ -5,7 +5,13 @@ from __future__ import annotations
 import builtins
 import os
 from collections.abc import Iterable
+from importlib.metadata import version
 from typing import Any
+
+# reimpl follows the installed pydrake's release in the tests (unless the variable says
+# otherwise), so each test compares the two at one release: 1.51.1 under Python 3.11,
+# the newest Drake in CI's Python 3.12 step. It is read when reimpl is first imported.
+os.environ.setdefault("REIMPL_DRAKE_RELEASE", version("drake"))
 
 import pytest
 from hypothesis import settings

@@ -17,6 +17,7 @@ from typing import Any
 import pytest
 
 from conformance._policy.versions import version_in_range
+from reimpl._release import release as reimpl_release
 
 __all__ = [
     "INVALID_DIRECTIVES",
@@ -35,8 +36,10 @@ INVALID_DIRECTIVES = (
 
 
 def follows_1_51(drake: ModuleType) -> bool:
-    """reimpl follows Drake 1.51.1; pydrake is the installed release."""
-    return drake.__name__ == "reimpl" or version_in_range(version("drake"), "1.51", "1.51")
+    """Whether the implementation is Drake 1.51: reimpl's release (REIMPL_DRAKE_RELEASE,
+    which tests/conftest.py sets to the installed pydrake's), or the installed pydrake."""
+    followed = reimpl_release.version if drake.__name__ == "reimpl" else version("drake")
+    return version_in_range(followed, "1.51", "1.51")
 
 
 @contextmanager
