@@ -31,7 +31,7 @@ The cache is ``$DRAKE_FILTER_CONFORMANCE_CACHE``, else
 
 The worker imports only this harness's pure-Python modules plus the
 release's pydrake: the harness reaches it through a folder that links to the
-``conformance`` package and the corpus alone (``harness_path``), so nothing
+``conformance`` package alone (``harness_path``), so nothing
 else of this environment (its own pydrake included) can leak in.
 """
 
@@ -44,7 +44,6 @@ import shutil
 import subprocess
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 
 import conformance
@@ -248,19 +247,16 @@ def _install(
 
 
 def harness_path(cache: Path | None = None) -> Path:
-    """A folder holding only links to this harness's ``conformance`` package and its corpus
-    ``scenarios`` (a mesh command names a file below it), for PYTHONPATH."""
+    """A folder holding only a link to this harness's ``conformance`` package, for PYTHONPATH
+    (the worker finds the corpus beside the package the link resolves to, as
+    ``conformance._corpus_root`` says: a mesh command names a file below it)."""
     package = Path(conformance.__file__).resolve().parent
     folder = (cache or cache_dir()) / "harness" / _slug(str(package))
-    for name, target in (
-        ("conformance", package),
-        ("scenarios", Path(str(resources.files("scenarios")))),
-    ):
-        link = folder / name
-        if not link.is_symlink() or link.resolve() != target.resolve():
-            folder.mkdir(parents=True, exist_ok=True)
-            link.unlink(missing_ok=True)
-            link.symlink_to(target.resolve(), target_is_directory=True)
+    link = folder / "conformance"
+    if not link.is_symlink() or link.resolve() != package:
+        folder.mkdir(parents=True, exist_ok=True)
+        link.unlink(missing_ok=True)
+        link.symlink_to(package, target_is_directory=True)
     return folder
 
 

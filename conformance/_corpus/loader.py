@@ -28,7 +28,6 @@ import os
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
-from importlib import resources
 from itertools import chain
 from pathlib import Path
 from typing import Any
@@ -42,6 +41,7 @@ from conformance._corpus.documents import (
     clip,
     read_document,
 )
+from conformance._corpus_root import corpus_root
 from conformance._grammar import ArgKind, declared_names, features_of, referenced_names, spec
 from conformance._grammar.schema import SCHEMA_FILE as SCENARIO_SCHEMA
 from conformance._grammar.schema import scenario_schema
@@ -150,8 +150,8 @@ def _validator() -> jsonschema.protocols.Validator:
 
 
 def default_corpus_root() -> Path:
-    """The embedded default corpus (the ``scenarios`` package's directory)."""
-    return Path(str(resources.files("scenarios")))
+    """The embedded default corpus: the clone's ``scenarios/`` or the wheel's (``corpus_root``)."""
+    return corpus_root()
 
 
 def _json_path(parts: Iterable[object], whole: str = "(top level)") -> str:

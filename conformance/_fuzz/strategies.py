@@ -44,12 +44,11 @@ import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cache, partial
-from importlib import resources
-from pathlib import Path
 from typing import Any
 
 from hypothesis import strategies as st
 
+from conformance._corpus_root import corpus_root
 from conformance.protocol import Command
 
 __all__ = [
@@ -417,7 +416,7 @@ _SUPPORT: dict[str, Callable[[dict[str, Any], Vector], Vector]] = {
 @cache
 def _mesh_points(path: str) -> tuple[Vector, ...]:
     """The vertices of a corpus mesh file (``v`` lines of an .obj, POINTS of a legacy .vtk)."""
-    lines = (Path(str(resources.files("scenarios"))) / path).read_text().splitlines()
+    lines = (corpus_root() / path).read_text().splitlines()
     if path.endswith(".obj"):
         rows = [line.split()[1:4] for line in lines if line.startswith("v ")]
     else:

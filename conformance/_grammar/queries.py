@@ -36,10 +36,10 @@ the order it was given.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from conformance._corpus_root import corpus_root
 from conformance._grammar.spec import Arg, ArgKind, CommandSpec, Comparison
 
 __all__ = [
@@ -71,7 +71,7 @@ MESH_SHAPES: Mapping[str, str] = {"mesh": "Mesh", "convex": "Convex"}
 def mesh_root() -> Path:
     """The folder a mesh shape's ``path`` is below: the corpus, ``scenarios/`` (looked up
     when a mesh is made, so a worker without the corpus still starts)."""
-    return Path(str(resources.files("scenarios")))
+    return corpus_root()
 
 
 #: The shape type of each class name (how query results name a geometry's shape).

@@ -18,10 +18,10 @@ from __future__ import annotations
 
 import json
 from functools import cache
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from conformance._corpus_root import corpus_root
 from conformance._grammar import GRAMMAR, CommandSpec
 from conformance._grammar.queries import DEFINITIONS
 from conformance.protocol import ErrorKind
@@ -42,8 +42,8 @@ _COMMON = {"op": True, "comment": True, "expect": True}
 
 
 def schema_path() -> Path:
-    """The published schema file, in the embedded corpus (the ``scenarios`` package)."""
-    return Path(str(resources.files("scenarios").joinpath(SCHEMA_FILE)))
+    """The published schema file, in the embedded corpus (``_corpus_root.corpus_root``)."""
+    return corpus_root() / SCHEMA_FILE
 
 
 def _rule(command: CommandSpec) -> dict[str, Any]:

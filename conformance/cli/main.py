@@ -24,6 +24,7 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any, TextIO
 
+from conformance._corpus_root import is_installed, package_folder
 from conformance._fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
 from conformance._fuzz.regression import DEFAULT_REGRESSIONS
 from conformance._grammar.schema import scenario_schema, write_schema
@@ -63,8 +64,9 @@ def _parser() -> argparse.ArgumentParser:
     schema.add_argument(
         "--write",
         action="store_true",
-        help="write it to scenarios/scenario.schema.json, and the worker protocol's Command "
-        "schema (generated from it) to conformance/protocol_schemas/command.json",
+        help="in a clone: write it to scenarios/scenario.schema.json, and the worker "
+        "protocol's Command schema (generated from it) to "
+        "conformance/protocol_schemas/command.json (an installed package refuses, exit 2)",
     )
     return parser
 
@@ -194,6 +196,13 @@ def main(
 
 
 def _schema(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
+    if args.write and is_installed():
+        err.write(
+            "error: schema --write writes the schema files of a clone (scenarios/, "
+            f"conformance/protocol_schemas/); this conformance is installed in {package_folder()}"
+            ", not a clone: print the schema with `schema` instead\n"
+        )
+        return EXIT_USAGE
     if args.write:
         out.write(f"wrote {write_schema()}\n")
         out.write(f"wrote {write_command_schema()}\n")
