@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import builtins
 import os
+import shutil
+import tempfile
 from collections.abc import Iterable
 from importlib.metadata import version
+from pathlib import Path
 from typing import Any
 
 # reimpl follows the installed pydrake's release in the tests (unless the variable says
@@ -16,11 +19,44 @@ os.environ.setdefault("REIMPL_DRAKE_RELEASE", version("drake"))
 import pytest
 from hypothesis import settings
 
+from conformance._backends.environments import CACHE_VARIABLE, ENV_PATH_VARIABLE, cache_dir
 from conformance._backends.pydrake_api import pydrake_api
 from conformance._backends.reimpl_api import reimpl_api
 from conformance._backends.scene_graph import Api
 
 IMPLEMENTATIONS = ("reimpl", "pydrake")
+
+#: Names the developer's own cache while the tests point the cache at a temporary folder.
+REAL_CACHE_VARIABLE = "DRAKE_FILTER_CONFORMANCE_TESTS_REAL_CACHE"
+
+
+def _temporary_cache() -> Path | None:
+    """Tests write caches only under a temporary folder: the cache (environments built,
+    harness links, the release index) is a fresh folder for the whole run, shared by the
+    xdist workers (they inherit this process's environment, so it is made once). The
+    developer's environments are still used, read-only (``ENV_PATH_VARIABLE``: never
+    stamped or built into), and its release index is copied. Returns the folder made here."""
+    if REAL_CACHE_VARIABLE in os.environ:  # an xdist worker, or a run inside a test
+        return None
+    real = cache_dir()
+    folder = Path(tempfile.mkdtemp(prefix="drake-filter-conformance-tests-"))
+    if (real / "drake-releases.json").is_file():
+        shutil.copy2(real / "drake-releases.json", folder / "drake-releases.json")
+    shared = [str(real), *filter(None, os.environ.get(ENV_PATH_VARIABLE, "").split(os.pathsep))]
+    os.environ[REAL_CACHE_VARIABLE] = str(real)
+    os.environ[CACHE_VARIABLE] = str(folder)
+    os.environ[ENV_PATH_VARIABLE] = os.pathsep.join(shared)
+    return folder
+
+
+_CACHE_MADE_HERE = _temporary_cache()
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    """Removes the temporary cache when the run that made it ends."""
+    if _CACHE_MADE_HERE is not None:
+        shutil.rmtree(_CACHE_MADE_HERE, ignore_errors=True)
+
 
 # The test suite searches deterministically, so a fresh clone's CI sees the examples
 # the developer saw (a random search once failed CI on a strategy bug no local run

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from conformance._backends.environments import cache_dir
+from conformance._backends.env_cache import missing_releases
 from conformance._backends.loader import load_backend
 from conformance._backends.releases import ReleaseSpecError, expand, releases_between
 from conformance._corpus.loader import Case, load_corpus
@@ -39,7 +39,8 @@ def _case(name: str) -> Case:
 
 
 def _cached(version: str) -> bool:
-    return any(cache_dir().glob(f"drake-{version}-py*/.complete"))
+    """Whether an environment for ``version`` is built (the tests' cache, or the real one)."""
+    return not missing_releases([version])
 
 
 # ------------------------------------------------------------------ release specs

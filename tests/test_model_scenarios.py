@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from conformance._backends.environments import cache_dir
+from conformance._backends.env_cache import missing_releases
 from conformance._backends.loader import load_backend
 from conformance._backends.multibody import JOINT_CLASSES
 from conformance._backends.scene_graph import SceneGraphBackend
@@ -300,7 +300,8 @@ def test_a_model_error_the_case_expects_is_a_conformance_check(tmp_path: Path) -
 
 # --------------------------------------------------------- other releases
 def _cached(version: str) -> bool:
-    return any(cache_dir().glob(f"drake-{version}-py*/.complete"))
+    """Whether an environment for ``version`` is built (the tests' cache, or the real one)."""
+    return not missing_releases([version])
 
 
 def _case(description: str) -> Case:

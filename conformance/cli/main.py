@@ -29,6 +29,7 @@ from conformance._fuzz.campaign import BATCH_EXAMPLES, DEFAULT_STEPS
 from conformance._fuzz.regression import DEFAULT_REGRESSIONS
 from conformance._grammar.schema import scenario_schema, write_schema
 from conformance.cli.bisect import add_bisect_parser, bisect_command
+from conformance.cli.cache import add_cache_parser, cache_command
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.fuzz import fuzz_command
 from conformance.cli.legacy_diff import add_legacy_diff_parser, legacy_diff_command
@@ -58,6 +59,7 @@ def _parser() -> argparse.ArgumentParser:
     add_bisect_parser(commands)
     add_legacy_diff_parser(commands)
     add_models_parser(commands)
+    add_cache_parser(commands)
     schema = commands.add_parser(
         "schema", help="print the scenario schema (its step rules come from the grammar)"
     )
@@ -219,6 +221,7 @@ _COMMANDS: dict[str, Callable[[argparse.Namespace, TextIO, TextIO], int]] = {
     "bisect": bisect_command,
     "legacy-diff": legacy_diff_command,
     "models": models_command,
+    "cache": cache_command,
     "schema": _schema,
 }
 

@@ -22,6 +22,7 @@ import time
 from pathlib import Path
 from typing import TextIO
 
+from conformance._backends.env_cache import disk_note
 from conformance._backends.releases import ReleaseSpecError, expand
 from conformance._corpus.loader import ScenarioError
 from conformance._run.matrix import MATRIX_ORDER, Matrix, ReleaseRun, label, run_matrix
@@ -129,6 +130,8 @@ def matrix_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         err.write(f"error: {exc}\n")
         return EXIT_USAGE
     progress = _Progress(err, quiet=args.quiet)
+    if note := disk_note(versions):  # written even with -q
+        err.write(f"matrix: {note}\n")
     progress.write(
         f"matrix: {len(cases)} cases on {len(versions)} release(s) and "
         f"{len(args.columns)} implementation(s) ({', '.join([*versions, *args.columns])}), "
