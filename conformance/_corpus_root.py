@@ -3,7 +3,9 @@
 The repository keeps the corpus at its top, ``scenarios/``. The wheel ships it
 inside the package namespace, as ``conformance/_scenarios`` (pyproject.toml's
 ``package-dir`` maps ``conformance._scenarios`` to ``scenarios``), so an
-install adds no top-level ``scenarios`` package. ``corpus_root`` looks for the
+install adds no top-level ``scenarios`` package. The examples (the backend
+skeleton ``new-backend`` writes) ship the same way, ``conformance/_examples``
+from ``examples/`` (``examples_root``). ``corpus_root`` looks for the
 installed folder first, then for the clone's, each beside the real (resolved)
 ``conformance`` package, so a worker that reaches the package through a
 symbolic link (``environments.harness_path``) finds the same corpus.
@@ -16,7 +18,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["INSTALLED_NAME", "corpus_root", "is_installed", "package_folder"]
+__all__ = ["INSTALLED_NAME", "corpus_root", "examples_root", "is_installed", "package_folder"]
 
 #: The corpus's folder inside an installed ``conformance`` package.
 INSTALLED_NAME = "_scenarios"
@@ -38,6 +40,17 @@ def corpus_root() -> Path:
     raise FileNotFoundError(
         f"the scenario corpus is neither in {package / INSTALLED_NAME} (an installed wheel) "
         f"nor in {package.parent / 'scenarios'} (a clone)"
+    )
+
+
+def examples_root() -> Path:
+    """``conformance/_examples`` when installed from a wheel, else the clone's ``examples/``."""
+    package = _package()
+    for candidate in (package / "_examples", package.parent / "examples"):
+        if (candidate / "my_backend.py").is_file():
+            return candidate
+    raise FileNotFoundError(
+        f"the examples are neither in {package / '_examples'} nor in {package.parent / 'examples'}"
     )
 
 

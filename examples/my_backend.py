@@ -1,6 +1,8 @@
 """A skeleton backend: copy this file and put your implementation behind it.
 
-Run it against real Drake from the folder that holds ``examples/``::
+``python -m conformance new-backend DIR`` writes a copy to ``DIR/my_backend.py``
+(from an installed package too) and prints the command that runs it. Run it
+against real Drake from the folder that holds its folder, here ``examples/``::
 
     python -m conformance run --backend examples.my_backend:MyBackend --backend pydrake
     python -m conformance fuzz --backend examples.my_backend:MyBackend --against pydrake

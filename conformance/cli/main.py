@@ -35,6 +35,7 @@ from conformance.cli.fuzz import fuzz_command
 from conformance.cli.legacy_diff import add_legacy_diff_parser, legacy_diff_command
 from conformance.cli.matrix import add_matrix_parser, matrix_command
 from conformance.cli.models import add_models_parser, models_command
+from conformance.cli.new_backend import add_new_backend_parser, new_backend_command
 from conformance.cli.options import add_backend_options, seconds
 from conformance.cli.run import PROG, add_run_parser, run_command
 from conformance.protocol_schemas import write_command_schema
@@ -60,6 +61,7 @@ def _parser() -> argparse.ArgumentParser:
     add_legacy_diff_parser(commands)
     add_models_parser(commands)
     add_cache_parser(commands)
+    add_new_backend_parser(commands)
     schema = commands.add_parser(
         "schema", help="print the scenario schema (its step rules come from the grammar)"
     )
@@ -222,6 +224,7 @@ _COMMANDS: dict[str, Callable[[argparse.Namespace, TextIO, TextIO], int]] = {
     "legacy-diff": legacy_diff_command,
     "models": models_command,
     "cache": cache_command,
+    "new-backend": new_backend_command,
     "schema": _schema,
 }
 
