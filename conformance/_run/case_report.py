@@ -75,6 +75,8 @@ class CaseReport:
     traces: dict[str, Track] = field(default_factory=dict, repr=False)
     #: The engine's steps, every backend's answers side by side (None: the case never ran).
     trace: Trace | None = field(default=None, repr=False)
+    #: What Drake (or reimpl) logged while the case ran (``drake_log``), not shown on stderr.
+    log: list[str] = field(default_factory=list, repr=False)
 
     @property
     def passed(self) -> bool:

@@ -84,6 +84,9 @@ class RunReport:
                 out.write(line + "\n")
             if case.aborted is not None:
                 out.write(f"  {case.aborted}\n")
+            if case.log:
+                out.write("  Drake's log during the case:\n")
+                out.writelines(f"    {line}\n" for line in case.log)
             rerun = [
                 *prog.split(),
                 "run",

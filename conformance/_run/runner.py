@@ -53,6 +53,7 @@ from conformance._engine import (
 from conformance._grammar import spec
 from conformance._policy.divergences import KnownDivergence
 from conformance._run.case_report import CaseReport, Failure
+from conformance._run.drake_log import drake_log_of_case
 from conformance._run.expectations import applies, check
 from conformance._run.verdict import DRAKE_NAMES, judge
 from conformance.protocol import (
@@ -155,15 +156,16 @@ def run_case(
     engine = Engine(
         active, ref.name, step_timeout=step_timeout, crash_isolated=True, on_answer=answered
     )  # one engine per case: its guards are those of this case's backends
-    engine.reset()
     try:
-        for record in engine.run(_plans(case)):
-            step = case.steps[record.index]
-            for backend in active:
-                if backend.name in record.results:
-                    report.failures.extend(
-                        _expectation_failures(step, record.index, backend, record)
-                    )
+        with drake_log_of_case() as report.log:
+            engine.reset()
+            for record in engine.run(_plans(case)):
+                step = case.steps[record.index]
+                for backend in active:
+                    if backend.name in record.results:
+                        report.failures.extend(
+                            _expectation_failures(step, record.index, backend, record)
+                        )
     except UnknownNameError as exc:
         where = f"{exc.where}: " if exc.where else ""
         report.aborted = f"{where}{exc} (the case names something no earlier step made)"

@@ -71,6 +71,14 @@ def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignor
         timeout="is a timeout",
         quiet="no per-case progress lines",
     )
+    run.add_argument(
+        "-v",
+        "--verbose",
+        action="store_true",
+        help="under each case, what Drake logged (WARNING:drake lines) and the stderr of a "
+        "worker that crashed as its release is known to; otherwise they are shown only in "
+        "the report of a case that fails",
+    )
 
 
 def load_backends(
@@ -238,10 +246,14 @@ def run_cases(
                 bad_models_are_input_errors=bad_models_are_input_errors,
             )
             report.cases.append(case_report)
+            verbose = getattr(args, "verbose", False)
             if not args.quiet:
                 _progress(err, index, len(cases), case.qualified_name, case_report.status)
+            if verbose:
+                err.writelines(f"    {line}\n" for line in case_report.log)
             if case_report.aborted is not None and case_report.recoverable:
-                err.write(f"    {case_report.aborted}\n    (a new worker takes over)\n")
+                if verbose or not case_report.passed:  # an expected crash says nothing
+                    err.write(f"    {case_report.aborted}\n    (a new worker takes over)\n")
             elif case_report.aborted is not None and keep_going:
                 err.write(f"error: {case.qualified_name}: {case_report.aborted}\n")
                 code = EXIT_USAGE
