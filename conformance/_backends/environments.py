@@ -26,9 +26,11 @@ reuse it, and each use touches its ``.last-used`` stamp (``cache list`` and
 ``cache prune`` read it: ``env_cache``). It builds with ``uv`` (a declared
 dependency: ``uv venv``, ``uv pip install``; uv's cache hard-links the files
 environments share, so a second release costs the disk of what differs), and
-with ``venv`` and ``pip`` if uv is missing, saying so. Measured for Drake
-1.48.0 and 1.49.0 on Python 3.11: pip 47 s and 29 s, 416 + 420 MB; uv 4.2 s
-and 3.3 s, 568 MB for both together with uv's cache. It holds a
+with ``venv`` and ``pip`` if uv is missing, saying so. Measured on Python 3.11,
+cold caches, two releases each: by hand, Drake 1.48.0 and 1.49.0: pip 47 s and
+29 s, 416 + 420 MB; uv 4.2 s and 3.3 s, 568 MB for both with uv's cache.
+Through ``ensure_environment`` (a busier machine), 1.46.0 and 1.47.0: pip 66 s
+and 85 s, 829 MB; uv 16 s and 11 s, 518 MB for both with uv's cache. It holds a
 lock file (``<env>.lock``, ``fcntl.flock``) while it checks and builds, so
 processes that want the same environment at once (pytest-xdist workers, a
 matrix's jobs) wait for one build instead of removing it under each other.
