@@ -18,6 +18,7 @@ from pathlib import Path
 
 import pytest
 
+from conformance._backends.env_cache import missing_releases
 from conformance._corpus.loader import default_corpus_root
 from conformance._run.drake_log import DRAKE_LOGGER, drake_log_of_case
 
@@ -86,3 +87,26 @@ def test_a_thread_that_does_not_capture_logs_as_before(caplog: pytest.LogCapture
     assert all(type(h).__name__ != "_CaseHandler" for h in logger.handlers)
     logger.warning("after")
     assert [r.getMessage() for r in caplog.records][-1] == "after"
+
+
+@pytest.mark.skipif(
+    bool(missing_releases(["1.30.0"])), reason="no cached environment for Drake 1.30.0"
+)
+def test_a_worker_crash_its_release_is_known_for_is_shown_only_with_v() -> None:
+    """Drake 1.30.0 aborts on an undefined ignored group (release fact
+    undefined-ignored-group-aborts): the case passes, its worker's last words are kept."""
+    models = default_corpus_root() / "models" / "model_errors.json"
+    case = "ignoring an undefined group is an error naming the scoped group"
+    args = (str(models), "--case", case, "--backend", "drake==1.30.0", "--backend", "pydrake")
+    quiet = _run(*args, "-q")
+    assert quiet.returncode == 0, quiet.stderr
+    assert quiet.stderr == ""
+    verbose = _run(*args, "-v")
+    assert verbose.returncode == 0, verbose.stderr
+    assert verbose.stderr.splitlines()[1:] == [
+        "    backend 'drake==1.30.0' at step 1 (add_models): the worker killed by SIGABRT; "
+        "its stderr ends:",
+        "terminate called after throwing an instance of 'std::runtime_error'",
+        "  what():  error: collision filter group with name 'r::nope' not found",
+        "    (a new worker takes over)",
+    ]
