@@ -49,8 +49,9 @@ def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignor
         action="append",
         dest="backends",
         metavar="SPEC",
-        help="reimpl, pydrake, drake==X.Y.Z, exec:'CMD ARGS' (a program that speaks "
-        "docs/protocol.md), or package.module:attribute (repeatable; default: reimpl and pydrake)",
+        help="reimpl, reimpl==X.Y.Z (reimpl as that release), pydrake, drake==X.Y.Z, "
+        "exec:'CMD ARGS' (a program that speaks docs/protocol.md), or package.module:attribute "
+        "(repeatable; default: reimpl and pydrake)",
     )
     run.add_argument(
         "--reference",
