@@ -198,6 +198,7 @@ def test_models_exits_zero_when_the_backends_agree_on_every_file(tmp_path: Path)
     ]
     assert sorted(p.name for p in (tmp_path / "report").iterdir()) == [
         "heatmap.png",
+        "report.html",
         "report.json",
         "report.md",
     ]

@@ -1,5 +1,9 @@
 """``report.html``: one self-contained page a person reads, for ``run``, ``matrix`` and ``models``.
 
+``run`` (``write_run_html``) has a column per backend, each compared with
+the reference; ``matrix`` a column per release, each compared with the one
+before; ``models`` either (``report_rows`` names each column's baseline).
+
 One file, no network, no external assets: inline CSS, no script; what opens
 and closes is a ``<details>`` element. The page holds:
 
@@ -31,9 +35,19 @@ from pathlib import Path
 from typing import Any
 
 from conformance._run.matrix import Matrix
-from conformance._run.report_rows import Row, RowCell, Sections, Step, rows, sections
+from conformance._run.report import RunReport
+from conformance._run.report_rows import (
+    Row,
+    RowCell,
+    Sections,
+    Step,
+    matrix_of_run,
+    reference_baselines,
+    rows,
+    sections,
+)
 
-__all__ = ["KINDS", "html_report", "write_html"]
+__all__ = ["KINDS", "html_report", "write_html", "write_run_html"]
 
 #: Each kind of cell: (symbol, words, background, text colour, border).
 KINDS: dict[str, tuple[str, str, str, str, str]] = {
@@ -192,7 +206,9 @@ def _alike_html(alike: Sequence[Row], columns: int) -> str:
     split = ", ".join(
         f"{n} {KINDS[k][1]}" for k, n in sorted(by_kind.items(), key=lambda kn: -kn[1])
     )
-    everywhere = f"on all {columns} columns" if columns > 1 else "on the one column"
+    everywhere = {1: "on the one column", 2: "on both columns"}.get(
+        columns, f"on all {columns} columns"
+    )
     items = "\n".join(
         f'<tr class="row alike" data-case="{_e(row.case)}">{_case_html(row.case)}'
         + (_cell_html(row.cells[0]) if row.cells else "<td></td>")
@@ -325,3 +341,25 @@ def write_html(
         encoding="utf-8",
     )
     return path
+
+
+def write_run_html(report: RunReport, path: Path) -> Path:
+    """``run``'s page: a column per backend, each compared with the reference."""
+    matrix = matrix_of_run(report)
+    reference = report.reference or (matrix.versions[0] if matrix.versions else "")
+    backends = ", ".join(
+        f"{b.name} {b.version()}" + (" (reference)" if b.name == reference else "")
+        for b in report.backends
+    )
+    notes = [f"Backends: {backends}."]
+    if report.aborted is not None:
+        notes.append(f"The run stopped early ({report.aborted}): only the cases run are shown.")
+    notes += [f"Left out as malformed: {message}" for message in report.input_errors]
+    return write_html(
+        matrix,
+        reference_baselines(matrix, reference),
+        path,
+        title="Conformance run",
+        baseline=f"the reference, {reference}",
+        notes=notes,
+    )

@@ -222,9 +222,10 @@ def _run_cell(case: CaseReport, backend: str) -> Cell:
 
 
 def matrix_of_run(report: RunReport) -> Matrix:
-    """A ``run``'s report as a matrix: a column per backend, its cell of each case as the
-    release matrix would give it (``outcome_of``), and its answers."""
+    """A ``run``'s report as a matrix: a column per backend (the reference first), its cell
+    of each case as the release matrix would give it (``outcome_of``), and its answers."""
     names = [b.name for b in report.backends]
+    names.sort(key=lambda name: name != report.reference)  # the reference first
     matrix = Matrix(
         names,
         [c.case.qualified_name for c in report.cases],
