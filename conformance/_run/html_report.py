@@ -66,6 +66,8 @@ KINDS: dict[str, tuple[str, str, str, str, str]] = {
 
 #: A cell's reason is cut to this many characters (its title holds it whole).
 _WHY = 72
+#: An answer's JSON longer than this is laid out an entry per line.
+_LINE = 90
 #: Answers longer than this are cut (the JSON report holds them whole).
 _LONGEST = 4000
 
@@ -128,8 +130,21 @@ def _why(cell: RowCell) -> str:
     return text if len(text) <= _WHY else text[: _WHY - 1] + "…"
 
 
+def _layout(value: Any, indent: str = "") -> str:
+    """JSON on one line if short, else one entry per line (each laid out the same way)."""
+    compact = json.dumps(value, ensure_ascii=False)
+    if len(compact) <= _LINE or not isinstance(value, list | dict) or not value:
+        return compact
+    inner = indent + "  "
+    if isinstance(value, list):
+        entries = [inner + _layout(v, inner) for v in value]
+        return "[\n" + ",\n".join(entries) + f"\n{indent}]"
+    entries = [f"{inner}{json.dumps(str(k))}: {_layout(v, inner)}" for k, v in value.items()]
+    return "{\n" + ",\n".join(entries) + f"\n{indent}}}"
+
+
 def _answer(value: Any) -> str:
-    text = value if isinstance(value, str) else json.dumps(value, ensure_ascii=False)
+    text = value if isinstance(value, str) else _layout(value)
     if len(text) > _LONGEST:
         text = text[:_LONGEST] + f"… ({len(text) - _LONGEST} more characters)"
     return f"<pre>{_e(text)}</pre>"
