@@ -193,23 +193,24 @@ def models_markdown(
 
 
 def write_models_report(
-    matrix: Matrix, cases: Sequence[Case], found: Sequence[Comparison], folder: Path, *, title: str
+    matrix: Matrix,
+    cases: Sequence[Case],
+    found: Sequence[Comparison],
+    folder: Path,
+    *,
+    title: str,
+    reference: str | None = None,
 ) -> list[Path]:
     """Writes report.json, report.md, report.html and heatmap.png to ``folder``; returns
-    their paths. The page and the picture compare the columns as ``found`` does (each
-    release with the one before, or each implementation with the reference)."""
+    their paths. The page and the picture compare the columns as ``found`` does: each
+    implementation with the ``reference``, or (None) each release with the one before."""
     folder.mkdir(parents=True, exist_ok=True)
     json_path, md_path = folder / "report.json", folder / "report.md"
     document = models_json(matrix, cases, found)
     json_path.write_text(json.dumps(document, indent=2, ensure_ascii=False) + "\n")
     md_path.write_text(models_markdown(matrix, cases, found, title=title) + "\n")
     against = {c.newer: c.older for c in found if c.older in matrix.runs}
-    olders = sorted({c.older for c in found if c.older in matrix.runs})
-    baseline = (
-        f"the reference, {olders[0]}"
-        if len(olders) == 1 and len(against) > 1
-        else "the column before it"
-    )
+    baseline = "the release before it" if reference is None else f"the reference, {reference}"
     page = write_html(matrix, against, folder / "report.html", title=title, baseline=baseline)
     return [json_path, md_path, page, write_heatmap(matrix, folder / "heatmap.png", against)]
 

@@ -288,7 +288,7 @@ def models_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     _print(out, [*found, *checked], files, releases=bool(args.drake))
     if args.report is not None:
         for path in write_models_report(
-            matrix, cases, [*found, *checked], args.report, title=title
+            matrix, cases, [*found, *checked], args.report, title=title, reference=reference
         ):
             out.write(f"wrote {path}\n")
     code = _exit_code(args, matrix, found, checked, err)
