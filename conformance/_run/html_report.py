@@ -64,6 +64,8 @@ KINDS: dict[str, tuple[str, str, str, str, str]] = {
     "missing": ("·", "not run", "#ffffff", "#999999", "1px dotted #bbbbbb"),
 }
 
+#: With more columns than this, a cell shows its symbol only (its words in its title).
+_WIDE = 8
 #: A cell's reason is cut to this many characters (its title holds it whole).
 _WHY = 72
 #: An answer's JSON longer than this is laid out an entry per line.
@@ -102,6 +104,9 @@ border-radius:4px;min-width:16em;max-width:26em}}
 pre{{margin:0;white-space:pre-wrap;word-break:break-all;max-height:16em;overflow:auto;
 background:#f6f8fa;padding:2px 4px;font-size:12px}}
 .counts td,.counts th{{text-align:right}} .counts th:first-child{{text-align:left}}
+.compact td.cell{{min-width:0;padding:2px 3px;text-align:center}}
+.compact .why,.compact td.cell>.words,.compact summary .words,.compact .delta .words{{display:none}}
+.compact .step-detail{{text-align:left}}
 .legend span{{display:inline-block;margin:2px 6px 2px 0;padding:1px 6px;border-radius:3px}}
 .note{{color:#555}}
 {kinds}
@@ -114,7 +119,7 @@ def _e(text: object) -> str:
 
 def _badge(cell: RowCell) -> str:
     symbol, words, *_ = KINDS[cell.kind]
-    return f'<span class="sym" aria-hidden="true">{symbol}</span> {_e(words)}'
+    return f'<span class="sym">{symbol}</span> <span class="words">{_e(words)}</span>'
 
 
 def _why(cell: RowCell) -> str:
@@ -170,7 +175,10 @@ def _step_html(step: Step, column: str) -> str:
 
 def _cell_html(cell: RowCell, *, opened: bool = False) -> str:
     why = _why(cell)
-    title = f' title="{_e(cell.cell.detail)}"' if cell.cell is not None and cell.cell.detail else ""
+    said = [cell.column, KINDS[cell.kind][1]]
+    if cell.cell is not None and cell.cell.detail:
+        said.append(cell.cell.detail)
+    title = f' title="{_e(": ".join(said))}"'
     why_html = f'<span class="why">{_e(why)}</span>' if why else ""
     column = f'data-column="{_e(cell.column)}"{title}'
     if cell.step is None:
@@ -179,7 +187,8 @@ def _cell_html(cell: RowCell, *, opened: bool = False) -> str:
     return (
         f'<td class="cell k-{cell.kind} changed-cell" {column}>{details}'
         f'<summary>{_badge(cell)}<span class="delta" title="answers differ from '
-        f'{_e(cell.step.baseline)}">Δ {_e(cell.step.step)}</span></summary>'
+        f'{_e(cell.step.baseline)}">Δ <span class="words">{_e(cell.step.step)}</span></span>'
+        "</summary>"
         f"{why_html}{_step_html(cell.step, cell.column)}</details></td>"
     )
 
@@ -205,8 +214,9 @@ def _table(columns: Sequence[str], table_rows: Sequence[Row], *, section: str) -
         + "</tr>"
         for row in table_rows
     )
+    compact = " compact" if len(columns) > _WIDE else ""
     return (
-        f'<table class="grid" id="{section}-rows"><thead><tr><th scope="col">case</th>'
+        f'<table class="grid{compact}" id="{section}-rows"><thead><tr><th scope="col">case</th>'
         f"{head}</tr></thead>\n<tbody>\n{body}\n</tbody></table>"
     )
 

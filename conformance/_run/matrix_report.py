@@ -304,7 +304,7 @@ def write_heatmap(matrix: Matrix, path: Path, against: Mapping[str, str] | None 
     labels = [_label(row.case) for row in shown]
     longest = max(len(text) for text in labels)
     label_width = 0.062 * longest  # inches at 8.5 pt
-    column = 0.85
+    column = max(0.3, min(0.85, 14.0 / len(columns)))  # inches: ≤ about 15 for them all
     width = label_width + column * len(columns) + 2.6
     height = 0.22 * len(shown) + 1.6
     figure, axes = plt.subplots(figsize=(width, height), dpi=110)
