@@ -23,6 +23,7 @@ from conformance._backends.environments import CACHE_VARIABLE, ENV_PATH_VARIABLE
 from conformance._backends.pydrake_api import pydrake_api
 from conformance._backends.reimpl_api import reimpl_api
 from conformance._backends.scene_graph import Api
+from tests import opt_in
 
 IMPLEMENTATIONS = ("reimpl", "pydrake")
 
@@ -209,8 +210,14 @@ def _runs_on_pydrake(item: pytest.Item) -> bool:
     return "reimpl" not in (params.get("api"), params.get("implementation"))
 
 
+def pytest_addoption(parser: pytest.Parser) -> None:
+    opt_in.add_options(parser)
+
+
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """``@pytest.mark.release_fact(id)``: the test asserts what a release fact records.
+    """``--slice N`` keeps N items of each opt-in test function (``tests/opt_in.py``).
+
+    ``@pytest.mark.release_fact(id)``: the test asserts what a release fact records.
 
     The fact is a row of the release table (``conformance/_policy/release_facts.json``),
     which holds for a range of Drake releases. Run on an implementation whose release is
@@ -223,6 +230,7 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     from conformance._policy.release_facts import release_fact  # noqa: PLC0415
     from reimpl._release import release  # noqa: PLC0415
 
+    opt_in.keep_slice(config, items)
     releases = {True: version("drake"), False: release.version}
     for item in items:
         for marker in item.iter_markers("release_fact"):

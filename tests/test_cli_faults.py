@@ -2,7 +2,7 @@
 
 Each faulty backend below is reimpl with one fault, written into a module in
 the test's folder and loaded with ``--backend faulty:NAME`` from there (the
-current folder is importable, as the README promises). Every fault must end
+current folder is importable, as docs/backends.md promises). Every fault must end
 with exit 2 (or 1 for a conformance failure), one message naming the backend
 and the step, no traceback, and nothing already found lost.
 """

@@ -11,6 +11,8 @@ import json
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from conformance._backends.loader import load_backend
 from conformance._fuzz.campaign import Campaign
 from conformance._fuzz.coverage import Coverage, CoverageBook, campaign_features
@@ -124,6 +126,7 @@ def test_the_table_lists_a_feature_never_reached_as_a_gap() -> None:
     }
 
 
+@pytest.mark.fuzz
 def test_the_seed_1_campaign_of_300_examples_reaches_every_feature_ten_times() -> None:
     result = Campaign(
         backend=lambda: REIMPL, reference=lambda: PYDRAKE, seed=1, max_examples=300

@@ -52,6 +52,7 @@ def test_there_are_at_least_thirty_eight_mutants() -> None:
     assert len(MUTANTS) >= 38
 
 
+@pytest.mark.mutant_proof
 @pytest.mark.parametrize("name", sorted(MUTANTS))
 def test_fuzz_catches_the_mutant_within_300_examples_and_the_shrunk_file_replays(
     name: str, tmp_path: Path, record_property: Callable[[str, object], None]
@@ -95,7 +96,7 @@ def test_every_model_mutant_has_a_one_sentence_bug_and_a_witness() -> None:
             assert "pydrake" in mutant.witness
 
 
-@pytest.mark.fuzz
+@pytest.mark.mutant_proof
 @pytest.mark.skipif(
     PYDRAKE.version() != "1.51.1",
     reason="reimpl answers as 1.51.1; against another release the campaign finds its changes",

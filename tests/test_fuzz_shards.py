@@ -14,7 +14,7 @@ Run with ``pytest -m fuzz -n auto``. The environment picks the shard:
   examples (Hypothesis's pareto front), which the other jobs replay first.
 
 Each seed is one test, so xdist spreads seeds over workers and a CI matrix
-spreads seed ranges over jobs (see the README).
+spreads seed ranges over jobs (see docs/fuzzing.md).
 """
 
 from __future__ import annotations

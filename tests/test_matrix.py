@@ -124,10 +124,10 @@ def test_the_report_has_the_documented_shape_and_is_the_same_when_written_twice(
     assert document["releases"][RELEASE]["counts"]["pass"] == 2
     first = write_report(matrix_1_58, tmp_path / "a")
     second = write_report(matrix_1_58, tmp_path / "b")
-    assert [p.name for p in first] == ["report.json", "report.md", "heatmap.png"]
+    assert [p.name for p in first] == ["report.json", "report.md", "report.html", "heatmap.png"]
     for a, b in zip(first, second, strict=True):
         assert a.read_bytes() == b.read_bytes(), a.name
-    assert first[2].read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert first[3].read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert f"| {RELEASE} | " in matrix_markdown(matrix_1_58)
 
 

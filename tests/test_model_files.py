@@ -28,6 +28,7 @@ from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.main import main
 from conformance.cli.models import model_file_cases
 from conformance.protocol import Command, ErrorKind
+from tests.test_html_report import parse, step_of
 
 DRAKE = default_corpus_root() / "real_models" / "drake"
 ACROBOT = "examples/acrobot/Acrobot.urdf"
@@ -198,6 +199,7 @@ def test_models_exits_zero_when_the_backends_agree_on_every_file(tmp_path: Path)
     ]
     assert sorted(p.name for p in (tmp_path / "report").iterdir()) == [
         "heatmap.png",
+        "report.html",
         "report.json",
         "report.md",
     ]
@@ -399,3 +401,15 @@ def test_models_across_releases_lists_what_changed_from_each_release_to_the_next
             "added": [],
         }
     ]
+    # report.html: the file's row changes; 1.58.0's cell opens the first differing step,
+    # model_inventory's answer, with 1.51.1's frames holding base_weld_parent and 1.58.0's not.
+    root = parse((tmp_path / "report.html").read_text())
+    (row,) = root.by_id("changed-rows").all("tr", "row")
+    old, new = row.all("td", "cell")
+    assert not old.all("details")
+    step = step_of(new)
+    assert step["where"] == "step 3"
+    answers = step["answers"]
+    assert isinstance(answers, dict)
+    assert "Acrobot::base_weld_parent" in answers["1.51.1"]
+    assert "Acrobot::base_weld_parent" not in answers["1.58.0"]

@@ -291,6 +291,7 @@ def test_model_cases_are_deterministic_for_a_seed_and_report_after_every_parse()
         assert ops.index("model_inventory", ops.index("finalize")) > ops.index("finalize")
 
 
+@pytest.mark.fuzz
 def test_two_pydrake_backends_agree_on_100_random_model_cases() -> None:
     twin = SceneGraphBackend(dataclasses.replace(pydrake_api(), name="pydrake-twin"))
     result = ModelCampaign(
@@ -343,6 +344,7 @@ MUTANT = "conformance._testing.model_mutants:rpy_floating_unfiltered"
 SEED_2 = ("--seed", "2", "--max-examples", "300")
 
 
+@pytest.mark.mutant_proof
 @SAME_RELEASE
 def test_fuzz_models_catches_the_rpy_floating_mutant_with_a_shrunk_file_that_replays(
     tmp_path: Path,
@@ -371,6 +373,7 @@ def test_fuzz_models_catches_the_rpy_floating_mutant_with_a_shrunk_file_that_rep
     assert run(str(path), "--backend", "reimpl", "--backend", "pydrake") == EXIT_OK
 
 
+@pytest.mark.mutant_proof
 @SAME_RELEASE
 def test_the_same_seed_gives_the_same_model_finding(tmp_path: Path) -> None:
     found = []

@@ -9,6 +9,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -170,6 +171,7 @@ class _Recording(PosedLockstepMachine):
         return result
 
 
+@pytest.mark.fuzz
 def test_a_bounded_posed_campaign_of_reimpl_against_pydrake_issues_every_query_and_agrees() -> None:
     campaign = Campaign(
         backend=lambda: REIMPL,
@@ -187,6 +189,7 @@ def test_a_bounded_posed_campaign_of_reimpl_against_pydrake_issues_every_query_a
     assert result.stats.coverage.gaps(list(QUERY_FEATURES), at_least=1) == []
 
 
+@pytest.mark.mutant_proof
 def test_a_mutant_ignoring_filters_in_penetration_is_found_and_written_as_a_case(
     tmp_path: Path,
 ) -> None:

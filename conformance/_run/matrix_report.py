@@ -1,4 +1,5 @@
-"""The release matrix, written for people and programs: ``report.json``, ``report.md``, a heatmap.
+"""The release matrix, written for people and programs: ``report.json``, ``report.md``,
+``report.html`` and a heatmap.
 
 - ``report.json``: ``{"versions": [...], "cases": {case: {version: outcome}}}``,
   plus ``details`` (``{case: {version: {"outcome", "detail", "expected_by"}}}``
@@ -8,7 +9,14 @@
   changed).
 - ``report.md``: a summary table per release, then for each consecutive pair
   the cases whose outcome changed, with the reasons.
-- ``heatmap.png``: cases × releases, one colour per outcome (matplotlib).
+- ``report.html``: one self-contained page (``run.html_report``): the cases
+  whose outcome or answers change across the releases first, each changed
+  cell opening the first step that differs with both answers; the cases
+  alike everywhere folded into one count.
+- ``heatmap.png``: the cases that change (or fail alike) × releases, one
+  colour per kind of cell (an expected crash pale, an unexpected one dark and
+  crossed), a dot where the answers differ from the release before; with no
+  such case, a line of text that says so (matplotlib).
 
 Nothing in the files depends on timing or on the order the releases
 finished, so the same corpus on the same releases writes the same files.
@@ -18,15 +26,18 @@ from __future__ import annotations
 
 import itertools
 import json
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
 from conformance._run.case_report import Failure
+from conformance._run.html_report import write_html
 from conformance._run.matrix import MATRIX_ORDER, Cell, Matrix, Outcome, label
+from conformance._run.report_rows import release_baselines, rows, sections
 
 __all__ = [
     "COLOURS",
+    "KIND_COLOURS",
     "behaviour_changes",
     "changes",
     "matrix_json",
@@ -198,89 +209,160 @@ def _short(value: Any) -> str:
     return _escape(text if len(text) <= 120 else text[:119] + "…")
 
 
-def write_heatmap(matrix: Matrix, path: Path) -> Path:
-    """Draws cases × releases, a colour per outcome, to ``path`` (PNG)."""
-    import matplotlib  # noqa: PLC0415 (only the matrix draws)
+#: The heatmap's colour of each kind of cell (``report_rows.kind``): an expected break is
+#: pale and hatched, an unexpected one dark.
+KIND_COLOURS: dict[str, str] = {
+    "pass": COLOURS[Outcome.PASS],
+    "xfail": COLOURS[Outcome.XFAIL],
+    "unsupported": COLOURS[Outcome.SKIP],
+    "fail": COLOURS[Outcome.FAIL],
+    "crash": COLOURS[Outcome.CRASH],
+    "expected-crash": "#e1bee7",
+    "timeout": COLOURS[Outcome.TIMEOUT],
+    "expected-timeout": "#ffe0b2",
+    "error": COLOURS[Outcome.ERROR],
+    "expected-error": "#bdbdbd",
+    "missing": _MISSING,
+}
+#: Longest case label drawn (the rest is cut with an ellipsis).
+_LABEL = 96
 
-    matplotlib.use("Agg")
+
+def _label(case: str) -> str:
+    return case if len(case) <= _LABEL else case[: _LABEL - 1] + "…"
+
+
+def _no_change(matrix: Matrix, columns: list[str], path: Path) -> Path:
+    """A line of text instead of an empty grid."""
     import matplotlib.pyplot as plt  # noqa: PLC0415
-    from matplotlib.artist import Artist  # noqa: PLC0415
-    from matplotlib.colors import ListedColormap  # noqa: PLC0415
+
+    figure = plt.figure(figsize=(7.0, 1.2), dpi=110)
+    figure.text(
+        0.5,
+        0.5,
+        f"No case changes: all {len(matrix.cases)} cases answer alike\n"
+        f"on {', '.join(columns) or 'no column'}.",
+        ha="center",
+        va="center",
+        fontsize=11,
+    )
+    figure.savefig(path, metadata={"Software": None})
+    plt.close(figure)
+    return path
+
+
+def _handles(present: set[str], unexpected: list[Any], marks: list[Any]) -> list[Any]:
+    """The heatmap legend's entries: each kind drawn, then the two marks if drawn."""
     from matplotlib.lines import Line2D  # noqa: PLC0415
     from matplotlib.patches import Patch  # noqa: PLC0415
 
-    order = list(MATRIX_ORDER)
-    index = {o: i for i, o in enumerate(order)}
-    grid = [
-        [
-            index[cell.outcome] if (cell := matrix.cell(case, v)) is not None else len(order)
-            for v in matrix.versions
-        ]
-        for case in matrix.cases
+    handles: list[Any] = [
+        Patch(color=KIND_COLOURS[k], label=k.replace("-", " "))
+        for k in KIND_COLOURS
+        if k in present
     ]
-    colours = ListedColormap([COLOURS[o] for o in order] + [_MISSING])
-    height = max(4.0, 0.16 * len(matrix.cases) + 1.8)
-    column = max(0.22, min(0.9, 12.0 / max(1, len(matrix.versions))))
-    width = max(7.0, 5.5 + column * len(matrix.versions))
-    figure, axes = plt.subplots(figsize=(width, height), dpi=110)
-    axes.imshow(
-        grid, aspect="auto", cmap=colours, vmin=-0.5, vmax=len(order) + 0.5, interpolation="nearest"
-    )
-    rotation = 90 if len(matrix.versions) > 8 else 0
-    axes.set_xticks(range(len(matrix.versions)), matrix.versions, fontsize=7, rotation=rotation)
-    axes.xaxis.tick_top()
-    labels = [c if len(c) <= 70 else c[:69] + "…" for c in matrix.cases]
-    axes.set_yticks(range(len(matrix.cases)), labels, fontsize=4.5)
-    axes.set_xticks([x - 0.5 for x in range(1, len(matrix.versions))], minor=True)
-    axes.grid(which="minor", axis="x", color="white", linewidth=1.5)
-    axes.tick_params(which="minor", length=0)
-    changed = _behaviour_marks(matrix)
-    if changed:
-        axes.scatter([x for x, _ in changed], [y for _, y in changed], s=6, c="black", marker="o")
-    present = {c.outcome for run in matrix.runs.values() for c in run.cells.values()}
-    handles: list[Artist] = [Patch(color=COLOURS[o], label=label(o)) for o in order if o in present]
-    if changed:
+    if unexpected:
+        handles.append(
+            Line2D([], [], color="black", marker="x", linestyle="None", label="× unexpected break")
+        )
+    if marks:
         handles.append(
             Line2D(
                 [],
                 [],
                 color="black",
                 marker="o",
-                markersize=3,
+                markersize=4,
                 linestyle="None",
-                label="answers differ from the\nrelease before",
+                label="answers differ from\nthe baseline column",
             )
         )
-    axes.legend(
-        handles=handles,
-        loc="upper left",
-        bbox_to_anchor=(1.01, 1.0),
-        fontsize=8,
-        frameon=False,
+    return handles
+
+
+def write_heatmap(matrix: Matrix, path: Path, against: Mapping[str, str] | None = None) -> Path:
+    """Draws the cases that change across the columns (``report_rows``) × the columns, a
+    colour per kind of cell, to ``path`` (PNG); a cell whose answers differ from its
+    baseline column's is marked with a dot. If no case changes, the picture says so in
+    words instead of drawing an empty grid."""
+    import matplotlib  # noqa: PLC0415 (only the matrix draws)
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt  # noqa: PLC0415
+    from matplotlib.colors import ListedColormap  # noqa: PLC0415
+
+    against = release_baselines(matrix) if against is None else against
+    parts = sections(rows(matrix, against))
+    shown = [*parts.changed, *parts.failing_alike]
+    columns = [v for v in matrix.versions if matrix.runs[v].error is None]
+    if not shown:
+        return _no_change(matrix, columns, path)
+    kinds = list(KIND_COLOURS)
+    index = {k: i for i, k in enumerate(kinds)}
+    grid = [[index[cell.kind] for cell in row.cells] for row in shown]
+    colours = ListedColormap([KIND_COLOURS[k] for k in kinds])
+    labels = [_label(row.case) for row in shown]
+    longest = max(len(text) for text in labels)
+    label_width = 0.062 * longest  # inches at 8.5 pt
+    column = max(0.3, min(0.85, 14.0 / len(columns)))  # inches: ≤ about 15 for them all
+    width = label_width + column * len(columns) + 2.6
+    height = 0.22 * len(shown) + 1.6
+    figure, axes = plt.subplots(figsize=(width, height), dpi=110)
+    axes.imshow(
+        grid, aspect="auto", cmap=colours, vmin=-0.5, vmax=len(kinds) - 0.5, interpolation="nearest"
     )
-    axes.set_title(f"{len(matrix.cases)} cases × {len(matrix.versions)} Drake releases", pad=24)
+    rotation = 90 if len(columns) > 12 else 0
+    axes.set_xticks(range(len(columns)), columns, fontsize=9, rotation=rotation)
+    axes.xaxis.tick_top()
+    axes.set_yticks(range(len(shown)), labels, fontsize=8.5)
+    axes.set_xticks([x - 0.5 for x in range(1, len(columns))], minor=True)
+    axes.set_yticks([y - 0.5 for y in range(1, len(shown))], minor=True)
+    axes.grid(which="minor", color="white", linewidth=1.5)
+    axes.tick_params(which="minor", length=0)
+    marks = [(x, y) for y, row in enumerate(shown) for x, cell in enumerate(row.cells) if cell.step]
+    unexpected = [
+        (x, y)
+        for y, row in enumerate(shown)
+        for x, cell in enumerate(row.cells)
+        if cell.kind in ("crash", "timeout", "error")
+    ]
+    if marks:
+        axes.scatter([x for x, _ in marks], [y for _, y in marks], s=14, c="black", marker="o")
+    if unexpected:
+        axes.scatter(
+            [x for x, _ in unexpected], [y for _, y in unexpected], s=40, c="white", marker="x"
+        )
+    handles = _handles({cell.kind for row in shown for cell in row.cells}, unexpected, marks)
+    axes.legend(
+        handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False
+    )
+    alike = len(parts.alike)
+    axes.set_title(
+        f"{len(shown)} of {len(matrix.cases)} cases change or fail × {len(columns)} columns "
+        f"({alike} alike everywhere, not drawn)",
+        pad=28 if rotation == 0 else 40,
+        fontsize=10,
+    )
     figure.tight_layout()
     figure.savefig(path, metadata={"Software": None})
     plt.close(figure)
     return path
 
 
-def _behaviour_marks(matrix: Matrix) -> list[tuple[int, int]]:
-    """(column, row) of each cell whose outcome stayed but whose answers differ from the
-    previous release's."""
-    row = {case: i for i, case in enumerate(matrix.cases)}
-    column = {v: i for i, v in enumerate(matrix.versions)}
-    return [
-        (column[newer], row[case])
-        for older, newer, _ in changes(matrix)
-        for case, _ in behaviour_changes(matrix, older, newer)
-    ]
-
-
 def write_report(matrix: Matrix, folder: Path) -> list[Path]:
-    """Writes report.json, report.md and heatmap.png to ``folder``; returns their paths."""
+    """Writes report.json, report.md, report.html and heatmap.png to ``folder``; returns
+    their paths."""
     folder.mkdir(parents=True, exist_ok=True)
     json_path, md_path = folder / "report.json", folder / "report.md"
     json_path.write_text(json.dumps(matrix_json(matrix), indent=2, ensure_ascii=False) + "\n")
     md_path.write_text(matrix_markdown(matrix) + "\n")
-    return [json_path, md_path, write_heatmap(matrix, folder / "heatmap.png")]
+    against = release_baselines(matrix)
+    page = write_html(
+        matrix,
+        against,
+        folder / "report.html",
+        title="Release matrix",
+        baseline="the release before it (an implementation's column: Drake's column of its "
+        "release, else the first column)",
+    )
+    return [json_path, md_path, page, write_heatmap(matrix, folder / "heatmap.png", against)]

@@ -11,8 +11,10 @@ columns are compared, ``comparisons``:
 
 Per compared pair, every difference of every file, by scoped name
 (``run.model_changes``). ``write_models_report`` writes ``report.json`` (the
-columns, each file's outcome per column, and the changes), ``report.md`` and
-``heatmap.png`` (files × columns, the matrix's picture).
+columns, each file's outcome per column, and the changes), ``report.md``,
+``report.html`` (``run.html_report``: the cases that change first, each
+changed cell opening the first step that differs) and ``heatmap.png`` (the
+changing cases × columns, the matrix's picture).
 
 A golden file (``save_golden``/``load_golden``) holds one column's answers
 per case, keyed by the case's description (the file's path below the folder
@@ -30,6 +32,7 @@ from pathlib import Path
 from typing import Any
 
 from conformance._corpus.loader import Case
+from conformance._run.html_report import write_html
 from conformance._run.matrix import Matrix, label
 from conformance._run.matrix_report import write_heatmap
 from conformance._run.model_changes import Answers, Change, changes, file_of
@@ -190,15 +193,26 @@ def models_markdown(
 
 
 def write_models_report(
-    matrix: Matrix, cases: Sequence[Case], found: Sequence[Comparison], folder: Path, *, title: str
+    matrix: Matrix,
+    cases: Sequence[Case],
+    found: Sequence[Comparison],
+    folder: Path,
+    *,
+    title: str,
+    reference: str | None = None,
 ) -> list[Path]:
-    """Writes report.json, report.md and heatmap.png to ``folder``; returns their paths."""
+    """Writes report.json, report.md, report.html and heatmap.png to ``folder``; returns
+    their paths. The page and the picture compare the columns as ``found`` does: each
+    implementation with the ``reference``, or (None) each release with the one before."""
     folder.mkdir(parents=True, exist_ok=True)
     json_path, md_path = folder / "report.json", folder / "report.md"
     document = models_json(matrix, cases, found)
     json_path.write_text(json.dumps(document, indent=2, ensure_ascii=False) + "\n")
     md_path.write_text(models_markdown(matrix, cases, found, title=title) + "\n")
-    return [json_path, md_path, write_heatmap(matrix, folder / "heatmap.png")]
+    against = {c.newer: c.older for c in found if c.older in matrix.runs}
+    baseline = "the release before it" if reference is None else f"the reference, {reference}"
+    page = write_html(matrix, against, folder / "report.html", title=title, baseline=baseline)
+    return [json_path, md_path, page, write_heatmap(matrix, folder / "heatmap.png", against)]
 
 
 # ------------------------------------------------------------------ golden files

@@ -40,7 +40,9 @@ def add_bisect_parser(commands: argparse._SubParsersAction) -> None:  # type: ig
     bisect = commands.add_parser(
         "bisect", help="find the first Drake release in which a case's outcome changed"
     )
-    bisect.add_argument("case", metavar="CASE", help="a case's description or qualified name")
+    bisect.add_argument(
+        "case", metavar="CASE", help="a case's description or qualified name, or a glob of either"
+    )
     bisect.add_argument("paths", nargs="*", type=Path, help="scenario files or directories")
     bisect.add_argument("--good", required=True, metavar="V1", help="the older release")
     bisect.add_argument("--bad", required=True, metavar="V2", help="the newer release")

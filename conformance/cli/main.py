@@ -1,4 +1,4 @@
-"""``python -m conformance``: the command line.
+"""Drake collision-filter conformance: run the corpus, fuzz, compare Drake releases and model files.
 
 ``run`` executes the corpus (by default the embedded one) on every chosen
 backend (by default reimpl and pydrake) and compares them pair by pair.

@@ -6,7 +6,7 @@ column beside them, run alone on each case the same way: ``reimpl==1.58.0``
 is reimpl following 1.58.0, to read beside Drake 1.58.0's column.
 Progress goes to stderr; the summary table
 and the outcome changes between consecutive releases go to stdout; ``--report
-DIR`` writes report.json, report.md and heatmap.png.
+DIR`` writes report.json, report.md, report.html and heatmap.png.
 
 Exit codes: 0 no failing cell; 1 a cell is ``fail``, or a ``crash``,
 ``timeout`` or ``error`` that no known divergence expects; 2 bad arguments
@@ -56,7 +56,10 @@ def add_matrix_parser(commands: argparse._SubParsersAction) -> None:  # type: ig
         help="add an implementation's column, e.g. reimpl==1.58.0 (repeatable)",
     )
     matrix.add_argument(
-        "--report", type=Path, metavar="DIR", help="write report.json, report.md, heatmap.png"
+        "--report",
+        type=Path,
+        metavar="DIR",
+        help="write report.json, report.md, report.html, heatmap.png",
     )
     matrix.add_argument(
         "--jobs", type=int, default=2, metavar="J", help="releases run at a time (2)"

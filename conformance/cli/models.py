@@ -15,7 +15,7 @@ Columns are implementations (``--backend``, default reimpl and pydrake), each
 compared with the reference, or Drake releases (``--drake``, each in its own
 environment, ``--jobs`` at a time), each compared with the one before. The
 output lists, per file, every difference by scoped name; ``--report DIR``
-writes report.json, report.md and heatmap.png. ``--save FILE`` writes one
+writes report.json, report.md, report.html and heatmap.png. ``--save FILE`` writes one
 column's answers as a golden file; ``--check FILE`` compares each column with
 it.
 
@@ -111,7 +111,10 @@ def add_models_parser(commands: argparse._SubParsersAction) -> None:  # type: ig
         help="also parse the .obj files found below a folder (as one-body mesh models)",
     )
     models.add_argument(
-        "--report", type=Path, metavar="DIR", help="write report.json, report.md, heatmap.png"
+        "--report",
+        type=Path,
+        metavar="DIR",
+        help="write report.json, report.md, report.html, heatmap.png",
     )
     golden = models.add_mutually_exclusive_group()
     golden.add_argument(
@@ -285,7 +288,7 @@ def models_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     _print(out, [*found, *checked], files, releases=bool(args.drake))
     if args.report is not None:
         for path in write_models_report(
-            matrix, cases, [*found, *checked], args.report, title=title
+            matrix, cases, [*found, *checked], args.report, title=title, reference=reference
         ):
             out.write(f"wrote {path}\n")
     code = _exit_code(args, matrix, found, checked, err)

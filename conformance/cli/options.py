@@ -47,7 +47,7 @@ def add_step_timeout(parser: argparse.ArgumentParser, *, what: str) -> None:
         default=DEFAULT_STEP_TIMEOUT,
         metavar="SEC",
         help=f"a backend call taking longer {what}, exit 2 "
-        f"(default {DEFAULT_STEP_TIMEOUT:g}; 0: none)",
+        f"(default {DEFAULT_STEP_TIMEOUT:g}; 0 or inf: none)",
     )
 
 

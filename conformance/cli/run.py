@@ -11,7 +11,8 @@ from __future__ import annotations
 import argparse
 import fnmatch
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from functools import partial
 from pathlib import Path
 from typing import TextIO
 
@@ -19,6 +20,7 @@ from conformance._backends.calls import BackendError
 from conformance._backends.loader import BackendLoadError, load_backend
 from conformance._corpus.loader import Case, ScenarioError, load_corpus
 from conformance._engine import Outcome
+from conformance._run.html_report import write_run_html
 from conformance._run.outputs import unwritable, write_or_fall_back
 from conformance._run.report import RunReport, write_json, write_junit
 from conformance._run.runner import choose_reference, run_case
@@ -49,8 +51,9 @@ def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignor
         action="append",
         dest="backends",
         metavar="SPEC",
-        help="reimpl, pydrake, drake==X.Y.Z, exec:'CMD ARGS' (a program that speaks "
-        "docs/protocol.md), or package.module:attribute (repeatable; default: reimpl and pydrake)",
+        help="reimpl, reimpl==X.Y.Z (reimpl as that release), pydrake, drake==X.Y.Z, "
+        "exec:'CMD ARGS' (a program that speaks docs/protocol.md), or package.module:attribute "
+        "(repeatable; default: reimpl and pydrake)",
     )
     run.add_argument(
         "--reference",
@@ -65,6 +68,13 @@ def add_run_parser(commands: argparse._SubParsersAction) -> None:  # type: ignor
     )
     run.add_argument("--junit", type=Path, metavar="FILE", help="write a JUnit XML report")
     run.add_argument("--json", type=Path, metavar="FILE", help="write a JSON report")
+    run.add_argument(
+        "--report",
+        type=Path,
+        metavar="DIR",
+        help="write report.json (as --json) and report.html (the cases where the backends "
+        "differ first) to DIR",
+    )
     add_backend_options(
         run,
         strict="report known divergences as failures, not xfail",
@@ -152,12 +162,16 @@ def _progress(out: TextIO, index: int, total: int, name: str, statuses: dict[str
 
 
 def _output_problems(args: argparse.Namespace) -> list[str]:
-    """Why --json/--junit cannot be written, checked before the run."""
-    return [
+    """Why --json/--junit/--report cannot be written, checked before the run."""
+    report = getattr(args, "report", None)
+    found = [
         f"--{option} {path}: {problem}"
         for option, path in (("json", args.json), ("junit", args.junit))
         if path is not None and (problem := unwritable(path)) is not None
     ]
+    if report is not None and (problem := unwritable(report / "report.html")) is not None:
+        found.append(f"--report {report}: {problem}")
+    return found
 
 
 def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
@@ -205,8 +219,9 @@ def run_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
 
 
 def write_outputs(args: argparse.Namespace, report: RunReport, out: TextIO, err: TextIO) -> None:
-    """The failures, xfails, skips and summary on ``out``; ``--junit`` and ``--json`` files
-    (falling back as ``run.outputs`` says if they cannot be written)."""
+    """The failures, xfails, skips and summary on ``out``; ``--junit`` and ``--json`` files,
+    and ``--report DIR``'s report.json and report.html (falling back as ``run.outputs``
+    says if they cannot be written)."""
     report.print_failures(out, prog=PROG)
     out.write("\n")
     report.print_xfails(out)
@@ -216,6 +231,21 @@ def write_outputs(args: argparse.Namespace, report: RunReport, out: TextIO, err:
         write_or_fall_back(args.junit, lambda path: write_junit(report, path), err)
     if args.json:
         write_or_fall_back(args.json, lambda path: write_json(report, path), err)
+    folder = getattr(args, "report", None)
+    if folder is not None:
+
+        def page(path: Path) -> None:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            write_run_html(report, path)
+
+        pages: list[tuple[str, Callable[[Path], None]]] = [
+            ("report.json", partial(write_json, report)),
+            ("report.html", page),
+        ]
+        for name, write in pages:
+            written = write_or_fall_back(folder / name, write, err)
+            if written is not None:
+                out.write(f"wrote {written}\n")
 
 
 def run_cases(
