@@ -25,6 +25,10 @@ pytest_plugins = ["pytester"]
 
 REPO = Path(__file__).resolve().parents[1]
 CORPUS = REPO / "scenarios"
+#: Loaded here, before any test: pytester restores sys.modules after each test, and
+#: pydrake's modules first imported inside one come back without their bindings
+#: (measured: a later test found pydrake.math without RigidTransform).
+PYDRAKE = load_backend("pydrake")
 
 #: Backends of the temporary directory: reimpl without one feature, under another name.
 PARTIAL_BACKENDS = """
@@ -313,7 +317,7 @@ def test_corpus_cases_the_installed_pydrake_lacks_features_for_are_skipped(
     activation = CORPUS / "activation" / "activation.json"
     (user_dir.path / "activation.json").write_text(activation.read_text())
     cases = len(json.loads(activation.read_text())["cases"])
-    pydrake = load_backend("pydrake")
+    pydrake = PYDRAKE
     result = run(user_dir, "activation.json", "-rs")
     if "activation" in pydrake.features():
         result.assert_outcomes(passed=cases)
