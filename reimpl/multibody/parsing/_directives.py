@@ -59,6 +59,7 @@ from reimpl.multibody.parsing._directive_structs import (
     AddModelInstance,
     AddWeld,
     ModelDirectives,
+    is_valid,
 )
 from reimpl.multibody.parsing._directive_yaml import load_directives
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
@@ -159,8 +160,15 @@ def load_model_directives(path: str) -> ModelDirectives:
 
 
 def checked(directives: ModelDirectives) -> ModelDirectives:
-    """``directives``, which must be valid (Drake's DRAKE_THROW_UNLESS(IsValid()))."""
-    if not directives._is_valid():
+    """``directives``, which must be valid: their first problem (see _directive_structs)
+    is the error ``error: <problem>`` (ModelParseError, not logged) since Drake 1.58;
+    up to 1.57 it is logged and then Drake's DRAKE_THROW_UNLESS(IsValid()) fails
+    (SystemExit). Measured on pydrake 1.51.1 and 1.52.0 to 1.58.0."""
+    if release.has("directives-invalid-error-since-1.58"):
+        problem = directives._problem()
+        if problem is not None:
+            raise Diagnostics(None).error(problem)
+    elif not is_valid(directives):
         raise SystemExit(
             _DMD_FAILURE.format(line=332) + "LoadModelDirectives(): "
             "condition 'directives.IsValid()' failed."

@@ -22,6 +22,7 @@ from reimpl.multibody.parsing._directive_structs import (
     AddFrame,
     ModelDirective,
     ModelDirectives,
+    is_valid,
 )
 from reimpl.multibody.parsing._directive_yaml import load_directives
 from reimpl.multibody.parsing._directives import (
@@ -158,7 +159,7 @@ def _named(struct: Any, namespace: str, *names: str) -> Any:
 
 def _flatten_frame(frame: AddFrame, namespace: str) -> AddFrame:
     """An unscoped frame name also takes its base frame's namespace."""
-    if not frame._is_valid():
+    if not is_valid(frame):
         raise SystemExit(
             "Failure at external/drake+/multibody/parsing/process_model_directives.cc:68 in "
             "ApplyDirectiveNamespace(): condition 'orig.IsValid()' failed."

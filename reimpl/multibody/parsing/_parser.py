@@ -30,7 +30,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._overload import Overload, Param, dispatch
 from reimpl._release import release
 from reimpl.geometry import SceneGraph
 from reimpl.multibody.parsing._binding import binds, is_path, is_str
@@ -168,8 +168,23 @@ def _sdf_label(path: str) -> str:
     return slash + os.path.abspath(path)
 
 
+#: Whether the plant-first constructors refuse a plant of None (pybind11's TypeError)
+#: rather than failing Drake's check (SystemExit): release fact
+#: parser-plant-none-refused-since-1.58. The builder constructor takes None for its
+#: builder and its plant on every release measured (1.51.1, 1.52.0 to 1.58.0).
+_PLANT_NONE_REFUSED = release.has("parser-plant-none-refused-since-1.58")
+
+
 def _is_plant(value: object) -> bool:
+    return isinstance(value, MultibodyPlant) or (value is None and not _PLANT_NONE_REFUSED)
+
+
+def _is_plant_or_none(value: object) -> bool:
     return value is None or isinstance(value, MultibodyPlant)
+
+
+def _is_builder(value: object) -> bool:
+    return value is None or isinstance(value, DiagramBuilder)
 
 
 def _is_scene_graph(value: object) -> bool:
@@ -177,6 +192,8 @@ def _is_scene_graph(value: object) -> bool:
 
 
 _is_plant.__name__ = "reimpl.multibody.plant.MultibodyPlant"
+_is_plant_or_none.__name__ = _is_plant.__name__
+_is_builder.__name__ = "reimpl.systems.framework.DiagramBuilder"
 _is_scene_graph.__name__ = "reimpl.geometry.SceneGraph"
 
 #: Drake's type names, for "Cannot cast ..." (the "plant" subsystem is not a plant)
@@ -203,8 +220,8 @@ class Parser:
                 Overload((Param("plant", _is_plant), prefix), self._init),
                 Overload(
                     (
-                        Param("builder", instance_of(DiagramBuilder)),
-                        Param("plant", _is_plant, None),
+                        Param("builder", _is_builder),
+                        Param("plant", _is_plant_or_none, None),
                         scene_graph,
                         Param(prefix.name, prefix.check, ""),
                     ),
@@ -230,11 +247,14 @@ class Parser:
 
     def _init_from_builder(
         self,
-        builder: DiagramBuilder,
+        builder: DiagramBuilder | None,
         plant: MultibodyPlant | None,
         scene_graph: SceneGraph | None,
         model_name_prefix: str,
     ) -> None:
+        if builder is None:  # N.B. As Drake's: no builder, only the plant's own checks.
+            self._init(plant, model_name_prefix, scene_graph)
+            return
         systems = builder.GetSystems()
         if plant is None:
             plant = self._plant_named_plant(systems)
