@@ -28,6 +28,7 @@ from typing import Any, Generic, TypeVar
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._release import release
+from reimpl.common._drake_demand import failed_demand
 
 __all__ = ["CollisionFilterGroups", "NameGroups"]
 
@@ -50,11 +51,7 @@ class NameGroups(Generic[N]):
     def add_group(self, name: N, members: set[N]) -> None:
         """Adds a group; a name already defined is Drake's DRAKE_THROW_UNLESS failure."""
         if name in self.groups:
-            raise SystemExit(
-                "Failure at external/drake+/multibody/parsing/"
-                "detail_collision_filter_groups_impl.cc:24 in AddGroup(): "
-                "condition '!groups_.contains(name)' failed."
-            )
+            raise failed_demand("CollisionFilterGroups.AddGroup.new")
         self.groups[name] = set(members)
 
     def add_pair(self, a: N, b: N) -> None:

@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from reimpl._release import release
-from reimpl.common._drake_demand import DRAKE_PATH
+from reimpl.common._drake_demand import failed_demand
 from reimpl.common._pybind_text import no_constructor
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
@@ -74,8 +74,6 @@ __all__ = [
     "scoped_frame",
     "scoped_frame_maybe",
 ]
-
-_DMD_FAILURE = f"Failure at {DRAKE_PATH}multibody/parsing/detail_dmd_parser.cc:{{line}} in "
 
 
 class ModelInstanceInfo:
@@ -169,10 +167,7 @@ def checked(directives: ModelDirectives) -> ModelDirectives:
         if problem is not None:
             raise Diagnostics(None).error(problem)
     elif not is_valid(directives):
-        raise SystemExit(
-            _DMD_FAILURE.format(line=332) + "LoadModelDirectives(): "
-            "condition 'directives.IsValid()' failed."
-        )
+        raise failed_demand("LoadModelDirectives.valid")
     return directives
 
 
@@ -299,7 +294,7 @@ class _Run:
                 "match any model added by these directives"
             )
         if not infos:  # up to 1.57: a failed DRAKE_DEMAND
-            raise SystemExit(_DMD_FAILURE.format(line=46) + "AddWeld(): condition 'found' failed.")
+            raise failed_demand("AddWeld.found")
 
     def add_collision_filter_group(self, group: AddCollisionFilterGroup, namespace: str) -> None:
         if not self.plant.geometry_source_is_registered():

@@ -32,6 +32,7 @@ from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch
 from reimpl._release import release
+from reimpl.common._drake_demand import failed_demand
 from reimpl.geometry import SceneGraph
 from reimpl.multibody.parsing._binding import binds, is_path, is_str
 from reimpl.multibody.parsing._collision_filter_group_resolver import (
@@ -57,15 +58,6 @@ from reimpl.systems.framework import DiagramBuilder
 __all__ = ["Parser"]
 
 _OWNER = "reimpl.multibody.parsing.Parser"
-_PARSING = "external/drake+/multibody/parsing"
-_PLANT_H = (
-    "bazel-out/k8-opt/bin/external/drake+/multibody/plant/_virtual_includes/"
-    "multibody_plant_core/drake/multibody/plant/multibody_plant.h"
-)
-
-
-def _failure(where: str, line: int, function: str, condition: str) -> SystemExit:
-    return SystemExit(f"Failure at {where}:{line} in {function}(): condition '{condition}' failed.")
 
 
 @dataclass(frozen=True)
@@ -75,21 +67,16 @@ class _FileType:
     reader: Reader
     #: the message for a file that is not there (or is a folder: ``{error}``)
     missing: str
-    #: (file, function, line, plant) of the reader's DRAKE_THROW_UNLESS(!plant->is_finalized())
-    finalized: tuple[str, str, int, str] | None
+    #: the reader's DRAKE_THROW_UNLESS(!plant->is_finalized()) (an id of demand_lines.json)
+    finalized: str | None
     #: the message for model text of this type, where Drake refuses it
     text_error: str | None = None
 
 
-_FINALIZED_URDF = ("detail_urdf_parser.cc", "AddOrMergeModelFromUrdf", 1457, "plant")
-_FINALIZED_SDF = ("detail_sdf_parser.cc", "AddModelsFromSdf", 2954, "workspace.plant")
-_FINALIZED_MJCF = (
-    "detail_mujoco_parser.cc",
-    "AddOrMergeModelFromMujocoXml",
-    2103,
-    "workspace.plant",
-)
-_FINALIZED_MESH = ("detail_mesh_parser.cc", "AddModelFromMesh", 133, "workspace.plant")
+_FINALIZED_URDF = "AddOrMergeModelFromUrdf.finalized"
+_FINALIZED_SDF = "AddModelsFromSdf.finalized"
+_FINALIZED_MJCF = "AddOrMergeModelFromMujocoXml.finalized"
+_FINALIZED_MESH = "AddModelFromMesh.finalized"
 
 #: file type (a name's suffix) -> how it is read, in Drake's SelectParser order
 _FILE_TYPES: dict[str, _FileType] = {
@@ -136,8 +123,7 @@ def _check_reader(context: ParseContext, file_type: str) -> None:
     """The reader's own DRAKE_THROW_UNLESS(!plant->is_finalized())."""
     finalized = _FILE_TYPES[file_type].finalized
     if finalized is not None and context.plant.is_finalized():
-        file, function, line, plant = finalized
-        raise _failure(f"{_PARSING}/{file}", line, function, f"!{plant}->is_finalized()")
+        raise failed_demand(finalized)
 
 
 def _read_file(context: ParseContext, path: str, model_name: str | None, scope: str) -> list[Any]:
@@ -239,7 +225,7 @@ class Parser:
         scene_graph: SceneGraph | None = None,
     ) -> None:
         if plant is None:
-            raise _failure(f"{_PARSING}/parser.cc", 80, "Parser", "plant_ != nullptr")
+            raise failed_demand("Parser.plant")
         if scene_graph is not None and not plant.geometry_source_is_registered():
             plant.RegisterAsSourceForSceneGraph(scene_graph)
         self._plant = plant
@@ -292,7 +278,7 @@ class Parser:
         if not self._plant.geometry_source_is_registered():
             return None
         if self._plant.is_finalized():
-            raise _failure(f"{_PARSING}/parser.cc", 104, "scene_graph", "!plant_->is_finalized()")
+            raise failed_demand("Parser.scene_graph.finalized")
         scene_graph: SceneGraph = self._plant._registered_scene_graph("scene_graph")[0]
         return scene_graph
 
@@ -382,7 +368,7 @@ class Parser:
         """One composite parse: ``read``'s models, then the groups resolved and kept."""
         plant = self._plant
         if plant.geometry_source_is_registered() and plant.is_finalized():
-            raise _failure(_PLANT_H, 5839, "GetMutableSceneGraphPreFinalize", "!is_finalized()")
+            raise failed_demand("GetMutableSceneGraphPreFinalize.finalized")
         context = ParseContext(
             plant=plant,
             package_map=self._package_map,

@@ -23,7 +23,7 @@ import numpy as np
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl.multibody._errors import NotFinalizedError
-from reimpl.multibody.plant._demands import demand_cc, demand_h
+from reimpl.multibody.plant._demands import demand
 from reimpl.multibody.plant._elements import Elements
 from reimpl.multibody.tree import Joint, ModelInstanceIndex
 from reimpl.systems.framework import Context, LeafContext
@@ -113,10 +113,8 @@ class Positions(Elements):
         def all_positions(context: Context, q: Any) -> None:
             positions = self._context_positions(context)
             values = _positions_vector(q)
-            demand_h(
-                values.size == positions.size, 2896, "SetPositions", "q.size() == num_positions()"
-            )
-            demand_h(bool(np.isfinite(values).all()), 2897, "SetPositions", "AllFinite(q)")
+            demand(values.size == positions.size, "SetPositions.q.size")
+            demand(bool(np.isfinite(values).all()), "SetPositions.q.finite")
             positions[:] = values
 
         def of_instance(context: Context, model_instance: ModelInstanceIndex, q: Any) -> None:
@@ -124,13 +122,8 @@ class Positions(Elements):
             values = _positions_vector(q)
             slices = self._instance_slices(model_instance)
             size = sum(s.stop - s.start for s in slices)
-            demand_h(
-                values.size == size,
-                2912,
-                "SetPositions",
-                "q_instance.size() == num_positions(model_instance)",
-            )
-            demand_h(bool(np.isfinite(values).all()), 2913, "SetPositions", "AllFinite(q_instance)")
+            demand(values.size == size, "SetPositions.q_instance.size")
+            demand(bool(np.isfinite(values).all()), "SetPositions.q_instance.finite")
             first = 0
             for s in slices:
                 positions[s] = values[first : first + s.stop - s.start]
@@ -184,12 +177,7 @@ class Positions(Elements):
         def all_positions(q: Any) -> None:
             self._check_finalized("SetDefaultPositions")
             values = _positions_vector(q)
-            demand_cc(
-                values.size == self.num_positions(),
-                1881,
-                "SetDefaultPositions",
-                "q.size() == num_positions()",
-            )
+            demand(values.size == self.num_positions(), "SetDefaultPositions.q.size")
             for joint in self._joints:
                 start = joint.position_start()
                 joint._set_default(0, values[start : start + joint.num_positions()])
@@ -198,11 +186,9 @@ class Positions(Elements):
             self._check_finalized("SetDefaultPositions")
             values = _positions_vector(q_instance)
             joints = self._joints_in_position_order(model_instance)
-            demand_cc(
+            demand(
                 values.size == sum(j.num_positions() for j in joints),
-                1895,
-                "SetDefaultPositions",
-                "q_instance.size() == num_positions(model_instance)",
+                "SetDefaultPositions.q_instance.size",
             )
             first = 0
             for joint in joints:

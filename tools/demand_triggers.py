@@ -1,0 +1,266 @@
+"""A call that fails each DRAKE_DEMAND reimpl reproduces, on pydrake or on reimpl.
+
+Each trigger takes the root module (``pydrake`` or ``reimpl``; the two have the
+same module paths) and makes one call that fails the demand, using pydrake's
+keyword arguments. tools/measure_demand_lines.py runs them on a pydrake release
+to measure where it reports each demand (reimpl/common/demand_lines.json);
+tests/upstream/test_demand_lines.py runs them on both implementations and
+compares the messages.
+
+The ids are those of reimpl/common/demand_lines.json.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from types import ModuleType
+from typing import Any
+
+__all__ = ["TRIGGERS", "Trigger"]
+
+Trigger = Callable[[ModuleType], Any]
+#: pydrake's Parser keeps no plant alive, nor a plant its SceneGraph: they live here.
+_KEEP: list[Any] = []
+
+
+def _module(root: ModuleType, name: str) -> Any:
+    return importlib.import_module(f"{root.__name__}.{name}")
+
+
+def _plant(root: ModuleType) -> Any:
+    plant = _module(root, "multibody.plant").MultibodyPlant(time_step=0.0)
+    _KEEP.append(plant)
+    return plant
+
+
+def _inertia(root: ModuleType) -> Any:
+    tree = _module(root, "multibody.tree")
+    return tree.SpatialInertia(
+        mass=1.0, p_PScm_E=[0.0, 0.0, 0.0], G_SP_E=tree.UnitInertia(1.0, 1.0, 1.0)
+    )
+
+
+def _body(root: ModuleType, plant: Any, name: str = "b", **kwargs: Any) -> Any:
+    return plant.AddRigidBody(name=name, M_BBo_B=_inertia(root), **kwargs)
+
+
+def _interleaved(root: ModuleType) -> tuple[Any, Any]:
+    """A finalized plant whose instance ``a`` has positions 0 and 2 (``b`` has 1), and ``a``."""
+    tree = _module(root, "multibody.tree")
+    plant = _plant(root)
+    a = plant.AddModelInstance(name="a")
+    b = plant.AddModelInstance(name="b")
+    for name, instance in (("a1", a), ("b1", b), ("a2", a)):
+        body = _body(root, plant, name, model_instance=instance)
+        plant.AddJoint(
+            tree.RevoluteJoint(
+                name=f"j{name}",
+                frame_on_parent=plant.world_frame(),
+                frame_on_child=body.body_frame(),
+                axis=[0.0, 0.0, 1.0],
+            )
+        )
+    plant.Finalize()
+    return plant, a
+
+
+def _negative_time_step(root: ModuleType) -> Any:
+    return _module(root, "multibody.plant").MultibodyPlant(time_step=-1.0)
+
+
+def _register_twice(root: ModuleType) -> Any:
+    geometry = _module(root, "geometry")
+    plant = _plant(root)
+    _KEEP.extend(graphs := [geometry.SceneGraph(), geometry.SceneGraph()])
+    plant.RegisterAsSourceForSceneGraph(scene_graph=graphs[0])
+    return plant.RegisterAsSourceForSceneGraph(scene_graph=graphs[1])
+
+
+def _register_visual(root: ModuleType) -> Any:
+    plant = _plant(root)
+    return plant.RegisterVisualGeometry(
+        body=_body(root, plant),
+        X_BG=_module(root, "math").RigidTransform(),
+        shape=_module(root, "geometry").Sphere(radius=1.0),
+        name="v",
+        diffuse_color=[1.0, 1.0, 1.0, 1.0],
+    )
+
+
+def _register_collision(root: ModuleType) -> Any:
+    plant = _plant(root)
+    friction = _module(root, "multibody.plant").CoulombFriction
+    return plant.RegisterCollisionGeometry(
+        body=_body(root, plant),
+        X_BG=_module(root, "math").RigidTransform(),
+        shape=_module(root, "geometry").Sphere(radius=1.0),
+        name="c",
+        coulomb_friction=friction(static_friction=1.0, dynamic_friction=1.0),
+    )
+
+
+def _collect(root: ModuleType) -> Any:
+    plant = _plant(root)
+    return plant.CollectRegisteredGeometries(bodies=[_body(root, plant)])
+
+
+def _rename_finalized(root: ModuleType) -> Any:
+    plant = _plant(root)
+    instance = plant.AddModelInstance(name="m")
+    plant.Finalize()
+    return plant.RenameModelInstance(model_instance=instance, name="n")
+
+
+def _set_positions(instance: bool, finite: bool) -> Trigger:
+    """q of the wrong size (one too many), or of the right size but not finite."""
+
+    def trigger(root: ModuleType) -> Any:
+        plant, a = _interleaved(root)
+        context = plant.CreateDefaultContext()
+        size = 2 if instance else 3
+        q = [float("nan")] * size if finite else [0.0] * (size + 1)
+        if instance:
+            return plant.SetPositions(context=context, model_instance=a, q=q)
+        return plant.SetPositions(context=context, q=q)
+
+    return trigger
+
+
+def _set_default_positions(instance: bool) -> Trigger:
+    def trigger(root: ModuleType) -> Any:
+        plant, a = _interleaved(root)
+        if instance:
+            return plant.SetDefaultPositions(model_instance=a, q_instance=[0.0])
+        return plant.SetDefaultPositions(q=[0.0])
+
+    return trigger
+
+
+def _names(kind: str) -> Trigger:
+    """The names of an instance whose coordinates are not contiguous."""
+
+    def trigger(root: ModuleType) -> Any:
+        plant, a = _interleaved(root)
+        return getattr(plant, f"Get{kind}Names")(model_instance=a)
+
+    return trigger
+
+
+def _listing(method: str) -> Trigger:
+    def trigger(root: ModuleType) -> Any:
+        plant = _plant(root)
+        plant.Finalize()
+        return getattr(plant, method)(_module(root, "multibody.tree").ModelInstanceIndex(99))
+
+    return trigger
+
+
+def _unique_base_body(root: ModuleType) -> Any:
+    plant = _plant(root)
+    plant.Finalize()
+    index = _module(root, "multibody.tree").ModelInstanceIndex(99)
+    return plant.HasUniqueFloatingBaseBody(model_instance=index)
+
+
+def _empty_instance_name(root: ModuleType) -> Any:
+    return _plant(root).AddModelInstance(name="")
+
+
+def _invalid_directives(root: ModuleType) -> Any:
+    load = _module(root, "multibody.parsing").LoadModelDirectivesFromString
+    return load(model_directives="directives:\n- add_model_instance:\n")
+
+
+def _unmatched_weld(root: ModuleType) -> Any:
+    """add_weld of a child in a model these directives did not add."""
+    parser = _module(root, "multibody.parsing").Parser
+    plant = _plant(root)
+    robot = "<robot name='r'><link name='l'/></robot>"
+    parser(plant=plant).AddModelsFromString(file_contents=robot, file_type="urdf")
+    weld = "directives:\n- add_weld: {parent: world, child: r::l}\n"
+    return parser(plant=plant).AddModelsFromString(file_contents=weld, file_type="dmd.yaml")
+
+
+def _parser_without_plant(root: ModuleType) -> Any:
+    return _module(root, "multibody.parsing").Parser(None)
+
+
+def _flatten_invalid_frame(root: ModuleType) -> Any:
+    parsing = _module(root, "multibody.parsing")
+    transform = _module(root, "common.schema").Transform
+    frame = parsing.AddFrame(name="", X_PF=transform(base_frame="world"))
+    directives = parsing.ModelDirectives(directives=[parsing.ModelDirective(add_frame=frame)])
+    return parsing.FlattenModelDirectives(directives=directives, package_map=parsing.PackageMap())
+
+
+def _group_twice(root: ModuleType) -> Any:
+    groups = _module(root, "multibody.parsing").CollisionFilterGroups()
+    groups.AddGroup(name="g", members={"a"})
+    return groups.AddGroup(name="g", members={"a"})
+
+
+def _read_finalized(file_name: str) -> Trigger:
+    """A reader's check that the plant (no SceneGraph source) is not finalized; it comes
+    before the file is opened, so the file need not exist."""
+
+    def trigger(root: ModuleType) -> Any:
+        plant = _plant(root)
+        plant.Finalize()
+        return _module(root, "multibody.parsing").Parser(plant=plant).AddModels(file_name=file_name)
+
+    return trigger
+
+
+def _parse_into_finalized_source(root: ModuleType) -> Any:
+    """A parse into a finalized plant that is a SceneGraph source."""
+    plant = _plant(root)
+    _KEEP.append(scene_graph := _module(root, "geometry").SceneGraph())
+    plant.RegisterAsSourceForSceneGraph(scene_graph=scene_graph)
+    plant.Finalize()
+    parser = _module(root, "multibody.parsing").Parser(plant=plant)
+    return parser.AddModelsFromString(file_contents="<robot name='r'/>", file_type="urdf")
+
+
+def _scene_graph_after_finalize(root: ModuleType) -> Any:
+    plant = _plant(root)
+    _KEEP.append(scene_graph := _module(root, "geometry").SceneGraph())
+    plant.RegisterAsSourceForSceneGraph(scene_graph=scene_graph)
+    parser = _module(root, "multibody.parsing").Parser(plant=plant)
+    plant.Finalize()
+    return parser.scene_graph()
+
+
+#: Each demand (its id in reimpl/common/demand_lines.json) and a call that fails it.
+TRIGGERS: dict[str, Trigger] = {
+    "MultibodyPlant.time_step": _negative_time_step,
+    "RegisterAsSourceForSceneGraph.registered": _register_twice,
+    "RegisterVisualGeometry.no_source": _register_visual,
+    "RegisterCollisionGeometry.no_source": _register_collision,
+    "CollectRegisteredGeometries.no_source": _collect,
+    "RenameModelInstance.finalized": _rename_finalized,
+    "SetPositions.q.size": _set_positions(instance=False, finite=False),
+    "SetPositions.q.finite": _set_positions(instance=False, finite=True),
+    "SetPositions.q_instance.size": _set_positions(instance=True, finite=False),
+    "SetPositions.q_instance.finite": _set_positions(instance=True, finite=True),
+    "SetDefaultPositions.q.size": _set_default_positions(instance=False),
+    "SetDefaultPositions.q_instance.size": _set_default_positions(instance=True),
+    "GetPositionNames.fits": _names("Position"),
+    "GetVelocityNames.fits": _names("Velocity"),
+    "GetBodyIndices.instance": _listing("GetBodyIndices"),
+    "GetJointIndices.instance": _listing("GetJointIndices"),
+    "GetFrameIndices.instance": _listing("GetFrameIndices"),
+    "MaybeGetUniqueBaseBodyIndex.instance": _unique_base_body,
+    "ModelInstance.set_name": _empty_instance_name,
+    "LoadModelDirectives.valid": _invalid_directives,
+    "AddWeld.found": _unmatched_weld,
+    "Parser.plant": _parser_without_plant,
+    "ApplyDirectiveNamespace.valid": _flatten_invalid_frame,
+    "CollisionFilterGroups.AddGroup.new": _group_twice,
+    "AddOrMergeModelFromUrdf.finalized": _read_finalized("missing.urdf"),
+    "AddModelsFromSdf.finalized": _read_finalized("missing.sdf"),
+    "AddOrMergeModelFromMujocoXml.finalized": _read_finalized("missing.xml"),
+    "AddModelFromMesh.finalized": _read_finalized("missing.obj"),
+    "GetMutableSceneGraphPreFinalize.finalized": _parse_into_finalized_source,
+    "Parser.scene_graph.finalized": _scene_graph_after_finalize,
+}
