@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from typing import NoReturn
 
+from reimpl._release import release
 from reimpl.multibody._errors import DuplicateNameError, FinalizedError, NotFoundError
 from reimpl.multibody.plant._demands import fail_demand
 from reimpl.multibody.plant._phase import PlantPhase
@@ -31,6 +32,12 @@ _WORLD_INSTANCE_NAME = "WorldModelInstance"
 _DEFAULT_INSTANCE_NAME = "DefaultModelInstance"
 #: The instances every plant has (world and default); they do not scope names.
 PREDEFINED_INSTANCES = 2
+
+
+#: Whether naming a model instance ``""`` fails Drake's demand (release fact
+#: empty-model-instance-name-demand-since-1.25); up to 1.24 ``""`` is a name like any
+#: other (measured on 1.12.0 to 1.58.0).
+_EMPTY_NAME_REFUSED = release.has("empty-model-instance-name-demand-since-1.25")
 
 
 def _empty_instance_name() -> NoReturn:
@@ -59,7 +66,7 @@ class ModelInstances(PlantPhase):
                 "instances is not allowed. See documentation for Finalize() for details."
             )
         self._check_new_instance_name(name)
-        if not name:
+        if not name and _EMPTY_NAME_REFUSED:
             _empty_instance_name()
         self._instance_names.append(name)
         return ModelInstanceIndex(len(self._instance_names) - 1)
@@ -130,8 +137,9 @@ class ModelInstances(PlantPhase):
         raises SystemExit (a DRAKE_THROW_UNLESS in multibody_plant.cc, at line
         1372 on 1.51.1 and 1320 on 1.58.0: the demand
         ``RenameModelInstance.finalized``), and so does reimpl. An empty ``name``
-        raises SystemExit as on pydrake (which, measured, still registers ``""``;
-        reimpl leaves the instance as it was).
+        raises SystemExit as on pydrake since 1.25 (which, measured on 1.51.1,
+        still registers ``""``; reimpl leaves the instance as it was); up to 1.24
+        it is a new name like any other.
         """
         if self._finalized:
             fail_demand("RenameModelInstance.finalized")
@@ -139,7 +147,7 @@ class ModelInstances(PlantPhase):
         old = self._instance_names[index]
         if name == old:
             return
-        if not name:
+        if not name and _EMPTY_NAME_REFUSED:
             _empty_instance_name()
         self._check_new_instance_name(name)
         self._rename_instance(index, old, name)

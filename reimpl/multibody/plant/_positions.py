@@ -12,7 +12,9 @@ num_positions(J)]`` (laid out by the forest, see plant._topology):
 - ``GetDefaultPositions``/``SetDefaultPositions`` do the same for the joints'
   defaults (need Finalize).
 - ``SetPositions`` demands (SystemExit on pydrake 1.51.1, measured) the
-  size and that every value is finite; ``SetDefaultPositions`` the size.
+  size and, since Drake 1.38, that every value is finite (release fact
+  set-positions-finite-demand-since-1.38; up to 1.37 it stores NaN, measured on
+  1.12.0 to 1.58.0); ``SetDefaultPositions`` the size.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl.multibody._errors import NotFinalizedError
 from reimpl.multibody.plant._demands import demand
 from reimpl.multibody.plant._elements import Elements
@@ -47,6 +50,15 @@ _is_vector.__name__ = "numpy.ndarray[numpy.float64[m, 1]]"
 
 def _positions_vector(q: Any) -> Any:
     return np.asarray(q, dtype=float).reshape(-1)
+
+
+#: Whether SetPositions demands finite values (Drake 1.38 on).
+_FINITE_DEMANDED = release.has("set-positions-finite-demand-since-1.38")
+
+
+def _finite(values: Any) -> bool:
+    """Whether ``values`` pass SetPositions' finiteness demand on reimpl's release."""
+    return not _FINITE_DEMANDED or bool(np.isfinite(values).all())
 
 
 class Positions(Elements):
@@ -114,7 +126,7 @@ class Positions(Elements):
             positions = self._context_positions(context)
             values = _positions_vector(q)
             demand(values.size == positions.size, "SetPositions.q.size")
-            demand(bool(np.isfinite(values).all()), "SetPositions.q.finite")
+            demand(_finite(values), "SetPositions.q.finite")
             positions[:] = values
 
         def of_instance(context: Context, model_instance: ModelInstanceIndex, q: Any) -> None:
@@ -123,7 +135,7 @@ class Positions(Elements):
             slices = self._instance_slices(model_instance)
             size = sum(s.stop - s.start for s in slices)
             demand(values.size == size, "SetPositions.q_instance.size")
-            demand(bool(np.isfinite(values).all()), "SetPositions.q_instance.finite")
+            demand(_finite(values), "SetPositions.q_instance.finite")
             first = 0
             for s in slices:
                 positions[s] = values[first : first + s.stop - s.start]
