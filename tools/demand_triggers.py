@@ -12,6 +12,7 @@ The ids are those of reimpl/common/demand_lines.json.
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 from collections.abc import Callable
 from types import ModuleType
@@ -231,6 +232,72 @@ def _scene_graph_after_finalize(root: ModuleType) -> Any:
     return parser.scene_graph()
 
 
+def _fix_older_context(root: ModuleType) -> Any:
+    """Fixing a source's pose port in a SceneGraph context made before the source."""
+    geometry = _module(root, "geometry")
+    _KEEP.append(scene_graph := geometry.SceneGraph())
+    context = scene_graph.CreateDefaultContext()
+    source = scene_graph.RegisterSource(name="s")
+    port = scene_graph.get_source_pose_port(source)
+    return port.FixValue(context, geometry.FramePoseVector())
+
+
+def _wire_twice(root: ModuleType) -> Any:
+    builder = _module(root, "systems.framework").DiagramBuilder()
+    _KEEP.append(builder)
+    plant, scene_graph = _module(root, "multibody.plant").AddMultibodyPlantSceneGraph(
+        builder, time_step=0.0
+    )
+    return builder.Connect(
+        scene_graph.get_query_output_port(), plant.get_geometry_query_input_port()
+    )
+
+
+def _random_rotation(root: ModuleType) -> Any:
+    schema = _module(root, "common.schema")
+    rotation = schema.Rotation()
+    rotation.value = schema.Rotation.Uniform()
+    return rotation
+
+
+def _rotation_value(root: ModuleType) -> Any:
+    return _random_rotation(root).GetDeterministicValue()
+
+
+def _transform_value(root: ModuleType) -> Any:
+    transform = _module(root, "common.schema").Transform()
+    transform.rotation = _random_rotation(root)
+    return transform.GetDeterministicValue()
+
+
+def _change_anchored_activity(activate: bool) -> Trigger:
+    """Deactivating anchored proximity geometry (and then activating it again)."""
+
+    def trigger(root: ModuleType) -> Any:
+        geometry = _module(root, "geometry")
+        _KEEP.append(scene_graph := geometry.SceneGraph())
+        source = scene_graph.RegisterSource(name="s")
+        instance = geometry.GeometryInstance(
+            X_PG=_module(root, "math").RigidTransform(),
+            shape=geometry.Sphere(radius=1.0),
+            name="g",
+        )
+        anchored = scene_graph.RegisterAnchoredGeometry(source_id=source, geometry=instance)
+        scene_graph.AssignRole(
+            source_id=source, geometry_id=anchored, properties=geometry.ProximityProperties()
+        )
+        manager = scene_graph.collision_filter_manager()
+        anchored_set = geometry.GeometrySet(geometry_ids=[anchored])
+        if not activate:
+            return manager.Deactivate(geometry_set=anchored_set)
+        # N.B. Where Deactivate fails its own demand, the geometry is inactive all the same.
+        with contextlib.suppress(SystemExit):
+            manager.Deactivate(geometry_set=anchored_set)
+        return manager.Activate(geometry_set=anchored_set)
+
+    return trigger
+
+
 #: Each demand (its id in reimpl/common/demand_lines.json) and a call that fails it.
 TRIGGERS: dict[str, Trigger] = {
     "MultibodyPlant.time_step": _negative_time_step,
@@ -263,4 +330,10 @@ TRIGGERS: dict[str, Trigger] = {
     "AddModelFromMesh.finalized": _read_finalized("missing.obj"),
     "GetMutableSceneGraphPreFinalize.finalized": _parse_into_finalized_source,
     "Parser.scene_graph.finalized": _scene_graph_after_finalize,
+    "SetFixedInputPortValue.index": _fix_older_context,
+    "ThrowIfInputAlreadyWired.wired": _wire_twice,
+    "Rotation.GetDeterministicValue": _rotation_value,
+    "Transform.GetDeterministicValue": _transform_value,
+    "ApplyActiveStatusChange.deactivate": _change_anchored_activity(activate=False),
+    "ApplyActiveStatusChange.activate": _change_anchored_activity(activate=True),
 }

@@ -42,7 +42,12 @@ def _outcome(demand: str, root: ModuleType) -> tuple[str, str]:
         TRIGGERS[demand](root)
     except (SystemExit, Exception) as error:  # N.B. The ending is the measurement.
         builtin = next(c for c in type(error).__mro__ if getattr(builtins, c.__name__, 0) is c)
-        return builtin.__name__, str(error).split("\n", 1)[0]
+        message = str(error).split("\n", 1)[0]
+        if isinstance(error, AttributeError):
+            # N.B. An absent binding: pybind names its class by module (pydrake.x.C), Python
+            # by name ('C'); the missing attribute is what both say alike.
+            message = message[message.find("has no attribute") :]
+        return builtin.__name__, message
     return "returned", ""
 
 
