@@ -21,6 +21,7 @@ import copy
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from reimpl._release import release
 from reimpl._template import scalar_template
 from reimpl.common._drake_demand import failed_demand
 from reimpl.common._pybind_text import no_constructor
@@ -428,6 +429,9 @@ class DiagramBuilder:
             self._check_registered(port.get_system())
         key = (arg1.get_system(), arg1.get_index())
         if key in self._connections:
+            # N.B. Up to 1.24 a RuntimeError (connect-wired-input-demand-since-1.25).
+            if not release.has("connect-wired-input-demand-since-1.25"):
+                raise RuntimeError("Input port is already wired.")
             raise failed_demand("ThrowIfInputAlreadyWired.wired")
         self._connections[key] = arg0
 

@@ -102,15 +102,22 @@ _FILE_TYPES: dict[str, _FileType] = {
 }
 
 
+#: The types the release's SelectParser knows: ``.obj`` since 1.14 (release fact
+#: obj-model-files-since-1.14; up to 1.13 it is an unknown type, measured on 1.13.0).
+_KNOWN_TYPES = tuple(
+    t for t in _FILE_TYPES if t != "obj" or release.has("obj-model-files-since-1.14")
+)
+
+
 def _file_type(name: str) -> str:
     """Drake's SelectParser: the type whose suffix ``name`` ends with (any case)."""
     lowered = name.lower()
-    for file_type in _FILE_TYPES:
+    for file_type in _KNOWN_TYPES:
         if lowered.endswith(f".{file_type}"):
             return file_type
+    known = ".urdf, .sdf, .xml (Mujoco), .dmd.yaml" + (", .obj" if "obj" in _KNOWN_TYPES else "")
     raise ModelParseError(
-        f"error: The file '{name}' is not a recognized type. Known types are: .urdf, .sdf, "
-        ".xml (Mujoco), .dmd.yaml, .obj"
+        f"error: The file '{name}' is not a recognized type. Known types are: {known}"
     )
 
 
