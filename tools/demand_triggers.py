@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import contextlib
 import importlib
+import tempfile
 from collections.abc import Callable
+from pathlib import Path
 from types import ModuleType
 from typing import Any
 
@@ -298,6 +300,102 @@ def _change_anchored_activity(activate: bool) -> Trigger:
     return trigger
 
 
+def _package_map_call(method: str, **kwargs: Any) -> Trigger:
+    def trigger(root: ModuleType) -> Any:
+        return getattr(_module(root, "multibody.parsing").PackageMap(), method)(**kwargs)
+
+    return trigger
+
+
+def _manifest(name_element: str) -> Trigger:
+    """A package.xml whose <name> is ``name_element``."""
+
+    def trigger(root: ModuleType) -> Any:
+        folder = Path(tempfile.mkdtemp())
+        manifest = folder / "package.xml"
+        manifest.write_text(f"<package>{name_element}</package>\n", "utf-8")
+        package_map = _module(root, "multibody.parsing").PackageMap()
+        return package_map.AddPackageXml(filename=str(manifest))
+
+    return trigger
+
+
+def _group_in_older_instance(root: ModuleType) -> Any:
+    """A directives group whose model_namespace is an instance an earlier parse made."""
+    parser = _module(root, "multibody.parsing").Parser
+    plant = _plant(root)
+    _KEEP.append(scene_graph := _module(root, "geometry").SceneGraph())
+    plant.RegisterAsSourceForSceneGraph(scene_graph=scene_graph)
+    robot = "<robot name='r'><link name='l'/></robot>"
+    parser(plant=plant).AddModelsFromString(file_contents=robot, file_type="urdf")
+    group = (
+        "directives:\n- add_collision_filter_group: {name: g, model_namespace: r, members: [l]}\n"
+    )
+    return parser(plant=plant).AddModelsFromString(file_contents=group, file_type="dmd.yaml")
+
+
+def _world_body_call(method: str, *args: Any) -> Trigger:
+    """A floating-body accessor of the world body (not floating) of a finalized plant."""
+
+    def trigger(root: ModuleType) -> Any:
+        plant = _plant(root)
+        plant.Finalize()
+        return getattr(plant.world_body(), method)(*args)
+
+    return trigger
+
+
+def _free_body_call(method: str, *args: Any) -> Trigger:
+    """A floating-body accessor of a free body, with an index out of range."""
+
+    def trigger(root: ModuleType) -> Any:
+        plant = _plant(root)
+        body = _body(root, plant)
+        plant.Finalize()
+        return getattr(body, method)(*args)
+
+    return trigger
+
+
+def _unfinalized_joint_call(method: str, *args: Any) -> Trigger:
+    """A joint accessor that needs the mobilizer Finalize makes, before Finalize."""
+
+    def trigger(root: ModuleType) -> Any:
+        plant, _ = _revolute(root)
+        return getattr(plant.GetJointByName("j"), method)(*args)
+
+    return trigger
+
+
+def _revolute(root: ModuleType) -> tuple[Any, Any]:
+    plant = _plant(root)
+    body = _body(root, plant)
+    joint = _module(root, "multibody.tree").RevoluteJoint(
+        name="j",
+        frame_on_parent=plant.world_frame(),
+        frame_on_child=body.body_frame(),
+        axis=[0.0, 0.0, 1.0],
+    )
+    return plant, plant.AddJoint(joint)
+
+
+def _joint_with(kind: str, **parameters: Any) -> Trigger:
+    """A ``kind`` joint between the world and a body, built with ``parameters``."""
+
+    def trigger(root: ModuleType) -> Any:
+        plant = _plant(root)
+        body = _body(root, plant)
+        joint = getattr(_module(root, "multibody.tree"), kind)
+        return joint(
+            name="j",
+            frame_on_parent=plant.world_frame(),
+            frame_on_child=body.body_frame(),
+            **parameters,
+        )
+
+    return trigger
+
+
 #: Each demand (its id in reimpl/common/demand_lines.json) and a call that fails it.
 TRIGGERS: dict[str, Trigger] = {
     "MultibodyPlant.time_step": _negative_time_step,
@@ -336,4 +434,45 @@ TRIGGERS: dict[str, Trigger] = {
     "Transform.GetDeterministicValue": _transform_value,
     "ApplyActiveStatusChange.deactivate": _change_anchored_activity(activate=False),
     "ApplyActiveStatusChange.activate": _change_anchored_activity(activate=True),
+    "PackageMap.GetPath.contains": _package_map_call("GetPath", package_name="nowhere"),
+    "PackageMap.AddPackageXml.filename": _package_map_call("AddPackageXml", filename=""),
+    "PackageMap.PopulateFromFolder.path": _package_map_call("PopulateFromFolder", path=""),
+    "PackageMap.PopulateFromEnvironment.variable": _package_map_call(
+        "PopulateFromEnvironment", environment_variable=""
+    ),
+    "ParsePackageManifest.name_children": _manifest("<name/>"),
+    "ParsePackageManifest.name": _manifest("<name><!----></name>"),
+    "CollisionFilterGroupResolver.AddGroup.instance": _group_in_older_instance,
+    "RigidBody.floating_positions_start.floating": _world_body_call("floating_positions_start"),
+    "RigidBody.floating_velocities_start_in_v.floating": _world_body_call(
+        "floating_velocities_start_in_v"
+    ),
+    "RigidBody.floating_position_suffix.floating": _world_body_call("floating_position_suffix", 0),
+    "RigidBody.floating_velocity_suffix.floating": _world_body_call("floating_velocity_suffix", 0),
+    "RigidBody.floating_position_suffix.index": _free_body_call("floating_position_suffix", 7),
+    "RigidBody.floating_velocity_suffix.index": _free_body_call("floating_velocity_suffix", 6),
+    "Joint.position_start.mobilizer": _unfinalized_joint_call("position_start"),
+    "Joint.velocity_start.mobilizer": _unfinalized_joint_call("velocity_start"),
+    "Joint.position_suffix.mobilizer": _unfinalized_joint_call("position_suffix", 0),
+    "Joint.velocity_suffix.mobilizer": _unfinalized_joint_call("velocity_suffix", 0),
+    "Joint.can_rotate.mobilizer": _unfinalized_joint_call("can_rotate"),
+    "Joint.can_translate.mobilizer": _unfinalized_joint_call("can_translate"),
+    "Joint.limits": _joint_with(
+        "RevoluteJoint", axis=[0.0, 0.0, 1.0], pos_lower_limit=1.0, pos_upper_limit=0.0
+    ),
+    "BallRpyJoint.damping": _joint_with("BallRpyJoint", damping=-1.0),
+    "UniversalJoint.damping": _joint_with("UniversalJoint", damping=-1.0),
+    "PlanarJoint.damping": _joint_with("PlanarJoint", damping=[-1.0, 0.0, 0.0]),
+    "QuaternionFloatingJoint.angular_damping": _joint_with(
+        "QuaternionFloatingJoint", angular_damping=-1.0, translational_damping=0.0
+    ),
+    "QuaternionFloatingJoint.translational_damping": _joint_with(
+        "QuaternionFloatingJoint", angular_damping=0.0, translational_damping=-1.0
+    ),
+    "RpyFloatingJoint.angular_damping": _joint_with(
+        "RpyFloatingJoint", angular_damping=-1.0, translational_damping=0.0
+    ),
+    "RpyFloatingJoint.translational_damping": _joint_with(
+        "RpyFloatingJoint", angular_damping=0.0, translational_damping=-1.0
+    ),
 }
