@@ -396,6 +396,32 @@ def _joint_with(kind: str, **parameters: Any) -> Trigger:
     return trigger
 
 
+#: Each shape's measures in its constructor's order (geometry/shape_specification.cc).
+_SHAPE_MEASURES = {
+    "Box": ("width", "depth", "height"),
+    "Capsule": ("radius", "length"),
+    "Cylinder": ("radius", "length"),
+    "Ellipsoid": ("a", "b", "c"),
+    "MeshcatCone": ("height", "a", "b"),
+    "Sphere": ("radius",),
+}
+
+
+def _bad_shape(shape: str, measure: str) -> Trigger:
+    """A ``shape`` whose ``measure`` is -1 (the others 1)."""
+
+    def trigger(root: ModuleType) -> Any:
+        values = {m: -1.0 if m == measure else 1.0 for m in _SHAPE_MEASURES[shape]}
+        return getattr(_module(root, "geometry"), shape)(**values)
+
+    return trigger
+
+
+def _zero_normal_pose(root: ModuleType) -> Any:
+    half_space = _module(root, "geometry").HalfSpace
+    return half_space.MakePose(Hz_dir_F=[0.0, 0.0, 0.0], p_FB=[0.0, 0.0, 0.0])
+
+
 #: Each demand (its id in reimpl/common/demand_lines.json) and a call that fails it.
 TRIGGERS: dict[str, Trigger] = {
     "MultibodyPlant.time_step": _negative_time_step,
@@ -475,4 +501,10 @@ TRIGGERS: dict[str, Trigger] = {
     "RpyFloatingJoint.translational_damping": _joint_with(
         "RpyFloatingJoint", angular_damping=0.0, translational_damping=-1.0
     ),
+    **{
+        f"{shape}.{measure}": _bad_shape(shape, measure)
+        for shape, measures in _SHAPE_MEASURES.items()
+        for measure in measures
+    },
+    "MakePose.norm": _zero_normal_pose,
 }

@@ -37,7 +37,10 @@ from typing import Any
 
 from demand_triggers import TRIGGERS  # N.B. tools/ is this script's sys.path[0].
 
-_FAILURE = re.compile(r"^Failure at (.+):(\d+) in (\w+)\(\): condition '(.*)' failed\.$", re.S)
+#: The message, and what some demands add after it (a shape's ``radius = -1.0.``).
+_FAILURE = re.compile(
+    r"^Failure at (.+):(\d+) in (\w+)\(\): condition '(.*)' failed\.(?: [^']*)?$", re.S
+)
 
 
 def measure() -> dict[str, Any]:
