@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from reimpl.common._drake_demand import demand_failure
+from reimpl.common._drake_demand import failed_demand
 from reimpl.common._struct import Field, Struct, as_vector, optional_of, string, vector
 from reimpl.math import RigidTransform, RollPitchYaw, RotationMatrix
 
@@ -37,13 +37,6 @@ __all__ = ["Rotation", "Transform"]
 
 _MODULE = "reimpl.common.schema"
 _VECTOR3 = "numpy.ndarray[numpy.float64[3, 1]]"
-
-
-def _failure(file: str, line: int) -> SystemExit:
-    """pydrake's SystemExit for GetDeterministicValue() of a random value."""
-    return demand_failure(
-        f"common/schema/{file}", line, "GetDeterministicValue", "this->IsDeterministic()"
-    )
 
 
 class _Identity(Struct):
@@ -127,7 +120,7 @@ class Rotation(Struct):
         if isinstance(value, _AngleAxis):
             return _angle_axis(value.angle_deg * (math.pi / 180.0), value.axis)
         if isinstance(value, _Uniform):
-            raise _failure("rotation.cc", 42)
+            raise failed_demand("Rotation.GetDeterministicValue")
         return RotationMatrix()
 
 
@@ -192,5 +185,5 @@ class Transform(Struct):
 
     def GetDeterministicValue(self) -> RigidTransform:
         if not self.IsDeterministic():
-            raise _failure("transform.cc", 54)
+            raise failed_demand("Transform.GetDeterministicValue")
         return RigidTransform(self.rotation.GetDeterministicValue(), self.translation)

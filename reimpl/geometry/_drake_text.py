@@ -14,6 +14,9 @@ scientific otherwise); Eigen's stream layout uses 16 significant digits:
 
 -0.0 is ``-0``, ``-0.0`` and ``-0`` respectively.
 ``eigen_row`` right-aligns its cells to the widest: ``[     1 -1e-09      1]``.
+Since 1.52 the Mesh/Convex errors write a vector with fmt instead
+(``eigen_vector``: ``[1, -1e-09, 1]ᵀ``, each value ``shortest``; release fact
+eigen-vector-wording-since-1.52, measured on 1.51.1 and 1.52.0 to 1.58.0).
 A negative NaN prints as ``-nan`` (C++ keeps the sign bit; Python drops it).
 """
 
@@ -22,7 +25,9 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
-__all__ = ["eigen_row", "shortest", "with_point"]
+from reimpl._release import release
+
+__all__ = ["eigen_row", "eigen_vector", "shortest", "with_point"]
 
 
 def _repr(value: float) -> str:
@@ -58,3 +63,11 @@ def eigen_row(values: Iterable[float]) -> str:
     cells = [_significant16(v) for v in values]
     width = max(len(c) for c in cells)
     return "[" + " ".join(c.rjust(width) for c in cells) + "]"
+
+
+def eigen_vector(values: Iterable[float]) -> str:
+    """A vector in a Mesh/Convex error, as reimpl's release writes it: ``[1, 2, 3]ᵀ``
+    since 1.52, Eigen's stream layout (``eigen_row``) before."""
+    if not release.has("eigen-vector-wording-since-1.52"):
+        return eigen_row(values)
+    return "[" + ", ".join(shortest(v) for v in values) + "]ᵀ"

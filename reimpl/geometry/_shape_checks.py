@@ -6,9 +6,13 @@ names the file, the line, the function, the condition and the offending value::
     Failure at external/drake+/geometry/shape_specification.cc:309 in Sphere():
     condition 'std::isfinite(radius) && radius >= 0' failed. radius = -1.0.
 
-(one line). Lines are Drake 1.51.1's, which reimpl follows; later releases move
-them (1.58.0: Sphere is at 285) and keep the rest. Measures are checked in
-declaration order, so the first bad one is reported.
+(one line; measured on pydrake 1.51.1). The file, line, function and condition
+are the release's, from reimpl/common/demand_lines.json by the id
+``<function>.<measure>`` (1.58.0 reports Sphere at line 285); this module keeps
+what each check accepts. Measures are checked in declaration order, so the
+first bad one is reported. Up to 1.45 (measured on 1.12.0 to 1.45.0) Drake
+checked shapes with its own RuntimeError wording instead; reimpl does not
+follow that.
 """
 
 from __future__ import annotations
@@ -16,12 +20,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
-from reimpl.common._drake_demand import DRAKE_PATH
+from reimpl.common._demand_lines import demand_site
 from reimpl.geometry._drake_text import with_point
 
 __all__ = ["measure_names", "require"]
-
-_FILE = f"{DRAKE_PATH}geometry/shape_specification.cc"
 
 
 def _finite_positive(value: float) -> bool:
@@ -36,26 +38,23 @@ def _not_tiny(value: float) -> bool:
     return value >= 1e-10
 
 
-_POSITIVE = ("std::isfinite({0}) && {0} > 0", _finite_positive)
-_NON_NEGATIVE = ("std::isfinite({0}) && {0} >= 0", _finite_non_negative)
-
-#: (function, measure) -> (line in Drake 1.51.1, condition template, predicate).
-_CHECKS: dict[tuple[str, str], tuple[int, tuple[str, Callable[[float], bool]]]] = {
-    ("Box", "width"): (110, _POSITIVE),
-    ("Box", "depth"): (111, _POSITIVE),
-    ("Box", "height"): (112, _POSITIVE),
-    ("Capsule", "radius"): (129, _POSITIVE),
-    ("Capsule", "length"): (130, _POSITIVE),
-    ("Cylinder", "radius"): (194, _POSITIVE),
-    ("Cylinder", "length"): (195, _POSITIVE),
-    ("Ellipsoid", "a"): (206, _POSITIVE),
-    ("Ellipsoid", "b"): (207, _POSITIVE),
-    ("Ellipsoid", "c"): (208, _POSITIVE),
-    ("MakePose", "norm"): (225, ("norm >= 1e-10", _not_tiny)),
-    ("MeshcatCone", "height"): (296, _POSITIVE),
-    ("MeshcatCone", "a"): (297, _POSITIVE),
-    ("MeshcatCone", "b"): (298, _POSITIVE),
-    ("Sphere", "radius"): (309, _NON_NEGATIVE),
+#: (function, measure) -> what the check accepts, in Drake's order of checks.
+_CHECKS: dict[tuple[str, str], Callable[[float], bool]] = {
+    ("Box", "width"): _finite_positive,
+    ("Box", "depth"): _finite_positive,
+    ("Box", "height"): _finite_positive,
+    ("Capsule", "radius"): _finite_positive,
+    ("Capsule", "length"): _finite_positive,
+    ("Cylinder", "radius"): _finite_positive,
+    ("Cylinder", "length"): _finite_positive,
+    ("Ellipsoid", "a"): _finite_positive,
+    ("Ellipsoid", "b"): _finite_positive,
+    ("Ellipsoid", "c"): _finite_positive,
+    ("MakePose", "norm"): _not_tiny,
+    ("MeshcatCone", "height"): _finite_positive,
+    ("MeshcatCone", "a"): _finite_positive,
+    ("MeshcatCone", "b"): _finite_positive,
+    ("Sphere", "radius"): _finite_non_negative,
 }
 
 
@@ -66,9 +65,9 @@ def measure_names(function: str) -> tuple[str, ...]:
 
 def require(function: str, name: str, value: float) -> None:
     """Raises pydrake's SystemExit unless ``value`` passes ``function``'s check of ``name``."""
-    line, (condition, holds) = _CHECKS[(function, name)]
-    if not holds(value):
+    if not _CHECKS[(function, name)](value):
+        path, line, reported, condition = demand_site(f"{function}.{name}")
         raise SystemExit(
-            f"Failure at {_FILE}:{line} in {function}(): "
-            f"condition '{condition.format(name)}' failed. {name} = {with_point(value)}."
+            f"Failure at {path}:{line} in {reported}(): "
+            f"condition '{condition}' failed. {name} = {with_point(value)}."
         )

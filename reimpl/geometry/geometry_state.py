@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from typing import NoReturn
 
 from reimpl._release import release
-from reimpl.common._drake_demand import demand_failure
+from reimpl.common._drake_demand import failed_demand
 from reimpl.common._std_unordered_map import MAP_AT_MESSAGE, IdentifierUnorderedMap
 from reimpl.geometry.collision_filter import CollisionFilter
 from reimpl.geometry.collision_filter_declaration import Statement, StatementOp
@@ -498,17 +498,13 @@ class GeometryState:
         each geometry whose status changed. Up to 1.58 it looks an anchored one up among
         its dynamic objects and fails a DRAKE_DEMAND (deactivate-anchored-aborts):
         pydrake's SystemExit, with the anchored pairs already out of C (measured on
-        1.55.0-1.58.0; the lines are 1.58.0's).
+        1.55.0-1.58.0; the lines are each release's, from demand_lines.json).
         """
         changed = self.collision_filter.set_active(self.collect_ids(geometry_set), active)
         anchored = any(self._geometries[g].is_anchored for g in changed)
         if anchored and release.has("deactivate-anchored-aborts"):
-            raise demand_failure(
-                "geometry/proximity_engine.cc",
-                329 if active else 315,
-                "ApplyActiveStatusChange",
-                "iter != dynamic_objects_.end()",
-            )
+            change = "activate" if active else "deactivate"
+            raise failed_demand(f"ApplyActiveStatusChange.{change}")
 
     # ---------------------------------------------------------------- queries
     def collision_filtered(self, a: GeometryId, b: GeometryId) -> bool:

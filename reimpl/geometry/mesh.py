@@ -64,7 +64,7 @@ import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl.geometry._convex_hull import Hull, convex_hull
-from reimpl.geometry._drake_text import eigen_row
+from reimpl.geometry._drake_text import eigen_vector
 from reimpl.geometry._mesh_files import mesh_vertices, obj_triangles, vtk_boundary
 from reimpl.geometry._proximity_mesh import check_proximity_mesh
 from reimpl.geometry._shape_args import is_float, is_path_like, is_vector, path_text
@@ -194,7 +194,7 @@ class _MeshShape(Shape):
         if not all(math.isfinite(s) and abs(s) >= _MIN_SCALE for s in (x, y, z)):
             raise RuntimeError(
                 f"{type(self).__name__} |scale| cannot be < 1e-8 on any axis, "
-                f"given {eigen_row((x, y, z))}."
+                f"given {eigen_vector((x, y, z))}."
             )
         self._source, self._scale3, self._hull, self._boundary = source, (x, y, z), None, None
 
@@ -240,7 +240,7 @@ class _MeshShape(Shape):
             name = type(self).__name__
             raise RuntimeError(
                 f"{name}::scale() can only be called for uniform scaling. This mesh has scale "
-                f"{eigen_row(self._scale3)}. Use {name}::scale3() instead."
+                f"{eigen_vector(self._scale3)}. Use {name}::scale3() instead."
             )
         return x
 

@@ -14,7 +14,8 @@ print and pickle the same objects as with pydrake:
   ``copy.deepcopy`` make a new object of the same class.
 * Pickling stores the measures (a float for Sphere, a tuple otherwise);
   HalfSpace cannot be pickled, as in pydrake.
-* ``Box.size()`` is read-only (1.51.1; 1.58.0 returns a writeable copy).
+* ``Box.size()`` is read-only up to 1.57 and a writeable copy since 1.58
+  (release fact box-size-writeable-since-1.58; measured on 1.51.1, 1.52.0-1.58.0).
   pydrake has no ``Box.MakeCube``, so neither has reimpl.
 
 Mesh and Convex are in ``reimpl.geometry.mesh``; CalcVolume in
@@ -29,6 +30,7 @@ import numpy as np
 import numpy.typing as npt
 
 from reimpl._overload import REQUIRED, Overload, Param, dispatch
+from reimpl._release import release
 from reimpl.common._pybind_text import no_constructor
 from reimpl.geometry._drake_text import shortest
 from reimpl.geometry._half_space_pose import make_pose_columns
@@ -130,7 +132,7 @@ class Box(_Primitive):
 
     def size(self) -> npt.NDArray[np.float64]:
         size = np.array(self._measures)
-        size.flags.writeable = False
+        size.flags.writeable = release.has("box-size-writeable-since-1.58")
         return size
 
 

@@ -21,8 +21,9 @@ rpy_floating       angular, then translational damping ≥ 0 (SystemExit, :89, :
 A comparison with NaN fails, so a NaN limit fails ``lower ≤ upper`` and a NaN
 damping fails ``damping ≥ 0`` but passes ``not damping < 0``, as in C++.
 pydrake reports a failed DRAKE_DEMAND or header DRAKE_THROW_UNLESS as
-SystemExit (measured: catchable, the process goes on); 1.58.0 reports the
-limits at joint.h:160.
+SystemExit (measured: catchable, the process goes on), at the file and line of
+the release reimpl follows (1.58.0 reports the limits at joint.h:160): each
+demand is named by its id in reimpl/common/demand_lines.json.
 """
 
 from __future__ import annotations
@@ -35,33 +36,25 @@ from typing import Any
 
 import numpy as np
 
+from reimpl.common._drake_demand import failed_demand
+
 __all__ = ["check_joint_parameters"]
 
-#: Where pydrake 1.51.1's joint headers are compiled from (as its messages print them).
-_TREE_HEADERS = (
-    "bazel-out/k8-opt/bin/external/drake+/multibody/tree/_virtual_includes/"
-    "multibody_tree_core/drake/multibody/tree/"
-)
 
 _Parameters = Mapping[str, Any]
 
 
 @dataclass(frozen=True)
 class _Demand:
-    """A condition Drake demands in a header; pydrake raises SystemExit when it fails."""
+    """A condition Drake demands in a header (``demand``: its id in demand_lines.json);
+    pydrake raises SystemExit when it fails."""
 
-    header: str
-    line: int
-    function: str
-    condition: str
+    demand: str
     holds: Callable[[_Parameters], bool]
 
     def check(self, parameters: _Parameters) -> None:
         if not self.holds(parameters):
-            raise SystemExit(
-                f"Failure at {_TREE_HEADERS}{self.header}:{self.line} in {self.function}(): "
-                f"condition '{self.condition}' failed."
-            )
+            raise failed_demand(self.demand)
 
 
 @dataclass(frozen=True)
@@ -83,13 +76,7 @@ def _limits_ordered(p: _Parameters) -> bool:
     return bool(p.get("pos_lower_limit", -math.inf) <= p.get("pos_upper_limit", math.inf))
 
 
-_LIMITS_ORDERED = _Demand(
-    "joint.h",
-    159,
-    "Joint",
-    "(pos_lower_limits.array() <= pos_upper_limits.array()).all()",
-    _limits_ordered,
-)
+_LIMITS_ORDERED = _Demand("Joint.limits", _limits_ordered)
 
 
 def _axis_nonzero(kind: str, epsilon: float) -> _Throw:
@@ -106,8 +93,8 @@ def _damping_not_negative(kind: str) -> _Throw:
     return _Throw(f"{kind} joint damping must be nonnegative.", lambda p: not p["damping"] < 0)
 
 
-def _nonnegative(header: str, line: int, function: str, name: str) -> _Demand:
-    return _Demand(header, line, function, f"{name} >= 0", lambda p: bool(p[name] >= 0))
+def _nonnegative(joint: str, name: str) -> _Demand:
+    return _Demand(f"{joint}.{name}", lambda p: bool(p[name] >= 0))
 
 
 _EPSILON = sys.float_info.epsilon
@@ -125,28 +112,21 @@ _CHECKS: dict[str, tuple[_Check, ...]] = {
         _damping_not_negative("Prismatic"),
     ),
     "screw": (_axis_nonzero("Screw", _EPSILON), _damping_not_negative("Screw")),
-    "ball_rpy": (_nonnegative("ball_rpy_joint.h", 71, "BallRpyJoint", "damping"),),
-    "universal": (_nonnegative("universal_joint.h", 87, "UniversalJoint", "damping"),),
+    "ball_rpy": (_nonnegative("BallRpyJoint", "damping"),),
+    "universal": (_nonnegative("UniversalJoint", "damping"),),
     "planar": (
         _Demand(
-            "planar_joint.h",
-            74,
-            "PlanarJoint",
-            "(damping.array() >= 0).all()",
+            "PlanarJoint.damping",
             lambda p: bool((np.asarray(p["damping"], dtype=float) >= 0).all()),
         ),
     ),
     "quaternion_floating": (
-        _nonnegative(
-            "quaternion_floating_joint.h", 93, "QuaternionFloatingJoint", "angular_damping"
-        ),
-        _nonnegative(
-            "quaternion_floating_joint.h", 94, "QuaternionFloatingJoint", "translational_damping"
-        ),
+        _nonnegative("QuaternionFloatingJoint", "angular_damping"),
+        _nonnegative("QuaternionFloatingJoint", "translational_damping"),
     ),
     "rpy_floating": (
-        _nonnegative("rpy_floating_joint.h", 89, "RpyFloatingJoint", "angular_damping"),
-        _nonnegative("rpy_floating_joint.h", 90, "RpyFloatingJoint", "translational_damping"),
+        _nonnegative("RpyFloatingJoint", "angular_damping"),
+        _nonnegative("RpyFloatingJoint", "translational_damping"),
     ),
 }
 

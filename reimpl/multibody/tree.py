@@ -30,7 +30,9 @@ import numpy as np
 import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl._template import TemplateClass
+from reimpl.common._drake_demand import failed_demand
 from reimpl.common._pybind_text import no_constructor
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody import kinematics
@@ -487,7 +489,7 @@ class RigidBody(_Element):
     # ------------------------------------------------- floating base body
     # Where a floating base body's joint keeps its state; pydrake 1.51.1's errors
     # (measured): RuntimeError before Finalize, SystemExit for another body.
-    def _floating_joint(self, method: str, line: int) -> Joint:
+    def _floating_joint(self, method: str) -> Joint:
         plant = self.GetParentPlant()
         if not plant.is_finalized():
             raise MultibodyPlantError(
@@ -496,43 +498,26 @@ class RigidBody(_Element):
             )
         joint = self._inboard_joint()
         if joint is None or not joint.is_ephemeral():
-            raise _rigid_body_demand(line, method, "is_floating_base_body()")
+            raise failed_demand(f"RigidBody.{method}.floating")
         return joint
 
     def floating_positions_start(self) -> int:
-        return self._floating_joint("floating_positions_start", 342).position_start()
+        return self._floating_joint("floating_positions_start").position_start()
 
     def floating_velocities_start_in_v(self) -> int:
-        return self._floating_joint("floating_velocities_start_in_v", 355).velocity_start()
+        return self._floating_joint("floating_velocities_start_in_v").velocity_start()
 
     def floating_position_suffix(self, position_index_in_body: int) -> str:
-        joint = self._floating_joint("floating_position_suffix", 368)
+        joint = self._floating_joint("floating_position_suffix")
         if not 0 <= position_index_in_body < joint.num_positions():
-            raise _rigid_body_demand(
-                370,
-                "floating_position_suffix",
-                "0 <= position_index_in_body && position_index_in_body < 7",
-            )
+            raise failed_demand("RigidBody.floating_position_suffix.index")
         return joint.position_suffix(position_index_in_body)
 
     def floating_velocity_suffix(self, velocity_index_in_body: int) -> str:
-        joint = self._floating_joint("floating_velocity_suffix", 385)
+        joint = self._floating_joint("floating_velocity_suffix")
         if not 0 <= velocity_index_in_body < joint.num_velocities():
-            raise _rigid_body_demand(
-                386,
-                "floating_velocity_suffix",
-                "0 <= velocity_index_in_body && velocity_index_in_body < 6",
-            )
+            raise failed_demand("RigidBody.floating_velocity_suffix.index")
         return joint.velocity_suffix(velocity_index_in_body)
-
-
-def _rigid_body_demand(line: int, method: str, condition: str) -> SystemExit:
-    """pydrake 1.51.1's SystemExit for a failed condition in rigid_body.h (measured)."""
-    return SystemExit(
-        "Failure at bazel-out/k8-opt/bin/external/drake+/multibody/tree/_virtual_includes/"
-        f"multibody_tree_core/drake/multibody/tree/rigid_body.h:{line} in {method}(): "
-        f"condition '{condition}' failed."
-    )
 
 
 class Frame(_Element):
@@ -703,36 +688,15 @@ Body_ = RigidBody_
 # ---------------------------------------------------------------- Joints
 
 
-def _no_mobilizer() -> SystemExit:
-    """What pydrake 1.51.1 raises (SystemExit, measured) for a joint's positions before Finalize."""
-    return SystemExit(
-        "Failure at bazel-out/k8-opt/bin/external/drake+/multibody/tree/_virtual_includes/"
-        "multibody_tree_core/drake/multibody/tree/joint.h:970 in get_mobilizer_downcast(): "
-        "condition 'has_mobilizer()' failed."
-    )
+def _no_mobilizer(method: str) -> SystemExit:
+    """pydrake's SystemExit for a joint accessor that needs its mobilizer, before Finalize
+    (the demand ``Joint.<method>.mobilizer``, measured)."""
+    return failed_demand(f"Joint.{method}.mobilizer")
 
 
-#: Where pydrake 1.51.1's installed joint.h is compiled from (as its messages print it).
-_INSTALLED_TREE = (
-    "bazel-out/k8-opt/bin/external/drake+/tools/install/libdrake/_virtual_includes/"
-    "drake_shared_library/drake/multibody/tree/"
-)
-
-
-def _no_mobilizer_in(method: str, line: int) -> SystemExit:
-    """pydrake 1.51.1's SystemExit for a joint.h accessor used before Finalize (measured)."""
-    return SystemExit(
-        f"Failure at {_INSTALLED_TREE}joint.h:{line} in {method}(): "
-        "condition 'has_mobilizer()' failed."
-    )
-
-
-def _no_mobilizer_in_cc(method: str, line: int) -> SystemExit:
-    """pydrake 1.51.1's SystemExit for a joint.cc accessor used before Finalize (measured)."""
-    return SystemExit(
-        f"Failure at external/drake+/multibody/tree/joint.cc:{line} in {method}(): "
-        "condition 'has_mobilizer()' failed."
-    )
+#: Whether a joint's position_start() and velocity_start() are -1 before Finalize (Drake
+#: 1.57 on); up to 1.56 they fail a demand (measured on 1.51.1 and 1.52.0 to 1.58.0).
+_START_BEFORE_FINALIZE = release.has("joint-start-before-finalize-since-1.57")
 
 
 def _sized(method: str, value: Any, size: int) -> npt.NDArray[np.float64]:
@@ -841,32 +805,36 @@ class Joint(_Element):
     # ---------------------------------------------------------- positions
     def position_start(self) -> int:
         if self._starts is None:
-            raise _no_mobilizer()
+            if _START_BEFORE_FINALIZE:
+                return -1
+            raise _no_mobilizer("position_start")
         return self._starts[0]
 
     def velocity_start(self) -> int:
         if self._starts is None:
-            raise _no_mobilizer()
+            if _START_BEFORE_FINALIZE:
+                return -1
+            raise _no_mobilizer("velocity_start")
         return self._starts[1]
 
     def position_suffix(self, arg0: int) -> str:
         if self._starts is None:
-            raise _no_mobilizer_in("position_suffix", 264)
+            raise _no_mobilizer("position_suffix")
         return self._position_suffixes[arg0]
 
     def velocity_suffix(self, arg0: int) -> str:
         if self._starts is None:
-            raise _no_mobilizer_in("velocity_suffix", 275)
+            raise _no_mobilizer("velocity_suffix")
         return self._velocity_suffixes[arg0]
 
     def can_rotate(self) -> bool:
         if self._starts is None:
-            raise _no_mobilizer_in_cc("can_rotate", 11)
+            raise _no_mobilizer("can_rotate")
         return self._motion[0]
 
     def can_translate(self) -> bool:
         if self._starts is None:
-            raise _no_mobilizer_in_cc("can_translate", 17)
+            raise _no_mobilizer("can_translate")
         return self._motion[1]
 
     # ------------------------------------------------ limits and damping

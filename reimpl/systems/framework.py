@@ -21,8 +21,9 @@ import copy
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from reimpl._release import release
 from reimpl._template import scalar_template
-from reimpl.common._drake_demand import demand_failure
+from reimpl.common._drake_demand import failed_demand
 from reimpl.common._pybind_text import no_constructor
 
 if TYPE_CHECKING:
@@ -259,12 +260,7 @@ class InputPort:
         if self._index >= context.num_input_ports():
             # A context made before the port existed (a SceneGraph source registered later):
             # Drake's DRAKE_DEMAND in SetFixedInputPortValue (older-context-pose-port-aborts).
-            raise demand_failure(
-                "systems/framework/context_base.cc",
-                91,
-                "SetFixedInputPortValue",
-                "0 <= index && index < num_input_ports()",
-            )
+            raise failed_demand("SetFixedInputPortValue.index")
         # N.B. The context keeps a copy, as pydrake's does: editing ``value`` afterwards
         # does not change what the context holds.
         held = copy.copy(value)
@@ -433,12 +429,10 @@ class DiagramBuilder:
             self._check_registered(port.get_system())
         key = (arg1.get_system(), arg1.get_index())
         if key in self._connections:
-            raise demand_failure(
-                "systems/framework/diagram_builder.cc",
-                490,
-                "ThrowIfInputAlreadyWired",
-                "iter != input_port_ids_.end()",
-            )
+            # N.B. Up to 1.24 a RuntimeError (connect-wired-input-demand-since-1.25).
+            if not release.has("connect-wired-input-demand-since-1.25"):
+                raise RuntimeError("Input port is already wired.")
+            raise failed_demand("ThrowIfInputAlreadyWired.wired")
         self._connections[key] = arg0
 
     def IsConnectedOrExported(self, port: InputPort) -> bool:

@@ -16,12 +16,14 @@ from typing import Any
 
 import pytest
 
+from conformance._policy.release_facts import fact_holds
 from conformance._policy.versions import version_in_range
 from reimpl._release import release as reimpl_release
 
 __all__ = [
     "INVALID_DIRECTIVES",
     "Parsing",
+    "fact_holds_for",
     "follows_1_51",
     "invalid_directive",
     "names_of",
@@ -42,14 +44,23 @@ def follows_1_51(drake: ModuleType) -> bool:
     return version_in_range(followed, "1.51", "1.51")
 
 
+def fact_holds_for(drake: ModuleType, fact_id: str) -> bool:
+    """Whether the release fact ``fact_id`` holds for the implementation's release: reimpl's
+    (REIMPL_DRAKE_RELEASE), or the installed pydrake's."""
+    if drake.__name__ == "reimpl":
+        return reimpl_release.has(fact_id)
+    return fact_holds(fact_id, version("drake"))
+
+
 @contextmanager
 def invalid_directive(drake: ModuleType, problem: str) -> Iterator[None]:
     """Expects directives to be refused as invalid.
 
-    Measured: pydrake 1.51.1 logs ``problem`` and raises SystemExit (Drake's
-    DRAKE_THROW_UNLESS(IsValid())); 1.58.0 raises RuntimeError ``error: <problem>``.
+    Measured: up to 1.57 pydrake logs ``problem`` and raises SystemExit (Drake's
+    DRAKE_THROW_UNLESS(IsValid())); since 1.58 RuntimeError ``error: <problem>``
+    (release fact directives-invalid-error-since-1.58).
     """
-    if follows_1_51(drake):
+    if not fact_holds_for(drake, "directives-invalid-error-since-1.58"):
         with pytest.raises(SystemExit) as exit_info:
             yield
         assert str(exit_info.value) == INVALID_DIRECTIVES

@@ -55,7 +55,7 @@ from types import ModuleType
 
 import pytest
 
-from tests.upstream.parsing_support import Parsing, follows_1_51, invalid_directive, write
+from tests.upstream.parsing_support import Parsing, fact_holds_for, invalid_directive, write
 
 
 def _sphere_link(name: str) -> str:
@@ -175,9 +175,10 @@ class TestCollisionFilterGroups:
         assert groups.groups() == {"a": set()}
 
     def test_members_are_a_set(self, drake: ModuleType) -> None:
-        """pydrake 1.51.1 takes a set only; 1.58.0 also takes a list (measured)."""
+        """pydrake 1.51.1 takes a set only; 1.58.0 also takes a list (measured; release
+        fact add-group-members-iterable-since-1.58)."""
         groups = drake.multibody.parsing.CollisionFilterGroups()
-        if follows_1_51(drake):
+        if not fact_holds_for(drake, "add-group-members-iterable-since-1.58"):
             with pytest.raises(TypeError, match=r"^AddGroup\(\): incompatible function"):
                 groups.AddGroup(name="a", members=["b"])
         else:

@@ -58,7 +58,7 @@ from typing import Any
 
 import pytest
 
-from tests.upstream.parsing_support import follows_1_51, invalid_directive, names_of, write
+from tests.upstream.parsing_support import fact_holds_for, invalid_directive, names_of, write
 
 ACROBOT = "multibody/benchmarks/acrobot"
 SDF_PARSER_TEST = "multibody/parsing/test/sdf_parser_test"
@@ -511,7 +511,7 @@ def test_the_parser_takes_its_arguments_as_pydrake_binds_them(drake: ModuleType)
     parser = drake.multibody.parsing.Parser(plant=plant)
     with pytest.raises(TypeError, match=r"^AddModels\(\): incompatible function arguments"):
         parser.AddModels("<robot name='r'/>", "urdf")
-    if not follows_1_51(drake):
+    if fact_holds_for(drake, "parser-plant-none-refused-since-1.58"):
         # pydrake 1.58.0's binding refuses None for the plant (measured).
         with pytest.raises(TypeError, match=r"^__init__\(\): incompatible function arguments"):
             drake.multibody.parsing.Parser(plant=None)

@@ -47,19 +47,19 @@ import pathlib
 import pickle
 import re
 from collections.abc import Callable
-from importlib.metadata import version
 from types import ModuleType
 from typing import Any
 
 import numpy as np
 import pytest
 
-from conformance._policy.versions import version_in_range
+from tests.upstream.parsing_support import follows_1_51
 
 
 def _follows_1_51(drake: ModuleType) -> bool:
-    """reimpl follows Drake 1.51.1; pydrake is its installed release."""
-    return drake.__name__ == "reimpl" or version_in_range(version("drake"), "1.51", "1.51")
+    """Whether the implementation is Drake 1.51: reimpl's release (REIMPL_DRAKE_RELEASE,
+    which tests/conftest.py sets to the installed pydrake's), or the installed pydrake."""
+    return follows_1_51(drake)
 
 
 def assert_shape_api(drake: ModuleType, shape: Any) -> None:

@@ -45,7 +45,6 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Iterator
-from importlib.metadata import version
 from pathlib import Path
 from types import ModuleType
 from typing import Any
@@ -53,20 +52,16 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conformance._policy.versions import version_in_range
+from tests.upstream.parsing_support import fact_holds_for
 
 TEST_DIR = "multibody/parsing/test/urdf_parser_test"
 
 
-def _is_1_51(drake: ModuleType) -> bool:
-    """reimpl follows Drake 1.51.1; pydrake is its installed release."""
-    return drake.__name__ == "reimpl" or version_in_range(version("drake"), "1.51", "1.51")
-
-
 def _elides_identity_frames(drake: ModuleType) -> bool:
     """Since Drake 1.55 a joint whose <origin> is the identity gets no ``<name>_parent``
-    frame (detail_urdf_parser.cc's elide_identity_frame); 1.51.1 always adds one."""
-    return drake.__name__ != "reimpl" and version_in_range(version("drake"), "1.55", None)
+    frame (detail_urdf_parser.cc's elide_identity_frame); 1.51.1 always adds one. For
+    reimpl, its release's (release fact urdf-identity-joint-frame-elided-since-1.55)."""
+    return fact_holds_for(drake, "urdf-identity-joint-frame-elided-since-1.55")
 
 
 class Urdf:

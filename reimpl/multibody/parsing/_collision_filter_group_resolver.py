@@ -39,7 +39,7 @@ from __future__ import annotations
 from typing import Any
 
 from reimpl._release import release
-from reimpl.common._drake_demand import abort_uncaught
+from reimpl.common._drake_demand import abort_uncaught, failed_demand
 from reimpl.geometry import GeometrySet
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._collision_filter_groups import NameGroups
@@ -95,11 +95,7 @@ class CollisionFilterGroupResolver:
         plant = self._plant
         outside = scope and plant.HasModelInstanceNamed(scope)
         if outside and int(plant.GetModelInstanceByName(scope)) < self._first_new_instance:
-            raise SystemExit(
-                "Failure at external/drake+/multibody/parsing/"
-                "detail_collision_filter_group_resolver.cc:39 in AddGroup(): "
-                "condition '*model_instance >= minimum_model_instance_index_' failed."
-            )
+            raise failed_demand("CollisionFilterGroupResolver.AddGroup.instance")
 
     def add_pair(self, group_a: str, group_b: str, scope: str) -> None:
         """Declares that the two groups (relative to ``scope``) do not collide."""

@@ -8,8 +8,11 @@ must not collide, each pair sorted, so (a, b) and (b, a) are one pair and
 As in pydrake 1.51.1 (measured):
 
 * ``AddGroup(name, members)`` takes a ``set`` or ``frozenset`` of names (no
-  list) and may be empty; a name already defined ends the program (SystemExit:
-  Drake's ``DRAKE_THROW_UNLESS``), with the groups added before it kept;
+  list) and may be empty; since Drake 1.58 any iterable of names (a list, a
+  tuple, a str's characters, a dict's keys, an iterator; release fact
+  add-group-members-iterable-since-1.58, measured on 1.51.1 and 1.52.0 to
+  1.58.0); a name already defined ends the program (SystemExit: Drake's
+  ``DRAKE_THROW_UNLESS``), with the groups added before it kept;
 * ``AddExclusionPair(pair)`` takes a 2-tuple (no list);
 * ``==`` is identity, since pydrake binds no comparison; ``str()`` is Drake's
   listing; the object neither copies nor pickles.
@@ -20,10 +23,12 @@ its groups as ``NameGroups[InstancedName]`` (see _instanced_name).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Hashable
+from collections.abc import Callable, Hashable, Iterable, Iterator
 from typing import Any, Generic, TypeVar
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
+from reimpl.common._drake_demand import failed_demand
 
 __all__ = ["CollisionFilterGroups", "NameGroups"]
 
@@ -46,11 +51,7 @@ class NameGroups(Generic[N]):
     def add_group(self, name: N, members: set[N]) -> None:
         """Adds a group; a name already defined is Drake's DRAKE_THROW_UNLESS failure."""
         if name in self.groups:
-            raise SystemExit(
-                "Failure at external/drake+/multibody/parsing/"
-                "detail_collision_filter_groups_impl.cc:24 in AddGroup(): "
-                "condition '!groups_.contains(name)' failed."
-            )
+            raise failed_demand("CollisionFilterGroups.AddGroup.new")
         self.groups[name] = set(members)
 
     def add_pair(self, a: N, b: N) -> None:
@@ -87,8 +88,23 @@ def _same(name: str) -> str:
     return name
 
 
+#: Whether AddGroup takes any iterable of names, not only a set (Drake 1.58).
+_MEMBERS_ITERABLE = release.has("add-group-members-iterable-since-1.58")
+
+
 def _is_name_set(value: object) -> bool:
-    return isinstance(value, set | frozenset) and all(isinstance(v, str) for v in value)
+    kinds = Iterable if _MEMBERS_ITERABLE else set | frozenset
+    return isinstance(value, kinds) and all(isinstance(v, str) for v in value)
+
+
+def _replayable(args: tuple[Any, ...], kwargs: dict[str, Any]) -> tuple[Any, ...]:
+    """AddGroup's arguments with an iterator of members read into a tuple, so that
+    checking the names does not use them up."""
+    if len(args) > 1 and isinstance(args[1], Iterator):
+        args = (args[0], tuple(args[1]), *args[2:])
+    if isinstance(kwargs.get("members"), Iterator):
+        kwargs["members"] = tuple(kwargs["members"])
+    return args
 
 
 def _is_name_pair(value: object) -> bool:
@@ -123,6 +139,8 @@ class CollisionFilterGroups:
 
     def AddGroup(self, *args: Any, **kwargs: Any) -> None:
         """Adds group ``name`` with body names ``members``; the name must be new."""
+        if _MEMBERS_ITERABLE:
+            args = _replayable(args, kwargs)
         dispatch(_OWNER, "AddGroup", _ADD_GROUP, args, kwargs, receiver=self)
 
     def AddExclusionPair(self, *args: Any, **kwargs: Any) -> None:

@@ -6,8 +6,11 @@ exactly one of ``add_model``, ``add_model_instance``, ``add_frame``,
 are Drake's, in Drake's order (which is the order of their ``repr``), bound as
 pydrake binds them (see reimpl.common._struct).
 
-``_is_valid()`` is Drake's ``IsValid()``, run on every document loaded; the first
-problem is logged as an error on the ``drake`` logger and makes it False:
+Each struct's ``_problem()`` is the first reason it is invalid (None if valid),
+by the table below; ``is_valid(struct)`` is Drake's ``IsValid()``, which logs
+that problem as an error on the ``drake`` logger and is then False (measured on
+pydrake 1.51.1, 1.57.0 and 1.58.0). Loading a document checks it (see
+reimpl.multibody.parsing._directives.checked):
 
 ==============================  =================================================
  directive                       valid when
@@ -44,6 +47,7 @@ __all__ = [
     "AddWeld",
     "ModelDirective",
     "ModelDirectives",
+    "is_valid",
 ]
 
 _LOG = logging.getLogger("drake")
@@ -51,9 +55,12 @@ _MODULE = "reimpl.multibody.parsing"
 _TRANSFORM = "pydrake.common.schema.Transform"
 
 
-def _invalid(message: str) -> bool:
-    _LOG.error(message)
-    return False
+def is_valid(struct: Any) -> bool:
+    """Drake's ``IsValid()`` of a directive struct: its first problem is logged."""
+    problem: str | None = struct._problem()
+    if problem is not None:
+        _LOG.error(problem)
+    return problem is None
 
 
 def _str_field(name: str) -> Field:
@@ -97,22 +104,22 @@ class AddWeld(Struct):
         ),
     )
 
-    def _is_valid(self) -> bool:
+    def _problem(self) -> str | None:
         if not self.parent:
-            return _invalid("add_weld: `parent` must be non-empty")
+            return "add_weld: `parent` must be non-empty"
         if not self.child:
-            return _invalid("add_weld: `child` must be non-empty")
+            return "add_weld: `child` must be non-empty"
         if self.X_PC is not None:
             if self.X_PC.base_frame is not None:
-                return _invalid(
+                return (
                     "add_weld: `X_PC` must not specify a `base_frame`; the pose is always in "
                     "the parent frame."
                 )
             if not self.X_PC.IsDeterministic():
-                return _invalid(
+                return (
                     "add_weld: `X_PC` must specify a deterministic transform, not a distribution."
                 )
-        return True
+        return None
 
 
 class AddModel(Struct):
@@ -138,18 +145,18 @@ class AddModel(Struct):
         ),
     )
 
-    def _is_valid(self) -> bool:
+    def _problem(self) -> str | None:
         if not self.file:
-            return _invalid("add_model: `file` must be non-empty")
+            return "add_model: `file` must be non-empty"
         if not self.name:
-            return _invalid("add_model: `name` must be non-empty")
+            return "add_model: `name` must be non-empty"
         for pose in self.default_free_body_pose.values():
             if not pose.IsDeterministic():
-                return _invalid(
+                return (
                     "add_model: `default_free_body_pose` must specify a deterministic "
                     "transform, not a distribution."
                 )
-        return True
+        return None
 
 
 class AddModelInstance(Struct):
@@ -158,8 +165,8 @@ class AddModelInstance(Struct):
     MODULE = _MODULE
     FIELDS = (_str_field("name"),)
 
-    def _is_valid(self) -> bool:
-        return bool(self.name) or _invalid("add_model_instance: `name` must be non-empty")
+    def _problem(self) -> str | None:
+        return None if self.name else "add_model_instance: `name` must be non-empty"
 
 
 class AddFrame(Struct):
@@ -171,16 +178,14 @@ class AddFrame(Struct):
         Field("X_PF", _TRANSFORM, _instance_of(Transform), Transform, lambda v: v),
     )
 
-    def _is_valid(self) -> bool:
+    def _problem(self) -> str | None:
         if not self.name:
-            return _invalid("add_frame: `name` must be non-empty")
+            return "add_frame: `name` must be non-empty"
         if not self.X_PF.base_frame:
-            return _invalid("add_frame: `X_PF.base_frame` must be defined")
+            return "add_frame: `X_PF.base_frame` must be defined"
         if not self.X_PF.IsDeterministic():
-            return _invalid(
-                "add_frame: `X_PF` must specify a deterministic transform, not a distribution."
-            )
-        return True
+            return "add_frame: `X_PF` must specify a deterministic transform, not a distribution."
+        return None
 
 
 class AddCollisionFilterGroup(Struct):
@@ -195,15 +200,15 @@ class AddCollisionFilterGroup(Struct):
         _list_field("ignored_collision_filter_groups"),
     )
 
-    def _is_valid(self) -> bool:
+    def _problem(self) -> str | None:
         if not self.name:
-            return _invalid("add_collision_filter_group: `name` must be non-empty")
+            return "add_collision_filter_group: `name` must be non-empty"
         if not self.members and not self.member_groups:
-            return _invalid(
+            return (
                 "add_collision_filter_group: at least one of `members` or `member_groups` "
                 "must be non-empty"
             )
-        return True
+        return None
 
 
 class AddDirectives(Struct):
@@ -212,8 +217,8 @@ class AddDirectives(Struct):
     MODULE = _MODULE
     FIELDS = (_str_field("file"), _optional_str_field("model_namespace"))
 
-    def _is_valid(self) -> bool:
-        return bool(self.file) or _invalid("add_directives: `file` must be non-empty")
+    def _problem(self) -> str | None:
+        return None if self.file else "add_directives: `file` must be non-empty"
 
 
 #: ModelDirective's fields, in Drake's order, and their structs
@@ -246,14 +251,15 @@ class ModelDirective(Struct):
         """The (name, struct) of each field that is set."""
         return [(name, value) for name, value in self._values() if value is not None]
 
-    def _is_valid(self) -> bool:
+    def _problem(self) -> str | None:
         fields = self._set_fields()
         if len(fields) != 1:
-            return _invalid(
+            return (
                 "directive: Specify one of `add_model`, `add_model_instance`, `add_frame`, "
                 "`add_collision_filter_group`, or `add_directives`"
             )
-        return bool(fields[0][1]._is_valid())
+        problem: str | None = fields[0][1]._problem()
+        return problem
 
 
 class ModelDirectives(Struct):
@@ -270,5 +276,6 @@ class ModelDirectives(Struct):
         ),
     )
 
-    def _is_valid(self) -> bool:
-        return all(directive._is_valid() for directive in self.directives)
+    def _problem(self) -> str | None:
+        problems = (directive._problem() for directive in self.directives)
+        return next((p for p in problems if p is not None), None)

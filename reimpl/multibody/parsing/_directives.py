@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from reimpl._release import release
-from reimpl.common._drake_demand import DRAKE_PATH
+from reimpl.common._drake_demand import failed_demand
 from reimpl.common._pybind_text import no_constructor
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
@@ -59,6 +59,7 @@ from reimpl.multibody.parsing._directive_structs import (
     AddModelInstance,
     AddWeld,
     ModelDirectives,
+    is_valid,
 )
 from reimpl.multibody.parsing._directive_yaml import load_directives
 from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
@@ -73,8 +74,6 @@ __all__ = [
     "scoped_frame",
     "scoped_frame_maybe",
 ]
-
-_DMD_FAILURE = f"Failure at {DRAKE_PATH}multibody/parsing/detail_dmd_parser.cc:{{line}} in "
 
 
 class ModelInstanceInfo:
@@ -159,12 +158,16 @@ def load_model_directives(path: str) -> ModelDirectives:
 
 
 def checked(directives: ModelDirectives) -> ModelDirectives:
-    """``directives``, which must be valid (Drake's DRAKE_THROW_UNLESS(IsValid()))."""
-    if not directives._is_valid():
-        raise SystemExit(
-            _DMD_FAILURE.format(line=332) + "LoadModelDirectives(): "
-            "condition 'directives.IsValid()' failed."
-        )
+    """``directives``, which must be valid: their first problem (see _directive_structs)
+    is the error ``error: <problem>`` (ModelParseError, not logged) since Drake 1.58;
+    up to 1.57 it is logged and then Drake's DRAKE_THROW_UNLESS(IsValid()) fails
+    (SystemExit). Measured on pydrake 1.51.1 and 1.52.0 to 1.58.0."""
+    if release.has("directives-invalid-error-since-1.58"):
+        problem = directives._problem()
+        if problem is not None:
+            raise Diagnostics(None).error(problem)
+    elif not is_valid(directives):
+        raise failed_demand("LoadModelDirectives.valid")
     return directives
 
 
@@ -291,7 +294,7 @@ class _Run:
                 "match any model added by these directives"
             )
         if not infos:  # up to 1.57: a failed DRAKE_DEMAND
-            raise SystemExit(_DMD_FAILURE.format(line=46) + "AddWeld(): condition 'found' failed.")
+            raise failed_demand("AddWeld.found")
 
     def add_collision_filter_group(self, group: AddCollisionFilterGroup, namespace: str) -> None:
         if not self.plant.geometry_source_is_registered():

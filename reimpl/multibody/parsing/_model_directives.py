@@ -15,6 +15,7 @@ import os
 from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.common._drake_demand import failed_demand
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._binding import is_path, is_str
 from reimpl.multibody.parsing._directive_structs import (
@@ -22,6 +23,7 @@ from reimpl.multibody.parsing._directive_structs import (
     AddFrame,
     ModelDirective,
     ModelDirectives,
+    is_valid,
 )
 from reimpl.multibody.parsing._directive_yaml import load_directives
 from reimpl.multibody.parsing._directives import (
@@ -158,11 +160,8 @@ def _named(struct: Any, namespace: str, *names: str) -> Any:
 
 def _flatten_frame(frame: AddFrame, namespace: str) -> AddFrame:
     """An unscoped frame name also takes its base frame's namespace."""
-    if not frame._is_valid():
-        raise SystemExit(
-            "Failure at external/drake+/multibody/parsing/process_model_directives.cc:68 in "
-            "ApplyDirectiveNamespace(): condition 'orig.IsValid()' failed."
-        )
+    if not is_valid(frame):
+        raise failed_demand("ApplyDirectiveNamespace.valid")
     result = frame.__deepcopy__({})
     if namespace:
         result.name = dmd_join(namespace, frame.name)

@@ -26,12 +26,12 @@ import re
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
+from reimpl.common._drake_demand import failed_demand
 from reimpl.multibody.parsing._xml import XmlSyntaxError, parse_xml
 
 __all__ = ["Manifest", "read_manifest"]
 
 _WHERE = "PackageMap::GetPackageName()"
-_FAILURE = "Failure at external/drake+/multibody/parsing/package_map.cc:{line} in {function}(): "
 _LINE_BREAKS = re.compile(r"\s*\n\s*")
 
 
@@ -119,15 +119,9 @@ def read_manifest(filename: str) -> Manifest:
         )
     name = name_node.first_child()
     if name is None:
-        raise SystemExit(
-            _FAILURE.format(line=886, function="ParsePackageManifest")
-            + "condition '!name_node->NoChildren()' failed."
-        )
+        raise failed_demand("ParsePackageManifest.name_children")
     if name == "":
-        raise SystemExit(
-            _FAILURE.format(line=888, function="ParsePackageManifest")
-            + "condition 'package_name != \"\"' failed."
-        )
+        raise failed_demand("ParsePackageManifest.name")
     return Manifest(name, _deprecation(package))
 
 

@@ -47,6 +47,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.common._drake_demand import failed_demand
 from reimpl.multibody.parsing._binding import binds, is_path, is_str
 from reimpl.multibody.parsing._package_manifest import read_manifest
 from reimpl.multibody.parsing._remote_package import RemoteParams as _RemoteParams
@@ -70,14 +71,6 @@ _DRAKE_MODELS_JSON = os.path.join(
 )
 #: ROS markers that stop PopulateFromRosPackagePath from crawling a folder.
 _ROS_STOP_MARKERS = ("AMENT_IGNORE", "CATKIN_IGNORE", "COLCON_IGNORE")
-
-
-def _failure(line: int, function: str, condition: str) -> SystemExit:
-    """pydrake's SystemExit for a failed DRAKE_THROW_UNLESS in package_map.cc."""
-    return SystemExit(
-        f"Failure at external/drake+/multibody/parsing/package_map.cc:{line} in "
-        f"{function}(): condition '{condition}' failed."
-    )
 
 
 @dataclass(frozen=True)
@@ -228,7 +221,7 @@ class PackageMap:
         """Adds the package ``filename`` (a ``package.xml``) describes, at its folder."""
         path = os.fspath(filename)
         if not path:
-            raise _failure(966, "AddPackageXml", "!filename.empty()")
+            raise failed_demand("PackageMap.AddPackageXml.filename")
         manifest = read_manifest(path)
         self.Add(package_name=manifest.name, package_path=os.path.dirname(path))
         self._set_deprecated(manifest.name, manifest.deprecation)
@@ -258,14 +251,14 @@ class PackageMap:
         """Adds every package found in ``path`` and below (hidden folders skipped)."""
         folder = os.fspath(path)
         if not folder:
-            raise _failure(788, "PopulateFromFolder", "!path.empty()")
+            raise failed_demand("PackageMap.PopulateFromFolder.path")
         self._crawl(folder, stop_at_package=False, stop_markers=())
 
     @binds(_OWNER, Param("environment_variable", is_str))
     def PopulateFromEnvironment(self, environment_variable: str) -> None:
         """Crawls each folder of the colon-separated list in ``environment_variable``."""
         if not environment_variable:
-            raise _failure(799, "PopulateFromEnvironment", "!environment_variable.empty()")
+            raise failed_demand("PackageMap.PopulateFromEnvironment.variable")
         if environment_variable == "ROS_PACKAGE_PATH":
             raise RuntimeError(
                 "PackageMap::PopulateFromEnvironment() must not be used to load a "
@@ -347,7 +340,7 @@ class PackageMap:
         """GetPath, with the deprecation warning returned instead of logged."""
         package = self._packages.get(package_name)
         if package is None:
-            raise _failure(755, "GetPath", "Contains(package_name)")
+            raise failed_demand("PackageMap.GetPath.contains")
         deprecation = None
         if package.deprecation is not None:
             deprecation = f"Package '{package_name}' is deprecated: {package.deprecation}"

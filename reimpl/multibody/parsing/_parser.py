@@ -30,8 +30,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._overload import Overload, Param, dispatch
 from reimpl._release import release
+from reimpl.common._drake_demand import failed_demand
 from reimpl.geometry import SceneGraph
 from reimpl.multibody.parsing._binding import binds, is_path, is_str
 from reimpl.multibody.parsing._collision_filter_group_resolver import (
@@ -57,15 +58,6 @@ from reimpl.systems.framework import DiagramBuilder
 __all__ = ["Parser"]
 
 _OWNER = "reimpl.multibody.parsing.Parser"
-_PARSING = "external/drake+/multibody/parsing"
-_PLANT_H = (
-    "bazel-out/k8-opt/bin/external/drake+/multibody/plant/_virtual_includes/"
-    "multibody_plant_core/drake/multibody/plant/multibody_plant.h"
-)
-
-
-def _failure(where: str, line: int, function: str, condition: str) -> SystemExit:
-    return SystemExit(f"Failure at {where}:{line} in {function}(): condition '{condition}' failed.")
 
 
 @dataclass(frozen=True)
@@ -75,21 +67,16 @@ class _FileType:
     reader: Reader
     #: the message for a file that is not there (or is a folder: ``{error}``)
     missing: str
-    #: (file, function, line, plant) of the reader's DRAKE_THROW_UNLESS(!plant->is_finalized())
-    finalized: tuple[str, str, int, str] | None
+    #: the reader's DRAKE_THROW_UNLESS(!plant->is_finalized()) (an id of demand_lines.json)
+    finalized: str | None
     #: the message for model text of this type, where Drake refuses it
     text_error: str | None = None
 
 
-_FINALIZED_URDF = ("detail_urdf_parser.cc", "AddOrMergeModelFromUrdf", 1457, "plant")
-_FINALIZED_SDF = ("detail_sdf_parser.cc", "AddModelsFromSdf", 2954, "workspace.plant")
-_FINALIZED_MJCF = (
-    "detail_mujoco_parser.cc",
-    "AddOrMergeModelFromMujocoXml",
-    2103,
-    "workspace.plant",
-)
-_FINALIZED_MESH = ("detail_mesh_parser.cc", "AddModelFromMesh", 133, "workspace.plant")
+_FINALIZED_URDF = "AddOrMergeModelFromUrdf.finalized"
+_FINALIZED_SDF = "AddModelsFromSdf.finalized"
+_FINALIZED_MJCF = "AddOrMergeModelFromMujocoXml.finalized"
+_FINALIZED_MESH = "AddModelFromMesh.finalized"
 
 #: file type (a name's suffix) -> how it is read, in Drake's SelectParser order
 _FILE_TYPES: dict[str, _FileType] = {
@@ -115,15 +102,22 @@ _FILE_TYPES: dict[str, _FileType] = {
 }
 
 
+#: The types the release's SelectParser knows: ``.obj`` since 1.14 (release fact
+#: obj-model-files-since-1.14; up to 1.13 it is an unknown type, measured on 1.13.0).
+_KNOWN_TYPES = tuple(
+    t for t in _FILE_TYPES if t != "obj" or release.has("obj-model-files-since-1.14")
+)
+
+
 def _file_type(name: str) -> str:
     """Drake's SelectParser: the type whose suffix ``name`` ends with (any case)."""
     lowered = name.lower()
-    for file_type in _FILE_TYPES:
+    for file_type in _KNOWN_TYPES:
         if lowered.endswith(f".{file_type}"):
             return file_type
+    known = ".urdf, .sdf, .xml (Mujoco), .dmd.yaml" + (", .obj" if "obj" in _KNOWN_TYPES else "")
     raise ModelParseError(
-        f"error: The file '{name}' is not a recognized type. Known types are: .urdf, .sdf, "
-        ".xml (Mujoco), .dmd.yaml, .obj"
+        f"error: The file '{name}' is not a recognized type. Known types are: {known}"
     )
 
 
@@ -136,8 +130,7 @@ def _check_reader(context: ParseContext, file_type: str) -> None:
     """The reader's own DRAKE_THROW_UNLESS(!plant->is_finalized())."""
     finalized = _FILE_TYPES[file_type].finalized
     if finalized is not None and context.plant.is_finalized():
-        file, function, line, plant = finalized
-        raise _failure(f"{_PARSING}/{file}", line, function, f"!{plant}->is_finalized()")
+        raise failed_demand(finalized)
 
 
 def _read_file(context: ParseContext, path: str, model_name: str | None, scope: str) -> list[Any]:
@@ -168,8 +161,23 @@ def _sdf_label(path: str) -> str:
     return slash + os.path.abspath(path)
 
 
+#: Whether the plant-first constructors refuse a plant of None (pybind11's TypeError)
+#: rather than failing Drake's check (SystemExit): release fact
+#: parser-plant-none-refused-since-1.58. The builder constructor takes None for its
+#: builder and its plant on every release measured (1.51.1, 1.52.0 to 1.58.0).
+_PLANT_NONE_REFUSED = release.has("parser-plant-none-refused-since-1.58")
+
+
 def _is_plant(value: object) -> bool:
+    return isinstance(value, MultibodyPlant) or (value is None and not _PLANT_NONE_REFUSED)
+
+
+def _is_plant_or_none(value: object) -> bool:
     return value is None or isinstance(value, MultibodyPlant)
+
+
+def _is_builder(value: object) -> bool:
+    return value is None or isinstance(value, DiagramBuilder)
 
 
 def _is_scene_graph(value: object) -> bool:
@@ -177,6 +185,8 @@ def _is_scene_graph(value: object) -> bool:
 
 
 _is_plant.__name__ = "reimpl.multibody.plant.MultibodyPlant"
+_is_plant_or_none.__name__ = _is_plant.__name__
+_is_builder.__name__ = "reimpl.systems.framework.DiagramBuilder"
 _is_scene_graph.__name__ = "reimpl.geometry.SceneGraph"
 
 #: Drake's type names, for "Cannot cast ..." (the "plant" subsystem is not a plant)
@@ -203,8 +213,8 @@ class Parser:
                 Overload((Param("plant", _is_plant), prefix), self._init),
                 Overload(
                     (
-                        Param("builder", instance_of(DiagramBuilder)),
-                        Param("plant", _is_plant, None),
+                        Param("builder", _is_builder),
+                        Param("plant", _is_plant_or_none, None),
                         scene_graph,
                         Param(prefix.name, prefix.check, ""),
                     ),
@@ -222,7 +232,7 @@ class Parser:
         scene_graph: SceneGraph | None = None,
     ) -> None:
         if plant is None:
-            raise _failure(f"{_PARSING}/parser.cc", 80, "Parser", "plant_ != nullptr")
+            raise failed_demand("Parser.plant")
         if scene_graph is not None and not plant.geometry_source_is_registered():
             plant.RegisterAsSourceForSceneGraph(scene_graph)
         self._plant = plant
@@ -230,11 +240,14 @@ class Parser:
 
     def _init_from_builder(
         self,
-        builder: DiagramBuilder,
+        builder: DiagramBuilder | None,
         plant: MultibodyPlant | None,
         scene_graph: SceneGraph | None,
         model_name_prefix: str,
     ) -> None:
+        if builder is None:  # N.B. As Drake's: no builder, only the plant's own checks.
+            self._init(plant, model_name_prefix, scene_graph)
+            return
         systems = builder.GetSystems()
         if plant is None:
             plant = self._plant_named_plant(systems)
@@ -272,7 +285,7 @@ class Parser:
         if not self._plant.geometry_source_is_registered():
             return None
         if self._plant.is_finalized():
-            raise _failure(f"{_PARSING}/parser.cc", 104, "scene_graph", "!plant_->is_finalized()")
+            raise failed_demand("Parser.scene_graph.finalized")
         scene_graph: SceneGraph = self._plant._registered_scene_graph("scene_graph")[0]
         return scene_graph
 
@@ -362,7 +375,7 @@ class Parser:
         """One composite parse: ``read``'s models, then the groups resolved and kept."""
         plant = self._plant
         if plant.geometry_source_is_registered() and plant.is_finalized():
-            raise _failure(_PLANT_H, 5839, "GetMutableSceneGraphPreFinalize", "!is_finalized()")
+            raise failed_demand("GetMutableSceneGraphPreFinalize.finalized")
         context = ParseContext(
             plant=plant,
             package_map=self._package_map,

@@ -18,8 +18,11 @@ model_instance.cc). Measured on pydrake 1.51.1:
 
 from __future__ import annotations
 
+from typing import NoReturn
+
+from reimpl._release import release
 from reimpl.multibody._errors import DuplicateNameError, FinalizedError, NotFoundError
-from reimpl.multibody.plant._demands import demand_cc, demand_tree_cc
+from reimpl.multibody.plant._demands import fail_demand
 from reimpl.multibody.plant._phase import PlantPhase
 from reimpl.multibody.tree import ModelInstanceIndex
 
@@ -29,16 +32,17 @@ _WORLD_INSTANCE_NAME = "WorldModelInstance"
 _DEFAULT_INSTANCE_NAME = "DefaultModelInstance"
 #: The instances every plant has (world and default); they do not scope names.
 PREDEFINED_INSTANCES = 2
-#: Where multibody_tree.cc (pydrake 1.51.1) demands that a listing's model instance exists.
-_LISTING_DEMAND_LINES = {"GetBodyIndices": 481, "GetJointIndices": 494, "GetFrameIndices": 521}
 
 
-def _empty_instance_name() -> SystemExit:
-    """What pydrake 1.51.1 raises (SystemExit, measured) naming a model instance ``""``."""
-    return SystemExit(
-        "Failure at external/drake+/multibody/tree/model_instance.cc:23 in set_name(): "
-        "condition '!name.empty()' failed."
-    )
+#: Whether naming a model instance ``""`` fails Drake's demand (release fact
+#: empty-model-instance-name-demand-since-1.25); up to 1.24 ``""`` is a name like any
+#: other (measured on 1.12.0 to 1.58.0).
+_EMPTY_NAME_REFUSED = release.has("empty-model-instance-name-demand-since-1.25")
+
+
+def _empty_instance_name() -> NoReturn:
+    """What pydrake raises (SystemExit, measured) naming a model instance ``""``."""
+    fail_demand("ModelInstance.set_name")
 
 
 class ModelInstances(PlantPhase):
@@ -62,8 +66,8 @@ class ModelInstances(PlantPhase):
                 "instances is not allowed. See documentation for Finalize() for details."
             )
         self._check_new_instance_name(name)
-        if not name:
-            raise _empty_instance_name()
+        if not name and _EMPTY_NAME_REFUSED:
+            _empty_instance_name()
         self._instance_names.append(name)
         return ModelInstanceIndex(len(self._instance_names) - 1)
 
@@ -117,14 +121,10 @@ class ModelInstances(PlantPhase):
 
     def _listed_instance(self, method: str, model_instance: ModelInstanceIndex) -> int:
         """The index; the SystemExit of Drake's element listings (multibody_tree.cc,
-        pydrake 1.51.1; measured)."""
+        measured): the demand ``<method>.instance``."""
         index = int(model_instance)
         if not 0 <= index < len(self._instance_names):
-            demand_tree_cc(
-                _LISTING_DEMAND_LINES[method],
-                method,
-                "model_instances_.has_element(model_instance)",
-            )
+            fail_demand(f"{method}.instance")
         return index
 
     def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
@@ -134,19 +134,21 @@ class ModelInstances(PlantPhase):
         the instance, and every geometry on such a frame (whoever registered it),
         named ``old::x`` becomes ``new::x``; other names (a frame the user
         renamed, an unscoped name) are left alone. After Finalize, pydrake
-        1.51.1 raises SystemExit (a DRAKE_THROW_UNLESS at multibody_plant.cc:1372;
-        1.58.0 reports line 1320), and so does reimpl. An empty ``name``
-        raises SystemExit as on pydrake (which, measured, still registers ``""``;
-        reimpl leaves the instance as it was).
+        raises SystemExit (a DRAKE_THROW_UNLESS in multibody_plant.cc, at line
+        1372 on 1.51.1 and 1320 on 1.58.0: the demand
+        ``RenameModelInstance.finalized``), and so does reimpl. An empty ``name``
+        raises SystemExit as on pydrake since 1.25 (which, measured on 1.51.1,
+        still registers ``""``; reimpl leaves the instance as it was); up to 1.24
+        it is a new name like any other.
         """
         if self._finalized:
-            demand_cc(False, 1372, "RenameModelInstance", "!is_finalized()")
+            fail_demand("RenameModelInstance.finalized")
         index = self._instance(model_instance)
         old = self._instance_names[index]
         if name == old:
             return
-        if not name:
-            raise _empty_instance_name()
+        if not name and _EMPTY_NAME_REFUSED:
+            _empty_instance_name()
         self._check_new_instance_name(name)
         self._rename_instance(index, old, name)
 

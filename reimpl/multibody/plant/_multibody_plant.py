@@ -14,7 +14,7 @@ for bodies. Its bases, by what they add (each extends the ones it names):
 
 from __future__ import annotations
 
-from reimpl.multibody.plant._demands import demand_cc
+from reimpl.multibody.plant._demands import demand
 from reimpl.multibody.plant._finalize import Finalization
 from reimpl.multibody.plant._geometry_ports import GeometryPorts
 from reimpl.multibody.plant._geometry_registration import GeometryRegistration
@@ -39,8 +39,8 @@ class MultibodyPlant(Finalization, GeometryPorts, GeometryRegistration, StateNam
 
     def __init__(self, time_step: float) -> None:
         super().__init__()
-        # N.B. pydrake 1.51.1 demands this at multibody_plant.cc:323 (SystemExit, measured).
-        demand_cc(time_step >= 0, 323, "MultibodyPlant", "time_step >= 0")
+        # N.B. pydrake demands this in multibody_plant.cc (SystemExit, measured).
+        demand(time_step >= 0, "MultibodyPlant.time_step")
         self._time_step = float(time_step)
         world = RigidBody(_WORLD_BODY_NAME, world_model_instance())
         self._add_body(world)

@@ -12,7 +12,9 @@ num_positions(J)]`` (laid out by the forest, see plant._topology):
 - ``GetDefaultPositions``/``SetDefaultPositions`` do the same for the joints'
   defaults (need Finalize).
 - ``SetPositions`` demands (SystemExit on pydrake 1.51.1, measured) the
-  size and that every value is finite; ``SetDefaultPositions`` the size.
+  size and, since Drake 1.38, that every value is finite (release fact
+  set-positions-finite-demand-since-1.38; up to 1.37 it stores NaN, measured on
+  1.12.0 to 1.58.0); ``SetDefaultPositions`` the size.
 """
 
 from __future__ import annotations
@@ -22,8 +24,9 @@ from typing import Any
 import numpy as np
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl.multibody._errors import NotFinalizedError
-from reimpl.multibody.plant._demands import demand_cc, demand_h
+from reimpl.multibody.plant._demands import demand
 from reimpl.multibody.plant._elements import Elements
 from reimpl.multibody.tree import Joint, ModelInstanceIndex
 from reimpl.systems.framework import Context, LeafContext
@@ -47,6 +50,15 @@ _is_vector.__name__ = "numpy.ndarray[numpy.float64[m, 1]]"
 
 def _positions_vector(q: Any) -> Any:
     return np.asarray(q, dtype=float).reshape(-1)
+
+
+#: Whether SetPositions demands finite values (Drake 1.38 on).
+_FINITE_DEMANDED = release.has("set-positions-finite-demand-since-1.38")
+
+
+def _finite(values: Any) -> bool:
+    """Whether ``values`` pass SetPositions' finiteness demand on reimpl's release."""
+    return not _FINITE_DEMANDED or bool(np.isfinite(values).all())
 
 
 class Positions(Elements):
@@ -113,10 +125,8 @@ class Positions(Elements):
         def all_positions(context: Context, q: Any) -> None:
             positions = self._context_positions(context)
             values = _positions_vector(q)
-            demand_h(
-                values.size == positions.size, 2896, "SetPositions", "q.size() == num_positions()"
-            )
-            demand_h(bool(np.isfinite(values).all()), 2897, "SetPositions", "AllFinite(q)")
+            demand(values.size == positions.size, "SetPositions.q.size")
+            demand(_finite(values), "SetPositions.q.finite")
             positions[:] = values
 
         def of_instance(context: Context, model_instance: ModelInstanceIndex, q: Any) -> None:
@@ -124,13 +134,8 @@ class Positions(Elements):
             values = _positions_vector(q)
             slices = self._instance_slices(model_instance)
             size = sum(s.stop - s.start for s in slices)
-            demand_h(
-                values.size == size,
-                2912,
-                "SetPositions",
-                "q_instance.size() == num_positions(model_instance)",
-            )
-            demand_h(bool(np.isfinite(values).all()), 2913, "SetPositions", "AllFinite(q_instance)")
+            demand(values.size == size, "SetPositions.q_instance.size")
+            demand(_finite(values), "SetPositions.q_instance.finite")
             first = 0
             for s in slices:
                 positions[s] = values[first : first + s.stop - s.start]
@@ -184,12 +189,7 @@ class Positions(Elements):
         def all_positions(q: Any) -> None:
             self._check_finalized("SetDefaultPositions")
             values = _positions_vector(q)
-            demand_cc(
-                values.size == self.num_positions(),
-                1881,
-                "SetDefaultPositions",
-                "q.size() == num_positions()",
-            )
+            demand(values.size == self.num_positions(), "SetDefaultPositions.q.size")
             for joint in self._joints:
                 start = joint.position_start()
                 joint._set_default(0, values[start : start + joint.num_positions()])
@@ -198,11 +198,9 @@ class Positions(Elements):
             self._check_finalized("SetDefaultPositions")
             values = _positions_vector(q_instance)
             joints = self._joints_in_position_order(model_instance)
-            demand_cc(
+            demand(
                 values.size == sum(j.num_positions() for j in joints),
-                1895,
-                "SetDefaultPositions",
-                "q_instance.size() == num_positions(model_instance)",
+                "SetDefaultPositions.q_instance.size",
             )
             first = 0
             for joint in joints:

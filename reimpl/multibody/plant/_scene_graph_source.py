@@ -13,7 +13,7 @@ Drake counterpart: MultibodyPlant's SceneGraph registration
   bodies}): frames, resolved when a declaration is applied (F(world) then
   means every anchored geometry).
 - A call that needs a source on a plant that is none ends the program
-  (SystemExit, at the line ``_DEMAND_LINES`` gives); a C++-only one raises
+  (SystemExit, the demand ``_DEMANDS`` names); a C++-only one raises
   DemandFailedError.
 """
 
@@ -27,19 +27,19 @@ from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
 from reimpl.geometry.scene_graph import SceneGraph
 from reimpl.multibody import _link_joint_graph as graph
 from reimpl.multibody._errors import FinalizedError, NotFoundError
-from reimpl.multibody.plant._demands import demand_cc, demand_failed
+from reimpl.multibody.plant._demands import demand, demand_failed
 from reimpl.multibody.plant._elements import Elements
 from reimpl.multibody.tree import BodyIndex, RigidBody
 
 __all__ = ["SceneGraphSource"]
 
-#: Where multibody_plant.cc (pydrake 1.51.1) demands that the plant is (not) a
-#: SceneGraph source. pydrake raises SystemExit (measured; 1.58.0 reports other lines).
-_DEMAND_LINES = {
-    "RegisterAsSourceForSceneGraph": 1036,
-    "RegisterVisualGeometry": 1074,
-    "RegisterCollisionGeometry": 1139,
-    "CollectRegisteredGeometries": 1178,
+#: The demands (ids of reimpl/common/demand_lines.json) that the plant is (not) a
+#: SceneGraph source, by public method. pydrake raises SystemExit (measured).
+_DEMANDS = {
+    "RegisterAsSourceForSceneGraph": "RegisterAsSourceForSceneGraph.registered",
+    "RegisterVisualGeometry": "RegisterVisualGeometry.no_source",
+    "RegisterCollisionGeometry": "RegisterCollisionGeometry.no_source",
+    "CollectRegisteredGeometries": "CollectRegisteredGeometries.no_source",
 }
 
 
@@ -61,12 +61,7 @@ class SceneGraphSource(Elements):
         Finalize is checked.
         """
         method = "RegisterAsSourceForSceneGraph"
-        demand_cc(
-            self._source_id is None,
-            _DEMAND_LINES[method],
-            method,
-            "!geometry_source_is_registered()",
-        )
+        demand(self._source_id is None, _DEMANDS[method])
         if self._finalized:
             raise FinalizedError(
                 "This MultibodyPlant is finalized already; RegisterAsSourceForSceneGraph() "
@@ -89,8 +84,8 @@ class SceneGraphSource(Elements):
         ``method`` of a plant that is no source, DemandFailedError for an internal one."""
         if self._scene_graph is None or self._source_id is None:
             condition = "geometry_source_is_registered()"
-            if method in _DEMAND_LINES:
-                demand_cc(False, _DEMAND_LINES[method], method, condition)
+            if method in _DEMANDS:
+                demand(False, _DEMANDS[method])
             raise demand_failed(method, condition)
         return self._scene_graph, self._source_id
 

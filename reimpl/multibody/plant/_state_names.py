@@ -20,7 +20,7 @@ from __future__ import annotations
 from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
-from reimpl.multibody.plant._demands import demand_cc
+from reimpl.multibody.plant._demands import demand
 from reimpl.multibody.plant._elements import Elements
 from reimpl.multibody.tree import ModelInstanceIndex
 
@@ -32,9 +32,6 @@ _COORDINATES = {
     "position": ("num_positions", "position_start", "position_suffix"),
     "velocity": ("num_velocities", "velocity_start", "velocity_suffix"),
 }
-#: Where GetPositionNames and GetVelocityNames demand that a joint's names fit
-#: (multibody_plant.cc, pydrake 1.51.1): this line and the next.
-_NAMES_DEMAND_LINES = {"position": 1954, "velocity": 2021}
 
 
 class StateNames(Elements):
@@ -141,19 +138,15 @@ class StateNames(Elements):
                 (getattr(j, start_of)() for j in joints), default=getattr(self, count_of)()
             )
         result = [""] * size
-        line = _NAMES_DEMAND_LINES[kind]
         for joint in joints:
             if joint.num_positions() == 0:
                 continue
             count, start = getattr(joint, count_of)(), getattr(joint, start_of)()
             if model_instance is not None:
-                demand_cc(start >= offset, line, method, f"joint.{start_of}() >= {kind}_offset")
-                demand_cc(
-                    start + count - offset <= size,
-                    line + 1,
-                    method,
-                    f"joint.{start_of}() + joint.{count_of}() - {kind}_offset <= ssize(names)",
-                )
+                # N.B. Drake first demands start >= offset, which holds: offset is the least
+                # start. The names fit (the demand <method>.fits) unless the instance's
+                # coordinates are not contiguous.
+                demand(start + count - offset <= size, f"{method}.fits")
             prefix = ""
             if add_model_instance_prefix:
                 prefix = f"{self.GetModelInstanceName(joint.model_instance())}_"

@@ -25,7 +25,7 @@ from collections.abc import Sequence
 from reimpl.multibody import _link_joint_graph as graph
 from reimpl.multibody import kinematics
 from reimpl.multibody._errors import MultibodyPlantError, NotFoundError
-from reimpl.multibody.plant._demands import demand_tree_cc
+from reimpl.multibody.plant._demands import fail_demand
 from reimpl.multibody.plant._elements import Elements
 from reimpl.multibody.tree import (
     BodyIndex,
@@ -99,9 +99,7 @@ class Topology(Elements):
         bodies in an instance, it has no unique base body); the world instance has none.
         """
         if not 0 <= int(model_instance) < len(self._instance_names):
-            demand_tree_cc(
-                4275, "MaybeGetUniqueBaseBodyIndex", "model_instances_.has_element(model_instance)"
-            )
+            fail_demand("MaybeGetUniqueBaseBodyIndex.instance")
         if int(model_instance) == int(world_model_instance()):
             return None
         assert self._forest is not None
