@@ -30,6 +30,7 @@ import numpy as np
 import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl._template import TemplateClass
 from reimpl.common._pybind_text import no_constructor
 from reimpl.math import RigidTransform, RotationMatrix
@@ -1441,3 +1442,8 @@ class CurvilinearJoint(Joint):
     def _X_FM(self, s: float) -> kinematics.Pose:
         path: PiecewiseConstantCurvatureTrajectory = self._parameters["curvilinear_path"]
         return path.calc_pose(s)
+
+
+if not release.has("rpy-floating-joint-since-1.27"):  # bound since 1.27 (measured: 1.26.0, 1.27.0)
+    del RpyFloatingJoint, RpyFloatingJoint_
+    __all__ = [name for name in __all__ if name not in ("RpyFloatingJoint", "RpyFloatingJoint_")]

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 from reimpl._template import scalar_template
 from reimpl.common._drake_demand import demand_failure
 from reimpl.common._pybind_text import no_constructor
+from reimpl.systems._context_keyword import context_argument
 
 if TYPE_CHECKING:
     from reimpl.geometry.geometry_state import GeometryState
@@ -369,6 +370,7 @@ class Diagram(System):
     def num_output_ports(self) -> int:
         return 0
 
+    @context_argument
     def SetDefaultContext(self, context: Context) -> None:
         """Resets every subsystem's subcontext to its defaults (those that have any)."""
         self.ValidateContext(context)

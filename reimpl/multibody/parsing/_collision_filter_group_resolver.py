@@ -28,7 +28,11 @@ group declared later. The checks and messages are Drake 1.51.1's (measured):
   is not caught and the process aborts (undefined-ignored-group-aborts).
 
 Member groups add their members since 1.27; up to 1.26 they add nothing
-(member-groups-since-1.27, measured by the release matrix on 1.26.0).
+(member-groups-since-1.27, measured by the release matrix on 1.26.0). A group
+defined twice is an error since 1.27; up to 1.26 the second definition's bodies
+are looked up (an unknown one is an error) and then it is dropped: the first
+definition stays (group-redefinition-error-since-1.27; measured on pydrake
+1.12.0-1.26.0 with g1 = {a, b} then g1 = {c, d}: (a, b) filtered, (c, d) not).
 
 Each pair is applied with ``plant._exclude_collision_geometries_with_collision_
 filter_group_pair``, whose equal names mean ExcludeWithin, else ExcludeBetween.
@@ -77,13 +81,16 @@ class CollisionFilterGroupResolver:
         name = scoped.join(scope, group_name)
         if scoped.is_scoped(group_name):
             raise diagnostics.error(f"group name '{name}' cannot be a scoped name", line)
-        if name in self._bodies:
+        redefined = name in self._bodies
+        if redefined and release.has("group-redefinition-error-since-1.27"):
             raise diagnostics.error(f"group '{name}' has already been defined", line)
         if not body_names and not member_group_names:
             raise diagnostics.error(f"group '{name}' has no members", line)
         bodies = {}
         for body_name in sorted(scoped.join(scope, b) for b in body_names):
             bodies[body_name] = self._find_body(diagnostics, line, body_name)
+        if redefined:  # up to 1.26 the first definition stays (its bodies were checked)
+            return
         self._bodies[name] = bodies
         if not release.has("member-groups-since-1.27"):
             member_group_names = set()  # up to 1.26 a group's member groups add nothing

@@ -40,6 +40,7 @@ import numpy as np
 from reimpl._release import release
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody.parsing import _scoped_name as scoped
+from reimpl.multibody.parsing._joint_frame_instance import parent_frame_instance
 from reimpl.multibody.parsing._sdf_dom import Joint
 from reimpl.multibody.parsing._sdf_graph import Graphs
 from reimpl.multibody.parsing._sdf_include import text_of
@@ -182,7 +183,12 @@ class JointAdder:
         frame_on_parent = ends.parent.body_frame()
         if ends.X_PJ is not None:
             frame_on_parent = self.plant.AddFrame(
-                FixedOffsetFrame(f"{joint.name}_parent", frame_on_parent, ends.X_PJ, instance)
+                FixedOffsetFrame(
+                    f"{joint.name}_parent",
+                    frame_on_parent,
+                    ends.X_PJ,
+                    parent_frame_instance(instance),
+                )
             )
         frame_on_child = self.plant.AddFrame(
             FixedOffsetFrame(f"{joint.name}_child", ends.child.body_frame(), ends.X_CJ, instance)

@@ -66,6 +66,7 @@ from reimpl._release import release
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody.kinematics import rotation_about
 from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._joint_frame_instance import parent_frame_instance
 from reimpl.multibody.parsing._urdf_values import Values, origin, vector
 from reimpl.multibody.parsing._xml import XmlElement, children
 from reimpl.multibody.tree import (
@@ -291,7 +292,7 @@ class JointReader:
         elided = X_PF.IsExactlyIdentity()  # drake#24687
         if not (elided and release.has("urdf-identity-joint-frame-elided-since-1.55")):
             frame_on_parent = FixedOffsetFrame(
-                f"{joint.name}_parent", frame_on_parent, X_PF, instance
+                f"{joint.name}_parent", frame_on_parent, X_PF, parent_frame_instance(instance)
             )
             self.plant.AddFrame(frame_on_parent)
         frame_on_child = joint.child.body_frame()

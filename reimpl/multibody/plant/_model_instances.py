@@ -18,6 +18,7 @@ model_instance.cc). Measured on pydrake 1.51.1:
 
 from __future__ import annotations
 
+from reimpl._release import release
 from reimpl.multibody._errors import DuplicateNameError, FinalizedError, NotFoundError
 from reimpl.multibody.plant._demands import demand_cc, demand_tree_cc
 from reimpl.multibody.plant._phase import PlantPhase
@@ -127,6 +128,7 @@ class ModelInstances(PlantPhase):
             )
         return index
 
+    @release.binding("rename-model-instance-since-1.20")
     def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
         """Renames the instance, and the scoped names of its SceneGraph frames and geometries.
 
