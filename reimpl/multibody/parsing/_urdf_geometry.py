@@ -70,7 +70,9 @@ __all__ = ["GeometryReader", "ParsedGeometry"]
 _SUFFIX_LIMIT = 10000
 #: Since 1.15 a taken name, given or default, gets ``_<i>``; up to 1.14 only a default
 #: (shape) name gets a suffix, ``<i>`` with no underscore, and a given name is used as
-#: it is (default-geometry-name-underscore-since-1.15: measured on pydrake 1.14.0,
+#: it is, and a link's visuals and collisions share one set of names (so a collision
+#: box after a visual box is ``Box1``) (default-geometry-name-underscore-since-1.15:
+#: measured on pydrake 1.12.0 and 1.14.0,
 #: ``Sphere``, ``Sphere1``, and 1.15.0, ``Sphere``, ``Sphere_1``; Drake PR #19029).
 _RENAMING = release.has("default-geometry-name-underscore-since-1.15")
 _PROXIMITY = "drake:proximity_properties"
