@@ -68,6 +68,9 @@ _SUPPORTED = frozenset({
     "axis", "axis2", "child", "drake:rotor_inertia", "drake:gear_ratio",
     "drake:controller_gains", "drake:mimic", "parent", "pose", "screw_thread_pitch",
 })  # fmt: skip
+if not release.has("sdf-controller-gains-since-1.23"):
+    # Up to 1.22 <drake:controller_gains> is an unsupported element (an error).
+    _SUPPORTED -= {"drake:controller_gains"}
 _LIMIT_ELEMENTS = frozenset(
     {"drake:acceleration", "effort", "lower", "stiffness", "upper", "velocity"}
 )
