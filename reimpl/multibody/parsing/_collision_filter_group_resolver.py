@@ -84,7 +84,9 @@ class CollisionFilterGroupResolver:
         redefined = name in self._bodies
         if redefined and release.has("group-redefinition-error-since-1.27"):
             raise diagnostics.error(f"group '{name}' has already been defined", line)
-        if not body_names and not member_group_names:
+        if not release.has("member-groups-since-1.27"):
+            member_group_names = set()  # up to 1.26 a group's member groups add nothing
+        if not body_names and not member_group_names:  # so up to 1.26 they are no members
             raise diagnostics.error(f"group '{name}' has no members", line)
         bodies = {}
         for body_name in sorted(scoped.join(scope, b) for b in body_names):
@@ -92,8 +94,6 @@ class CollisionFilterGroupResolver:
         if redefined:  # up to 1.26 the first definition stays (its bodies were checked)
             return
         self._bodies[name] = bodies
-        if not release.has("member-groups-since-1.27"):
-            member_group_names = set()  # up to 1.26 a group's member groups add nothing
         self._member_groups[name] = {scoped.join(scope, g) for g in member_group_names}
 
     def _check_scope(self, scope: str) -> None:
