@@ -122,6 +122,18 @@ def test_a_binding_is_absent_before_its_release_and_present_from_it(fact_id: str
     assert _bindings_at(since)[fact_id] is True, f"{fact_id} missing on {since}"
 
 
+def test_set_default_context_before_1_15_takes_its_context_by_position() -> None:
+    """Measured on pydrake 1.14.0: ``SetDefaultContext(context)`` binds (``arg0``)."""
+    code = _PROBE.split("plant = MultibodyPlant", maxsplit=1)[0] + (
+        "scene_graph.SetDefaultContext(context)\nprint('reset')\n"
+    )
+    env = {**os.environ, "REIMPL_DRAKE_RELEASE": "1.14.0", "PYTHONPATH": str(ROOT)}
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=False
+    )
+    assert (done.returncode, done.stdout) == (0, "reset\n"), done.stderr
+
+
 def test_find_collision_candidates_before_1_48_raises_pybind11_s_conversion_error() -> None:
     """Measured on pydrake 1.45.0: the method is bound, and a pair cannot be converted."""
     code = _PROBE.split("plant = MultibodyPlant", maxsplit=1)[0] + (

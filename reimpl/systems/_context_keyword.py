@@ -32,7 +32,9 @@ def context_argument(method: _Method) -> _Method:
     if release.has("set-default-context-keyword-since-1.15"):
         return method
     # The context's type is checked by the method itself (Drake's context-system check).
-    overloads = (Overload((Param("arg0", lambda value: True),), method),)
+    overloads = (
+        Overload((Param("arg0", lambda value: True),), lambda self, arg0: method(self, arg0)),
+    )
 
     @functools.wraps(method)
     def positional(self: Any, *args: Any, **kwargs: Any) -> Any:
