@@ -126,6 +126,23 @@ class CollisionFilterGroupResolver:
                 return plant.GetBodyByName(body_name, instance)
         raise diagnostics.error(f"body with name '{name}' not found", line)
 
+    def resolve_unwinding(self) -> None:
+        """``resolve()`` for a parse that failed, on the releases that do it.
+
+        Up to 1.30 Drake resolves in CompositeParse's destructor, so a parse that
+        fails still applies the pairs of the groups declared before the failure;
+        since 1.31 it resolves only a parse that finishes
+        (failed-parse-resolves-groups-until-1.30: measured on pydrake 1.12.0-1.30.0
+        and 1.31.0-1.58.0). An error while resolving then is thrown from a
+        destructor during unwinding: the process aborts.
+        """
+        if not release.has("failed-parse-resolves-groups-until-1.30"):
+            return
+        try:
+            self.resolve()
+        except ModelParseError as error:
+            abort_uncaught("std::runtime_error", str(error))
+
     def _members(self, group: str) -> dict[str, Any]:
         """members(G): the bodies of G and of every group reachable from G."""
         seen, stack, bodies = {group}, [group], {}

@@ -384,6 +384,10 @@ class Parser:
             read_file=_read_file,
             builder=self._builder,
         )
-        instances = read(context)
+        try:
+            instances = read(context)
+        except Exception:
+            context.resolver.resolve_unwinding()  # up to 1.30 only
+            raise
         self._groups.merge(context.resolver.resolve())
         return instances

@@ -35,6 +35,7 @@ from collections import Counter
 from dataclasses import dataclass, field
 from typing import Any
 
+from reimpl._release import release
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
 from reimpl.multibody.parsing._parse_context import ParseContext
@@ -204,6 +205,8 @@ class _Loader:
         self.context = context
         self.loaded = loaded
         self.version = version
+        #: A custom merge-include refused up to 1.22, raised once the document is loaded.
+        self.refused: ModelParseError | None = None
 
     # ----------------------------------------------------------- elements
     def link(self, element: XmlElement) -> Link:
@@ -347,14 +350,24 @@ class _Loader:
             names = children(include, "name")
             statics = children(include, "static")
             merge = bool(sdformat_bool(include.get("merge", "false")))
+            # Up to 1.22 the custom parser ignores merge (the model is parsed nested), and
+            # libsdformat refuses it once every include is loaded
+            # (sdf-merge-include-custom-parser-since-1.23: measured on pydrake 1.16.0 and
+            # 1.22.0: the URDFs' bodies, the later includes' too, stay in the plant).
+            unmergeable = merge and not release.has("sdf-merge-include-custom-parser-since-1.23")
             interface = load_interface_model(
                 self.context,
                 path,
                 local_name=text_of(names[0]) if names else None,
                 parent_name=scoped.join(*parents) if parents else None,
-                merge=merge,
+                merge=merge and not unmergeable,
                 static=bool(sdformat_bool(statics[0].text or "")) if statics else False,
             )
+            if unmergeable and self.refused is None:
+                self.refused = Diagnostics(None).error(
+                    "Custom parser does not support merge-include, but merge-include was "
+                    f"requested for model with uri [{uri}]"
+                )
             poses = children(include, "pose")
             if poses:
                 interface.include_pose = read_pose(include)
@@ -495,10 +508,18 @@ def load_model(
     context: ParseContext, loaded: Loaded, element: XmlElement, version: tuple[int, ...]
 ) -> Model:
     """The document's ``<model>`` (Model::Load); raises libsdformat's first error."""
-    return _Loader(context, loaded, version).model(element, [])
+    loader = _Loader(context, loaded, version)
+    model = loader.model(element, [])
+    if loader.refused is not None:
+        raise loader.refused
+    return model
 
 
 def load_world(
     context: ParseContext, loaded: Loaded, element: XmlElement, version: tuple[int, ...]
 ) -> World:
-    return _Loader(context, loaded, version).world(element)
+    loader = _Loader(context, loaded, version)
+    world = loader.world(element)
+    if loader.refused is not None:
+        raise loader.refused
+    return world

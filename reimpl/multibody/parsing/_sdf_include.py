@@ -35,7 +35,6 @@ import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
-from reimpl._release import release
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
 from reimpl.multibody.parsing._package_map import PackageMap, UriError, resolve_uri
 from reimpl.multibody.parsing._sdf_document import (
@@ -113,12 +112,6 @@ class _Includes:
         if os.path.isdir(found):
             found = self._model_file(found)
         if not _is_sdf_file(found):
-            merged = sdformat_bool(include.get("merge", "false"))
-            if merged and not release.has("sdf-merge-include-custom-parser-since-1.23"):
-                raise Diagnostics(None).error(
-                    "Custom parser does not support merge-include, but merge-include was "
-                    f"requested for model with uri [{uri}]"
-                )
             return [include]
         model = self._read(found, label, uris[0], f"{path}/uri")
         self._override(model, include, label, path)
