@@ -30,8 +30,10 @@ else the first interface model's.
 
 from __future__ import annotations
 
+import contextlib
 import math
 from collections import Counter
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -207,6 +209,19 @@ class _Loader:
         self.version = version
         #: A custom merge-include refused up to 1.22, raised once the document is loaded.
         self.refused: ModelParseError | None = None
+
+    @contextlib.contextmanager
+    def refusal_first(self) -> Iterator[None]:
+        """Raises the refused merge-include, if any, once loading ends: before a later
+        error of the document (measured on pydrake 1.16.0: it is the error reported)."""
+        try:
+            yield
+        except ModelParseError:
+            if self.refused is not None:
+                raise self.refused from None
+            raise
+        if self.refused is not None:
+            raise self.refused
 
     # ----------------------------------------------------------- elements
     def link(self, element: XmlElement) -> Link:
@@ -509,17 +524,13 @@ def load_model(
 ) -> Model:
     """The document's ``<model>`` (Model::Load); raises libsdformat's first error."""
     loader = _Loader(context, loaded, version)
-    model = loader.model(element, [])
-    if loader.refused is not None:
-        raise loader.refused
-    return model
+    with loader.refusal_first():
+        return loader.model(element, [])
 
 
 def load_world(
     context: ParseContext, loaded: Loaded, element: XmlElement, version: tuple[int, ...]
 ) -> World:
     loader = _Loader(context, loaded, version)
-    world = loader.world(element)
-    if loader.refused is not None:
-        raise loader.refused
-    return world
+    with loader.refusal_first():
+        return loader.world(element)
