@@ -284,6 +284,18 @@ class _Loader:
         finally:
             self.version = saved
 
+    def _model_or_none(self, element: XmlElement, parents: list[str]) -> Model | None:
+        """``model()``, or None once a merge-include was refused (up to 1.22): libsdformat
+        records a later model's error and goes on loading the document, so the custom
+        models after it are parsed too, and the refusal is the error reported (measured
+        with top_merge_include_world.sdf on pydrake 1.16.0: both tops' URDFs parsed)."""
+        try:
+            return self.model(element, parents)
+        except ModelParseError:
+            if self.refused is None:
+                raise
+            return None
+
     def _model(self, element: XmlElement, parents: list[str]) -> Model:
         name = element.get("name", "")
         if is_reserved(name):
@@ -308,7 +320,9 @@ class _Loader:
         for child in element:
             assert isinstance(child, XmlElement)
             if child.tag == "model":
-                nested = self.model(child, own)
+                nested = self._model_or_none(child, own)
+                if nested is None:
+                    continue
                 _record(names["model"], "model", nested.name)
                 if nested.merged:
                     self._merge(model, nested, implicit)
@@ -427,7 +441,10 @@ class _Loader:
         for child in element:
             assert isinstance(child, XmlElement)
             if child.tag == "model":
-                model = self.model(child, [])
+                loaded = self._model_or_none(child, [])
+                if loaded is None:
+                    continue
+                model = loaded
                 _record(names["model"], "model", model.name)
                 implicit.add(model.name)
                 if model.merged:
