@@ -12,7 +12,8 @@ changes: a binding row decides whether a class defines the binding at all
 (``if release.has("activation-since-1.55"):`` in the class body, so an
 absent binding is absent as in that release's pydrake), a behaviour row picks
 the rule, a wording row the message. An unknown fact id is a KeyError, so a
-misspelt switch fails at import.
+misspelt switch fails at import. ``@release.binding("<id>")`` on a method is the
+same gate as the ``if`` in the class body, written on the method's own line.
 """
 
 from __future__ import annotations
@@ -20,9 +21,10 @@ from __future__ import annotations
 import json
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from importlib import resources
+from typing import Any, TypeVar
 
 __all__ = ["DEFAULT_RELEASE", "RELEASE_VARIABLE", "Release", "release"]
 
@@ -33,6 +35,7 @@ DEFAULT_RELEASE = "1.51.1"
 _RELEASE = re.compile(r"^\d+\.\d+\.\d+$")
 
 Version = tuple[int, ...]
+_Method = TypeVar("_Method", bound=Callable[..., Any])
 
 
 def _version(text: str) -> Version:
@@ -68,8 +71,23 @@ class Release:
             raise KeyError(f"no release fact {fact_id!r} in release_facts.json") from None
         return self._version in fact
 
+    def binding(self, fact_id: str) -> Callable[[_Method], _Method]:
+        """A method decorator: the class defines the method only where the binding row
+        ``fact_id`` holds (else the name is left out of the class, as pydrake leaves it)."""
+        if self.has(fact_id):
+            return lambda method: method
+        return lambda method: _Unbound()  # type: ignore[return-value]
+
     def __repr__(self) -> str:
         return f"Release({self.version!r})"
+
+
+class _Unbound:
+    """A class attribute that removes itself when the class is made (``type.__new__``
+    calls ``__set_name__`` on a copy of the class namespace, so the removal is safe)."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        delattr(owner, name)
 
 
 def _load(version: str) -> Release:

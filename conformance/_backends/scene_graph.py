@@ -63,7 +63,7 @@ _IMPLEMENTATION_ERRORS = (RuntimeError, TypeError, ValueError, IndexError)
 #: Feature tags every SceneGraph-based backend supports on every release.
 BASE_FEATURES = frozenset({"core", "transient", "contexts", "errors", "roles", "quirk", "queries"})
 #: SceneGraph feature tags that some releases lack (``grammar.FEATURE_BINDINGS``).
-_RELEASED_FEATURES = frozenset({"activation", "scope"})
+_RELEASED_FEATURES = frozenset({"activation", "scope", "gltf_meshes"})
 
 
 #: The roles whose geometries ``LocationState.counts`` counts.

@@ -44,14 +44,17 @@ GRAMMAR: Mapping[str, CommandSpec] = {
 }
 
 
-#: Feature tag → the release fact (a ``binding`` row) whose releases have it. Tags not
-#: listed are on every release (``core``, ``transient``, ...), or need a module rather
-#: than a release (``multibody``, ``parsing``: ``backends.multibody``).
+#: Feature tag → the release fact whose releases have it: a ``binding`` row, or a
+#: ``behaviour`` row before which a case cannot be run at all (``gltf_meshes``: a .gltf
+#: mesh cannot take the proximity role). Tags not listed are on every release (``core``,
+#: ``transient``, ...), or need a module rather than a release (``multibody``,
+#: ``parsing``: ``backends.multibody``).
 FEATURE_BINDINGS: Mapping[str, str] = {
     "activation": "activation-since-1.55",
-    "scope": "collision-filter-scope-since-1.45",
+    "scope": "collision-filter-scope-since-1.42",
     "adjacency_opt_out": "adjacent-filters-opt-out-since-1.13",
     "filter_groups_report": "filter-groups-report-since-1.31",
+    "gltf_meshes": "gltf-mesh-proximity-since-1.28",
 }
 
 

@@ -12,7 +12,7 @@ outcome             when
 ``fail``            an expectation failed, and no known divergence says so
 ``xfail``           it failed as a known divergence in range says it does
 ``unsupported``     the release lacks a feature tag of the case (``activation``
-                    before 1.55, ``scope`` before 1.45), or lacks the Python
+                    before 1.55, ``scope`` before 1.42), or lacks the Python
                     binding a step calls (error kind ``binding``)
 ``crash``           the worker died (a signal or an exit), expected or not
 ``timeout``         a step took longer than the step timeout

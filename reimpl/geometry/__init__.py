@@ -6,10 +6,8 @@ keyword names, return types and error messages are pydrake's.
 
 from __future__ import annotations
 
-from reimpl.geometry.collision_filter_declaration import (
-    CollisionFilterDeclaration,
-    CollisionFilterScope,
-)
+from reimpl._release import release
+from reimpl.geometry.collision_filter_declaration import CollisionFilterDeclaration
 from reimpl.geometry.collision_filter_manager import CollisionFilterManager
 from reimpl.geometry.geometry_instance import GeometryFrame, GeometryInstance
 from reimpl.geometry.geometry_roles import (
@@ -59,7 +57,6 @@ __all__ = [
     "Capsule",
     "CollisionFilterDeclaration",
     "CollisionFilterManager",
-    "CollisionFilterScope",
     "Convex",
     "Cylinder",
     "Ellipsoid",
@@ -100,3 +97,8 @@ __all__ = [
     "Sphere",
     "SurfacePolygon",
 ]
+
+if release.has("collision-filter-scope-since-1.42"):  # bound since 1.42 (measured: 1.41.0, 1.42.0)
+    from reimpl.geometry.collision_filter_declaration import CollisionFilterScope
+
+    __all__ += ["CollisionFilterScope"]

@@ -20,6 +20,7 @@ import enum
 from typing import Any, ClassVar, NamedTuple, Self
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl.common._pybind_enum import PybindEnum
 from reimpl.geometry.geometry_set import GeometrySet
 
@@ -33,7 +34,7 @@ __all__ = [
 
 
 class CollisionFilterScope(PybindEnum):
-    """Which geometries a declaration's sets resolve to (pydrake ≥ 1.45 binds it)."""
+    """Which geometries a declaration's sets resolve to (pydrake ≥ 1.42 binds it)."""
 
     __slots__ = ()
     kAll: ClassVar[CollisionFilterScope]
@@ -76,10 +77,16 @@ class Statement(NamedTuple):
 
 _OWNER = "reimpl.geometry.CollisionFilterDeclaration"
 
-#: The constructor's overloads; each gives the declaration's scope.
+#: The constructor's overloads; each gives the declaration's scope. ``scope=`` is bound
+#: since 1.42 (collision-filter-scope-since-1.42: measured on pydrake 1.41.0 and 1.42.0);
+#: before, a declaration has no scope (it is kAll).
 _OVERLOADS = (
     Overload((), lambda: CollisionFilterScope.kAll),
-    Overload((Param("scope", instance_of(CollisionFilterScope)),), lambda scope: scope),
+    *(
+        [Overload((Param("scope", instance_of(CollisionFilterScope)),), lambda scope: scope)]
+        if release.has("collision-filter-scope-since-1.42")
+        else []
+    ),
 )
 
 
@@ -97,6 +104,14 @@ class CollisionFilterDeclaration:
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         self._statements: list[Statement] = []
         self._scope: CollisionFilterScope = dispatch(_OWNER, "__init__", _OVERLOADS, args, kwargs)
+
+    @classmethod
+    def _scoped(cls, scope: CollisionFilterScope) -> Self:
+        """A declaration of ``scope`` on every release (reimpl's own declarations: the
+        plant's default filters omit deformable geometry, whether or not ``scope=`` is bound)."""
+        declaration = cls()
+        declaration._scope = scope
+        return declaration
 
     def _append(self, op: StatementOp, set_A: object, set_B: object) -> Self:
         for value in (set_A, set_B):

@@ -25,6 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl._template import scalar_template
 from reimpl.common._std_unordered_map import MAP_AT_MESSAGE, identifier_set_order
 from reimpl.common.value import register_value_type
@@ -113,8 +114,21 @@ class QueryObject:
         return self._posed_of().has_collisions()
 
     def FindCollisionCandidates(self) -> list[tuple[GeometryId, GeometryId]]:
-        """Unfiltered pairs whose bounding boxes overlap, as sorted (lower, higher) ids."""
-        return self._posed_of().collision_candidates()
+        """Unfiltered pairs whose bounding boxes overlap, as sorted (lower, higher) ids.
+
+        Raises:
+            TypeError: before Drake 1.48 when there is a pair
+                (find-collision-candidates-since-1.48): pybind11 could not convert a
+                SortedPair, so only an empty answer reached Python (measured on
+                pydrake 1.12.0, 1.45.0, 1.47.0: [] without pairs, this TypeError with).
+        """
+        pairs = self._posed_of().collision_candidates()
+        if pairs and not release.has("find-collision-candidates-since-1.48"):
+            raise TypeError(
+                "Unable to convert function return value to a Python type! The signature was"
+                f"\n\t(self: {_OWNER}) -> list[drake::SortedPair<drake::geometry::GeometryId>]"
+            )
+        return pairs
 
     def ComputeSignedDistancePairwiseClosestPoints(
         self, max_distance: float = math.inf
@@ -133,7 +147,8 @@ class QueryObject:
     def ComputeSignedDistancePairClosestPoints(
         self, geometry_id_A: GeometryId, geometry_id_B: GeometryId
     ) -> SignedDistancePair:
-        """φ(A, B) for two proximity geometries, filters ignored; reported with id_A < id_B."""
+        """φ(A, B) for two proximity geometries, reported with id_A < id_B; filters are
+        ignored since 1.15 (before, a filtered pair raises: ``PosedState.pair_distance``)."""
         for value in (geometry_id_A, geometry_id_B):
             if not isinstance(value, GeometryId):
                 raise TypeError(
@@ -437,7 +452,7 @@ class PosedState:
         return [SignedDistancePair._make(r.id_A, r.id_B, r.value, r.vectors) for r in found]
 
     def pair_distance(self, id_A: GeometryId, id_B: GeometryId) -> SignedDistancePair:
-        """φ(A, B), filters ignored; A then B must be registered proximity geometries."""
+        """φ(A, B), filters ignored since 1.15; A then B must be registered proximity geometries."""
         slots = []
         for geometry_id in (id_A, id_B):
             self.state.geometry_frame(geometry_id)  # "Referenced geometry N has not been ..."
@@ -449,6 +464,16 @@ class PosedState:
                     f"It has {_role_text(self.state, geometry_id)}."
                 )
             slots.append(slot)
+        if not release.has("signed-distance-pair-since-1.15") and (
+            id_A == id_B or not self.state.collision_filter.can_collide_with(id_A, id_B)
+        ):
+            # Up to 1.14 the pair query asks the collision filter first, and a filtered
+            # pair (a geometry with itself, two anchored ones, an excluded pair) has no
+            # answer (signed-distance-pair-since-1.15: measured on pydrake 1.14.0 and 1.15.0).
+            raise RuntimeError(
+                f"The geometry pair ({id_A.get_value()}, {id_B.get_value()}) does not "
+                "support a signed distance query"
+            )
         r = self.engine.signed_distance(slots[0], slots[1])
         return SignedDistancePair._make(r.id_A, r.id_B, r.value, r.vectors)
 

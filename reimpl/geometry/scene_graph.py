@@ -20,6 +20,7 @@ from typing import Any
 from weakref import WeakKeyDictionary
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl._template import scalar_template
 from reimpl.geometry.collision_filter_manager import CollisionFilterManager
 from reimpl.geometry.geometry_instance import GeometryFrame, GeometryInstance
@@ -40,6 +41,7 @@ from reimpl.geometry.pose_update import (
 )
 from reimpl.geometry.query_object import PosedState, QueryObject
 from reimpl.geometry.scene_graph_inspector import SceneGraphInspector
+from reimpl.systems._context_keyword import context_argument
 from reimpl.systems.framework import Context, InputPort, LeafContext, LeafSystem, OutputPort
 
 __all__ = ["SceneGraph", "SceneGraph_"]
@@ -216,6 +218,7 @@ class SceneGraph(LeafSystem):
         context._geometry_state = self._default_state()
         return context
 
+    @context_argument
     def SetDefaultContext(self, context: Context) -> None:
         """Resets the context's geometry state to a copy of the (cached) model.
 
@@ -319,10 +322,16 @@ _ASSIGN_ROLE = _model_then_context(
     ),
     SceneGraph._assign_role,
 )
-#: RemoveRole by frame, then by geometry, each without and with a context.
+#: RemoveRole by frame, then by geometry, each without and with a context; up to 1.12
+#: only RemoveRole(source_id, geometry_id, role) is bound (remove-role-by-frame-since-1.13:
+#: measured on pydrake 1.12.0, one overload, and 1.13.0, these four).
 _REMOVE_ROLE = (
-    *_model_then_context((_SOURCE, _FRAME, _ROLE), SceneGraph._remove_frame_role),
-    *_model_then_context((_SOURCE, _GEOMETRY, _ROLE), SceneGraph._remove_geometry_role),
+    (
+        *_model_then_context((_SOURCE, _FRAME, _ROLE), SceneGraph._remove_frame_role),
+        *_model_then_context((_SOURCE, _GEOMETRY, _ROLE), SceneGraph._remove_geometry_role),
+    )
+    if release.has("remove-role-by-frame-since-1.13")
+    else (Overload((_SOURCE, _GEOMETRY, _ROLE), SceneGraph._remove_geometry_role),)
 )
 _REMOVE_GEOMETRY = _model_then_context((_SOURCE, _GEOMETRY), SceneGraph._remove_geometry)
 

@@ -81,7 +81,7 @@ def default_collision_filters(
     plant's CollectRegisteredGeometries over body indices: {F(B) : B ∈ S}.
     The statements only exclude, so their order does not matter.
     """
-    declaration = CollisionFilterDeclaration(CollisionFilterScope.kOmitDeformable)
+    declaration = CollisionFilterDeclaration._scoped(CollisionFilterScope.kOmitDeformable)
     if adjacent:
         for child, parent in adjacent_body_pairs(joints):
             declaration.ExcludeBetween(collect([child]), collect([parent]))

@@ -36,6 +36,9 @@ class _Joint:
     parent_body: str
     child_is_world: bool
     parent_frame_index: int
+    #: Whether the joint's frame on its parent is that body's own frame (not offset).
+    on_body_frame: bool = True
+    parent_body_index: int = 0
 
 
 _ORDERING = (
@@ -84,8 +87,18 @@ def _graph(floating: Callable[[str], str]) -> Callable[[_Joint], str | None]:
 
 
 def _until_1_19(j: _Joint) -> str | None:
+    """The clash of the reversed mobilizer with the floating one: between the two frames
+    when the joint is on the parent's body frame, else between the two bodies (measured
+    on pydrake 1.19.0: an offset frame on the parent gives 'inboard body (index=0) and
+    outboard body (index=<its body>)')."""
     if not j.child_is_world:
         return _since_1_33(j)
+    if not j.on_body_frame:
+        return (
+            "This multibody tree already has a mobilizer connecting inboard body (index=0) and "
+            f"outboard body (index={j.parent_body_index}). More than one mobilizer between two "
+            "bodies is not allowed."
+        )
     return (
         f"This multibody tree already has a mobilizer connecting inboard frame (index=0) and "
         f"outboard frame (index={j.parent_frame_index}). More than one mobilizer between two "
@@ -115,6 +128,8 @@ def reversed_joint_refusal(joint: Any, instance: str) -> str | None:
         parent_body=parent.name(),
         child_is_world=int(child.index()) == 0,
         parent_frame_index=int(parent.body_frame().index()),
+        on_body_frame=joint.frame_on_parent() is parent.body_frame(),
+        parent_body_index=int(parent.index()),
     )
     refusal = next(rule for fact, rule in _REFUSALS if fact is None or release.has(fact))
     return refusal(facts)

@@ -1409,3 +1409,8 @@ class CurvilinearJoint(Joint):
     def _X_FM(self, s: float) -> kinematics.Pose:
         path: PiecewiseConstantCurvatureTrajectory = self._parameters["curvilinear_path"]
         return path.calc_pose(s)
+
+
+if not release.has("rpy-floating-joint-since-1.27"):  # bound since 1.27 (measured: 1.26.0, 1.27.0)
+    del RpyFloatingJoint, RpyFloatingJoint_
+    __all__ = [name for name in __all__ if name not in ("RpyFloatingJoint", "RpyFloatingJoint_")]

@@ -25,6 +25,7 @@ from reimpl._release import release
 from reimpl._template import scalar_template
 from reimpl.common._drake_demand import failed_demand
 from reimpl.common._pybind_text import no_constructor
+from reimpl.systems._context_keyword import context_argument
 
 if TYPE_CHECKING:
     from reimpl.geometry.geometry_state import GeometryState
@@ -365,6 +366,7 @@ class Diagram(System):
     def num_output_ports(self) -> int:
         return 0
 
+    @context_argument
     def SetDefaultContext(self, context: Context) -> None:
         """Resets every subsystem's subcontext to its defaults (those that have any)."""
         self.ValidateContext(context)

@@ -129,16 +129,20 @@ class PairResult:
         return PairResult(self.id_B, self.id_A, self.value, vectors)
 
 
+#: An unsupported pair's error; up to 1.15 it ends at "double" (unsupported-pair-wording-
+#: since-1.16: measured on pydrake 1.15.0 and 1.16.0, both queries).
+_SEE_DOCS = (
+    ". See the documentation for QueryObject::{}() for the full status of supported geometries."
+    if release.has("unsupported-pair-wording-since-1.16")
+    else ""
+)
 _PENETRATION_UNSUPPORTED = (
-    "Penetration queries between shapes '{}' and '{}' are not supported for scalar type double. "
-    "See the documentation for QueryObject::ComputePointPairPenetration() for the full status "
-    "of supported geometries."
+    "Penetration queries between shapes '{}' and '{}' are not supported for scalar type double"
+    + _SEE_DOCS.replace("{}", "ComputePointPairPenetration")
 )
 DISTANCE_UNSUPPORTED = (
     "Signed distance queries between shapes '{}' and '{}' are not supported for scalar type "
-    "double. See the documentation for "
-    "QueryObject::ComputeSignedDistancePairwiseClosestPoints() for the full status of "
-    "supported geometries."
+    "double" + _SEE_DOCS.replace("{}", "ComputeSignedDistancePairwiseClosestPoints")
 )
 
 #: Sphere–X pairs Drake answers in closed form (X the other shape).

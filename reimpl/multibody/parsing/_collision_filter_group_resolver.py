@@ -28,7 +28,11 @@ group declared later. The checks and messages are Drake 1.51.1's (measured):
   is not caught and the process aborts (undefined-ignored-group-aborts).
 
 Member groups add their members since 1.27; up to 1.26 they add nothing
-(member-groups-since-1.27, measured by the release matrix on 1.26.0).
+(member-groups-since-1.27, measured by the release matrix on 1.26.0). A group
+defined twice is an error since 1.27; up to 1.26 the second definition's bodies
+are looked up (an unknown one is an error) and then it is dropped: the first
+definition stays (group-redefinition-error-since-1.27; measured on pydrake
+1.12.0-1.26.0 with g1 = {a, b} then g1 = {c, d}: (a, b) filtered, (c, d) not).
 
 Each pair is applied with ``plant._exclude_collision_geometries_with_collision_
 filter_group_pair``, whose equal names mean ExcludeWithin, else ExcludeBetween.
@@ -77,16 +81,19 @@ class CollisionFilterGroupResolver:
         name = scoped.join(scope, group_name)
         if scoped.is_scoped(group_name):
             raise diagnostics.error(f"group name '{name}' cannot be a scoped name", line)
-        if name in self._bodies:
+        redefined = name in self._bodies
+        if redefined and release.has("group-redefinition-error-since-1.27"):
             raise diagnostics.error(f"group '{name}' has already been defined", line)
-        if not body_names and not member_group_names:
+        if not release.has("member-groups-since-1.27"):
+            member_group_names = set()  # up to 1.26 a group's member groups add nothing
+        if not body_names and not member_group_names:  # so up to 1.26 they are no members
             raise diagnostics.error(f"group '{name}' has no members", line)
         bodies = {}
         for body_name in sorted(scoped.join(scope, b) for b in body_names):
             bodies[body_name] = self._find_body(diagnostics, line, body_name)
+        if redefined:  # up to 1.26 the first definition stays (its bodies were checked)
+            return
         self._bodies[name] = bodies
-        if not release.has("member-groups-since-1.27"):
-            member_group_names = set()  # up to 1.26 a group's member groups add nothing
         self._member_groups[name] = {scoped.join(scope, g) for g in member_group_names}
 
     def _check_scope(self, scope: str) -> None:
@@ -114,6 +121,23 @@ class CollisionFilterGroupResolver:
             if plant.HasBodyNamed(body_name, instance):
                 return plant.GetBodyByName(body_name, instance)
         raise diagnostics.error(f"body with name '{name}' not found", line)
+
+    def resolve_unwinding(self) -> None:
+        """``resolve()`` for a parse that failed, on the releases that do it.
+
+        Up to 1.30 Drake resolves in CompositeParse's destructor, so a parse that
+        fails still applies the pairs of the groups declared before the failure;
+        since 1.31 it resolves only a parse that finishes
+        (failed-parse-resolves-groups-until-1.30: measured on pydrake 1.12.0-1.30.0
+        and 1.31.0-1.58.0). An error while resolving then is thrown from a
+        destructor during unwinding: the process aborts.
+        """
+        if not release.has("failed-parse-resolves-groups-until-1.30"):
+            return
+        try:
+            self.resolve()
+        except ModelParseError as error:
+            abort_uncaught("std::runtime_error", str(error))
 
     def _members(self, group: str) -> dict[str, Any]:
         """members(G): the bodies of G and of every group reachable from G."""

@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 import yaml
 
+from reimpl._release import release
 from reimpl.common.schema import Rotation, Transform
 from reimpl.multibody.parsing._diagnostics import ModelParseError
 from reimpl.multibody.parsing._directive_structs import (
@@ -57,6 +58,9 @@ from reimpl.multibody.parsing._directive_structs import (
 __all__ = ["load_directives"]
 
 _P = "drake::multibody::parsing::"
+#: Whether an error starts with ``<label>:<line>:<column>:`` (directives-yaml-position-
+#: since-1.15: measured on pydrake 1.14.0, no position, and 1.15.0).
+_POSITIONED = release.has("directives-yaml-position-since-1.15")
 _S = "drake::schema::"
 _STRING = "std::string"
 _OPTIONAL_STRING = "std::optional<std::string>"
@@ -175,7 +179,9 @@ class _Archive:
                 mark = f"{start.line + 1}:{start.column + 1}:"
                 break
             archive = archive.parent
-        text = f"{self.label}:{mark} {self._summary()} {note} entry for {self.visiting}"
+        text = f"{self._summary()} {note} entry for {self.visiting}"
+        if _POSITIONED:
+            text = f"{self.label}:{mark} {text}"
         archive = self.parent
         while archive is not None:
             text += f" while accepting {archive._summary()}"
@@ -423,6 +429,17 @@ def _transform_random(target: Transform) -> None:
 
 
 _TRANSFORM = f"{_S}Transform"
+#: add_collision_filter_group's keys in Serialize order, each with the release fact from
+#: which it is read (None: every release); before it, the key is one no field reads
+#: (directive-group-keys-since-1.26, member-groups-since-1.27: measured on pydrake 1.25.0,
+#: 1.26.0 and 1.27.0).
+_GROUP_FIELDS: tuple[tuple[str, Reader, str | None], ...] = (
+    ("name", _string, None),
+    ("members", _strings, None),
+    ("member_groups", _strings, "member-groups-since-1.27"),
+    ("model_namespace", _optional_string, "directive-group-keys-since-1.26"),
+    ("ignored_collision_filter_groups", _strings, None),
+)
 _READERS: dict[type, tuple[tuple[str, Reader], ...]] = {
     Transform: (
         ("base_frame", _optional_string),
@@ -450,12 +467,8 @@ _READERS: dict[type, tuple[tuple[str, Reader], ...]] = {
     ),
     AddModelInstance: (("name", _string),),
     AddFrame: (("name", _string), ("X_PF", _required(Transform, _TRANSFORM))),
-    AddCollisionFilterGroup: (
-        ("name", _string),
-        ("members", _strings),
-        ("member_groups", _strings),
-        ("model_namespace", _optional_string),
-        ("ignored_collision_filter_groups", _strings),
+    AddCollisionFilterGroup: tuple(
+        (name, read) for name, read, fact in _GROUP_FIELDS if fact is None or release.has(fact)
     ),
     AddDirectives: (("file", _string), ("model_namespace", _optional_string)),
     ModelDirective: tuple(

@@ -238,7 +238,9 @@ class _Run:
     def _default_pose(self, instance: Any, parent: Any, child_name: str, X_PC: Any) -> None:
         """Poses body ``child_name`` (the instance's only body if empty, since 1.33) at X_PC."""
         plant = self.plant
-        if child_name or not release.has("directives-default-pose-empty-name-since-1.33"):
+        if not release.has("directives-default-pose-frame-since-1.28"):
+            child = plant.GetBodyByName(child_name, instance).body_frame()  # a body's name
+        elif child_name or not release.has("directives-default-pose-empty-name-since-1.33"):
             child = plant.GetFrameByName(child_name, instance)  # up to 1.32, '' too
         else:
             bodies = plant.GetBodyIndices(instance)

@@ -61,6 +61,7 @@ from __future__ import annotations
 import os
 from typing import Any
 
+from reimpl._release import release
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, literal_string_name
@@ -133,7 +134,8 @@ def read_mujoco(
         raise diagnostics.error("ERROR: XML does not contain a mujoco tag.", document.line)
     top = first_element(document)
     assert top is not None
-    expand_includes(top, folder, diagnostics)
+    if release.has("mjcf-include-since-1.27"):  # before, <include> is an unsupported tag
+        expand_includes(top, folder, diagnostics)
     name = model_name or root.get("model")
     if name is None:
         raise diagnostics.error(

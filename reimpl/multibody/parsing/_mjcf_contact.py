@@ -76,7 +76,7 @@ def _warn_adjacent(
     context: MjcfContext, contact: XmlElement, pairs: _Pairs, ids: tuple[Any, Any], names: Any
 ) -> None:
     plant = context.plant
-    if not plant.get_adjacent_bodies_collision_filters():
+    if not plant._adjacent_bodies_collision_filters:  # the getter is bound since 1.13
         return
     bodies = {int(pairs.body(ids[0]).index()), int(pairs.body(ids[1]).index())}
     for index in plant.GetJointIndices(context.instance):

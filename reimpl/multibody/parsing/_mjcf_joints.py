@@ -47,6 +47,7 @@ import numpy as np
 
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _mjcf_values as values
+from reimpl.multibody.parsing._joint_frame_instance import parent_frame_instance
 from reimpl.multibody.parsing._mjcf_context import MjcfContext
 from reimpl.multibody.parsing._mjcf_defaults import apply_defaults, class_of
 from reimpl.multibody.parsing._mjcf_pose import rotation_from_angle_axis
@@ -133,7 +134,12 @@ class _Joint:
         """MultibodyPlant::AddJoint's frames and joint, then set_position_limits."""
         plant, instance = self.context.plant, self.child.model_instance()
         frame_on_parent = plant.AddFrame(
-            FixedOffsetFrame(f"{self.name}_parent", self.parent.body_frame(), self.X_PJ, instance)
+            FixedOffsetFrame(
+                f"{self.name}_parent",
+                self.parent.body_frame(),
+                self.X_PJ,
+                parent_frame_instance(instance),
+            )
         )
         frame_on_child = plant.AddFrame(
             FixedOffsetFrame(f"{self.name}_child", self.child.body_frame(), self.X_CJ, instance)

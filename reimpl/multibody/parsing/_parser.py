@@ -28,6 +28,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch
@@ -205,12 +206,21 @@ class Parser:
         plant = Param("plant", _is_plant)
         scene_graph = Param("scene_graph", _is_scene_graph, None)
         prefix = Param("model_name_prefix", is_str)
+        # model_name_prefix is bound since 1.13 (parser-model-name-prefix-since-1.13: measured
+        # on pydrake 1.12.0, (plant, scene_graph=None) only, and 1.13.0, these two).
+        by_plant = (
+            (
+                Overload((plant, scene_graph, Param(prefix.name, prefix.check, "")), self._init),
+                Overload((Param("plant", _is_plant), prefix), self._init),
+            )
+            if release.has("parser-model-name-prefix-since-1.13")
+            else (Overload((plant, scene_graph), partial(self._init, model_name_prefix="")),)
+        )
         dispatch(
             _OWNER,
             "__init__",
             (
-                Overload((plant, scene_graph, Param(prefix.name, prefix.check, "")), self._init),
-                Overload((Param("plant", _is_plant), prefix), self._init),
+                *by_plant,
                 Overload(
                     (
                         Param("builder", _is_builder),
@@ -295,12 +305,14 @@ class Parser:
     def package_map(self) -> PackageMap:
         return self._package_map
 
+    @release.binding("parser-auto-renaming-since-1.14")
     @binds(_OWNER, Param("value", lambda value: True))
     def SetAutoRenaming(self, value: bool) -> None:
         """With auto-renaming, a taken model name gets the first free ``_1``, ``_2``, ...
         (``value`` is read as a bool, as pybind11 reads it)."""
         self._auto_renaming = bool(value)
 
+    @release.binding("parser-auto-renaming-since-1.14")
     def GetAutoRenaming(self) -> bool:
         return self._auto_renaming
 
@@ -385,6 +397,10 @@ class Parser:
             read_file=_read_file,
             builder=self._builder,
         )
-        instances = read(context)
+        try:
+            instances = read(context)
+        except Exception:
+            context.resolver.resolve_unwinding()  # up to 1.30 only
+            raise
         self._groups.merge(context.resolver.resolve())
         return instances

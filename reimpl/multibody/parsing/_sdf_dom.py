@@ -30,11 +30,14 @@ else the first interface model's.
 
 from __future__ import annotations
 
+import contextlib
 import math
 from collections import Counter
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
+from reimpl._release import release
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
 from reimpl.multibody.parsing._parse_context import ParseContext
@@ -204,6 +207,21 @@ class _Loader:
         self.context = context
         self.loaded = loaded
         self.version = version
+        #: A custom merge-include refused up to 1.22, raised once the document is loaded.
+        self.refused: ModelParseError | None = None
+
+    @contextlib.contextmanager
+    def refusal_first(self) -> Iterator[None]:
+        """Raises the refused merge-include, if any, once loading ends: before a later
+        error of the document (measured on pydrake 1.16.0: it is the error reported)."""
+        try:
+            yield
+        except ModelParseError:
+            if self.refused is not None:
+                raise self.refused from None
+            raise
+        if self.refused is not None:
+            raise self.refused
 
     # ----------------------------------------------------------- elements
     def link(self, element: XmlElement) -> Link:
@@ -266,6 +284,18 @@ class _Loader:
         finally:
             self.version = saved
 
+    def _model_or_none(self, element: XmlElement, parents: list[str]) -> Model | None:
+        """``model()``, or None once a merge-include was refused (up to 1.22): libsdformat
+        records a later model's error and goes on loading the document, so the custom
+        models after it are parsed too, and the refusal is the error reported (measured
+        with top_merge_include_world.sdf on pydrake 1.16.0: both tops' URDFs parsed)."""
+        try:
+            return self.model(element, parents)
+        except ModelParseError:
+            if self.refused is None:
+                raise
+            return None
+
     def _model(self, element: XmlElement, parents: list[str]) -> Model:
         name = element.get("name", "")
         if is_reserved(name):
@@ -290,7 +320,9 @@ class _Loader:
         for child in element:
             assert isinstance(child, XmlElement)
             if child.tag == "model":
-                nested = self.model(child, own)
+                nested = self._model_or_none(child, own)
+                if nested is None:
+                    continue
                 _record(names["model"], "model", nested.name)
                 if nested.merged:
                     self._merge(model, nested, implicit)
@@ -347,14 +379,24 @@ class _Loader:
             names = children(include, "name")
             statics = children(include, "static")
             merge = bool(sdformat_bool(include.get("merge", "false")))
+            # Up to 1.22 the custom parser ignores merge (the model is parsed nested), and
+            # libsdformat refuses it once every include is loaded
+            # (sdf-merge-include-custom-parser-since-1.23: measured on pydrake 1.16.0 and
+            # 1.22.0: the URDFs' bodies, the later includes' too, stay in the plant).
+            unmergeable = merge and not release.has("sdf-merge-include-custom-parser-since-1.23")
             interface = load_interface_model(
                 self.context,
                 path,
                 local_name=text_of(names[0]) if names else None,
                 parent_name=scoped.join(*parents) if parents else None,
-                merge=merge,
+                merge=merge and not unmergeable,
                 static=bool(sdformat_bool(statics[0].text or "")) if statics else False,
             )
+            if unmergeable and self.refused is None:
+                self.refused = Diagnostics(None).error(
+                    "Custom parser does not support merge-include, but merge-include was "
+                    f"requested for model with uri [{uri}]"
+                )
             poses = children(include, "pose")
             if poses:
                 interface.include_pose = read_pose(include)
@@ -399,7 +441,10 @@ class _Loader:
         for child in element:
             assert isinstance(child, XmlElement)
             if child.tag == "model":
-                model = self.model(child, [])
+                loaded = self._model_or_none(child, [])
+                if loaded is None:
+                    continue
+                model = loaded
                 _record(names["model"], "model", model.name)
                 implicit.add(model.name)
                 if model.merged:
@@ -495,10 +540,14 @@ def load_model(
     context: ParseContext, loaded: Loaded, element: XmlElement, version: tuple[int, ...]
 ) -> Model:
     """The document's ``<model>`` (Model::Load); raises libsdformat's first error."""
-    return _Loader(context, loaded, version).model(element, [])
+    loader = _Loader(context, loaded, version)
+    with loader.refusal_first():
+        return loader.model(element, [])
 
 
 def load_world(
     context: ParseContext, loaded: Loaded, element: XmlElement, version: tuple[int, ...]
 ) -> World:
-    return _Loader(context, loaded, version).world(element)
+    loader = _Loader(context, loaded, version)
+    with loader.refusal_first():
+        return loader.world(element)

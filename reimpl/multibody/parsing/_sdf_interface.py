@@ -32,6 +32,7 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
+from reimpl._release import release
 from reimpl.math import RigidTransform
 from reimpl.multibody import kinematics
 from reimpl.multibody.parsing import _scoped_name as scoped
@@ -49,9 +50,16 @@ def merged_frame_name(model_name: str) -> str:
     return f"_merged__{model_name}__model__"
 
 
+#: The files Drake's custom parsers take from an SDFormat <include> (any case): MuJoCo
+#: ``.xml`` since 1.23 (sdf-include-mjcf-since-1.23: Drake's detail_sdf_parser.cc has no
+#: .xml case before v1.23.0; measured with top_merge_include.sdf on pydrake 1.16.0,
+#: 1.20.0 and 1.22.0, whose arm.xml model stays empty).
+_CUSTOM_SUFFIXES = (".urdf", ".xml") if release.has("sdf-include-mjcf-since-1.23") else (".urdf",)
+
+
 def is_custom_file(path: str) -> bool:
     """Whether Drake's custom parsers take the file (``.urdf`` or ``.xml``, any case)."""
-    return path.lower().endswith((".urdf", ".xml"))
+    return path.lower().endswith(_CUSTOM_SUFFIXES)
 
 
 def _gz(X: RigidTransform) -> GzPose:

@@ -40,6 +40,7 @@ import numpy as np
 from reimpl._release import release
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody.parsing import _scoped_name as scoped
+from reimpl.multibody.parsing._joint_frame_instance import parent_frame_instance
 from reimpl.multibody.parsing._sdf_dom import Joint
 from reimpl.multibody.parsing._sdf_graph import Graphs
 from reimpl.multibody.parsing._sdf_include import text_of
@@ -67,6 +68,9 @@ _SUPPORTED = frozenset({
     "axis", "axis2", "child", "drake:rotor_inertia", "drake:gear_ratio",
     "drake:controller_gains", "drake:mimic", "parent", "pose", "screw_thread_pitch",
 })  # fmt: skip
+if not release.has("sdf-controller-gains-since-1.23"):
+    # Up to 1.22 <drake:controller_gains> is an unsupported element (an error).
+    _SUPPORTED -= {"drake:controller_gains"}
 _LIMIT_ELEMENTS = frozenset(
     {"drake:acceleration", "effort", "lower", "stiffness", "upper", "velocity"}
 )
@@ -182,7 +186,12 @@ class JointAdder:
         frame_on_parent = ends.parent.body_frame()
         if ends.X_PJ is not None:
             frame_on_parent = self.plant.AddFrame(
-                FixedOffsetFrame(f"{joint.name}_parent", frame_on_parent, ends.X_PJ, instance)
+                FixedOffsetFrame(
+                    f"{joint.name}_parent",
+                    frame_on_parent,
+                    ends.X_PJ,
+                    parent_frame_instance(instance),
+                )
             )
         frame_on_child = self.plant.AddFrame(
             FixedOffsetFrame(f"{joint.name}_child", ends.child.body_frame(), ends.X_CJ, instance)

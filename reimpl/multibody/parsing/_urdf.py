@@ -49,6 +49,7 @@ from __future__ import annotations
 import os
 from typing import Any
 
+from reimpl._release import release
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, literal_string_name
 from reimpl.multibody.parsing._group_tags import GroupSyntax, read_group
@@ -236,7 +237,8 @@ class _Robot:
             parsed = geometry.visual(visual, name, names)
             if parsed is not None:
                 self.plant.RegisterVisualGeometry(body=body, geometry_instance=parsed.instance)
-        names = set()  # N.B. Names are unique per role.
+        if release.has("default-geometry-name-underscore-since-1.15"):
+            names = set()  # N.B. Names are unique per role; up to 1.14, per link.
         for collision in children(link, "collision"):
             parsed = geometry.collision(collision, name, names)
             instance = parsed.instance

@@ -41,6 +41,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from reimpl._release import release
 from reimpl.geometry import (
     Box,
     Capsule,
@@ -67,6 +68,13 @@ __all__ = ["GeometryReader", "ParsedGeometry"]
 
 #: Drake's kDefaultNumericSuffixLimit: names are salted with _1 .. _9999.
 _SUFFIX_LIMIT = 10000
+#: Since 1.15 a taken name, given or default, gets ``_<i>``; up to 1.14 only a default
+#: (shape) name gets a suffix, ``<i>`` with no underscore, and a given name is used as
+#: it is, and a link's visuals and collisions share one set of names (so a collision
+#: box after a visual box is ``Box1``) (default-geometry-name-underscore-since-1.15:
+#: measured on pydrake 1.12.0 and 1.14.0,
+#: ``Sphere``, ``Sphere1``, and 1.15.0, ``Sphere``, ``Sphere_1``; Drake PR #19029).
+_RENAMING = release.has("default-geometry-name-underscore-since-1.15")
 _PROXIMITY = "drake:proximity_properties"
 
 
@@ -246,6 +254,8 @@ class GeometryReader:
         base = given if given is not None else type(shape).__name__
         name = base
         suffix = 0
+        if not _RENAMING:
+            return self._name_up_to_1_14(element, base, given is not None, names)
         while name in names:
             suffix += 1
             if suffix >= _SUFFIX_LIMIT:
@@ -258,6 +268,21 @@ class GeometryReader:
                 f"{role} name '{base}' has already been used, renaming to '{name}' instead",
                 element.line,
             )
+        names.add(name)
+        return name
+
+    def _name_up_to_1_14(self, element: XmlElement, base: str, given: bool, names: set[str]) -> str:
+        """Drake 1.14's MakeDefaultGeometryName: a given name as it is, else the shape's
+        name, then ``<shape><i>`` for the first free i."""
+        name = base
+        suffix = 0
+        while not given and name in names:
+            suffix += 1
+            if suffix >= _SUFFIX_LIMIT:
+                raise self.diagnostics.error(
+                    "Too many identical geometries with default names.", element.line
+                )
+            name = f"{base}{suffix}"
         names.add(name)
         return name
 

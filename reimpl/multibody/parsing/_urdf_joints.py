@@ -66,6 +66,7 @@ from reimpl._release import release
 from reimpl.math import RigidTransform, RotationMatrix
 from reimpl.multibody.kinematics import rotation_about
 from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._joint_frame_instance import parent_frame_instance
 from reimpl.multibody.parsing._urdf_values import Values, origin, vector
 from reimpl.multibody.parsing._xml import XmlElement, children
 from reimpl.multibody.tree import (
@@ -291,7 +292,7 @@ class JointReader:
         elided = X_PF.IsExactlyIdentity()  # drake#24687
         if not (elided and release.has("urdf-identity-joint-frame-elided-since-1.55")):
             frame_on_parent = FixedOffsetFrame(
-                f"{joint.name}_parent", frame_on_parent, X_PF, instance
+                f"{joint.name}_parent", frame_on_parent, X_PF, parent_frame_instance(instance)
             )
             self.plant.AddFrame(frame_on_parent)
         frame_on_child = joint.child.body_frame()
@@ -369,15 +370,15 @@ class JointReader:
     def _planar(self, joint: _Joint) -> None:
         nodes = children(joint.element, "dynamics")
         damping = (vector(nodes[0], "damping", 3) if nodes else None) or [0.0, 0.0, 0.0]
-        X_BM = RigidTransform(planar_rotation(joint.axis))
-        self._add(
-            joint,
-            lambda p, c: PlanarJoint(
-                name=joint.name, frame_on_parent=p, frame_on_child=c, damping=np.array(damping)
-            ),
-            X_BM=X_BM,
-            X_PF=joint.X_PF @ X_BM,
+        make = lambda p, c: PlanarJoint(  # noqa: E731
+            name=joint.name, frame_on_parent=p, frame_on_child=c, damping=np.array(damping)
         )
+        if not release.has("urdf-planar-axis-since-1.16"):
+            # Up to 1.15 the axis is not read: F at the joint origin, M = B (no _child frame).
+            self._add(joint, make)
+            return
+        X_BM = RigidTransform(planar_rotation(joint.axis))
+        self._add(joint, make, X_BM=X_BM, X_PF=joint.X_PF @ X_BM)
 
     def _screw(self, joint: _Joint) -> None:
         damping = self._dynamics(joint.element)
@@ -551,7 +552,11 @@ _KINDS: dict[str, _Kind] = {
     "prismatic": _Kind(False, JointReader._prismatic),
     "floating": _Kind(False, JointReader._floating),
     "ball": _Kind(True, JointReader._ball),
-    "planar": _Kind(None, JointReader._planar),
+    # Up to 1.12 planar is custom only (urdf-planar-joint-element-since-1.13).
+    "planar": _Kind(
+        None if release.has("urdf-planar-joint-element-since-1.13") else True,
+        JointReader._planar,
+    ),
     "screw": _Kind(True, JointReader._screw),
     "universal": _Kind(True, JointReader._universal),
     "curvilinear": _Kind(True, JointReader._curvilinear),

@@ -31,6 +31,7 @@ else C ← C − {(g, h) : g ∈ set_A, h ∈ set_B}.
 
 from __future__ import annotations
 
+from reimpl._release import release
 from reimpl.geometry.collision_filter_declaration import (
     CollisionFilterDeclaration,
     CollisionFilterScope,
@@ -52,11 +53,13 @@ class CollisionFilters(SceneGraphSource, Topology):
         super().__init__()
         self._adjacent_bodies_collision_filters = True
 
+    @release.binding("adjacent-filters-opt-out-since-1.13")
     def set_adjacent_bodies_collision_filters(self, value: bool) -> None:
         """Whether Finalize filters adjacent bodies (rule (a)); welds are filtered anyway."""
         self._check_not_finalized("set_adjacent_bodies_collision_filters")
         self._adjacent_bodies_collision_filters = bool(value)
 
+    @release.binding("adjacent-filters-opt-out-since-1.13")
     def get_adjacent_bodies_collision_filters(self) -> bool:
         return self._adjacent_bodies_collision_filters
 
@@ -86,7 +89,7 @@ class CollisionFilters(SceneGraphSource, Topology):
             raise demand_failed(method, "!is_finalized()")
         scene_graph, _ = self._registered_scene_graph(method)
         (name_a, set_A), (name_b, set_B) = group_a, group_b
-        declaration = CollisionFilterDeclaration(CollisionFilterScope.kAll)
+        declaration = CollisionFilterDeclaration._scoped(CollisionFilterScope.kAll)
         if name_a == name_b:
             declaration.ExcludeWithin(set_A)
         else:

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl.geometry.scene_graph import SceneGraph
 from reimpl.multibody.plant._multibody_plant import MultibodyPlant
 from reimpl.systems.framework import DiagramBuilder
@@ -94,7 +95,8 @@ class MultibodyPlantConfig:
 
 def ApplyMultibodyPlantConfig(config: MultibodyPlantConfig, plant: MultibodyPlant) -> None:
     """Applies every setting but ``time_step`` (which only construction sets)."""
-    plant.set_adjacent_bodies_collision_filters(config.adjacent_bodies_collision_filters)
+    if release.has("adjacent-filters-opt-out-since-1.13"):
+        plant.set_adjacent_bodies_collision_filters(config.adjacent_bodies_collision_filters)
 
 
 def AddMultibodyPlant(

@@ -16,6 +16,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TypeVar
 
+from reimpl._release import release
 from reimpl.multibody._errors import NotFoundError
 from reimpl.multibody.plant._elements import Elements
 from reimpl.multibody.tree import Frame, Joint, ModelInstanceIndex, RigidBody
@@ -66,9 +67,12 @@ class ElementNames(Elements):
     def GetBodyByName(
         self, name: str, model_instance: ModelInstanceIndex | None = None
     ) -> RigidBody:
-        return self._get_by_name(
-            "GetRigidBodyByName", "RigidBody", self._bodies, name, model_instance
+        method, kind = (
+            ("GetRigidBodyByName", "RigidBody")
+            if release.has("rigid-body-wording-since-1.25")
+            else ("GetBodyByName", "Body")
         )
+        return self._get_by_name(method, kind, self._bodies, name, model_instance)
 
     def GetRigidBodyByName(
         self, name: str, model_instance: ModelInstanceIndex | None = None
@@ -125,6 +129,12 @@ class ElementNames(Elements):
                 f"{method}(): There is no {kind} named '{name}' in the model instance named "
                 f"'{self.GetModelInstanceName(model_instance)}', but one does exist in other "
                 f"model instances ({instances})."
+            )
+        if not release.has("element-names-per-instance-since-1.24"):
+            every = ", ".join(sorted({e.name() for e in elements}))
+            raise NotFoundError(
+                f"{method}(): There is no {kind} named '{name}' anywhere in the model "
+                f"(valid names are: {every})"
             )
         if not elements:
             raise NotFoundError(f"{method}(): There are no {kind}s defined in the model")

@@ -22,6 +22,7 @@ from collections.abc import Sequence
 from typing import Any, TypeVar
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl._release import release
 from reimpl.math import RigidTransform
 from reimpl.multibody._errors import (
     DuplicateNameError,
@@ -115,7 +116,15 @@ class Elements(ModelInstances):
     def _check_unique(
         self, kind: str, elements: Sequence[_E], name: str, model_instance: ModelInstanceIndex
     ) -> None:
+        """Up to 1.18 a frame name may repeat, and a repeated joint name is
+        ``AddJoint(): Duplicate joint name 'j'.`` (unique-frame-names-since-1.19:
+        measured on pydrake 1.18.0 and 1.19.0)."""
+        old = not release.has("unique-frame-names-since-1.19")
+        if old and kind == "frame":
+            return
         if any(e.name() == name and e.model_instance() == model_instance for e in elements):
+            if old and kind == "joint":
+                raise DuplicateNameError(f"AddJoint(): Duplicate joint name '{name}'.")
             raise DuplicateNameError(
                 f"Model instance '{self.GetModelInstanceName(model_instance)}' already contains "
                 f"a {kind} named '{name}'. {kind.capitalize()} names must be unique within a "

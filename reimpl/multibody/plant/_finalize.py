@@ -96,11 +96,15 @@ class Finalization(CollisionFilters, Poses, ElementNames):
         """A QuaternionFloatingJoint world → body, named after the body.
 
         The name gets leading underscores until no joint of the body's
-        instance has it (measured: ``X`` taken, ``_X`` taken → ``__X``).
+        instance has it (measured: ``X`` taken, ``_X`` taken → ``__X``). Up to
+        1.21 it is ``$world_<body>`` (floating-joint-body-name-since-1.22: measured
+        on pydrake 1.21.0 and 1.22.0).
         """
         name = body.name()
         while self._named(self._joints, name, body.model_instance()):
             name = f"_{name}"
+        if not release.has("floating-joint-body-name-since-1.22"):
+            name = f"$world_{body.name()}"
         joint = QuaternionFloatingJoint(name, self.world_frame(), body.body_frame())
         joint._ephemeral = True
         X_WB = self._default_free_body_poses.get(int(body.index()))

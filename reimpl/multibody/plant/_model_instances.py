@@ -87,9 +87,10 @@ class ModelInstances(PlantPhase):
     def GetModelInstanceByName(self, name: str) -> ModelInstanceIndex:
         if name not in self._instance_names:
             known = ", ".join(f"'{n}'" for n in sorted(self._instance_names))
+            listed = f" The current model instances are {known}."
             raise NotFoundError(
-                f"GetModelInstanceByName(): There is no model instance named '{name}'. The "
-                f"current model instances are {known}."
+                f"GetModelInstanceByName(): There is no model instance named '{name}'."
+                + (listed if release.has("model-instance-names-in-error-since-1.14") else "")
             )
         return ModelInstanceIndex(self._instance_names.index(name))
 
@@ -127,6 +128,7 @@ class ModelInstances(PlantPhase):
             fail_demand(f"{method}.instance")
         return index
 
+    @release.binding("rename-model-instance-since-1.20")
     def RenameModelInstance(self, model_instance: ModelInstanceIndex, name: str) -> None:
         """Renames the instance, and the scoped names of its SceneGraph frames and geometries.
 

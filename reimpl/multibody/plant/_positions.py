@@ -29,6 +29,7 @@ from reimpl.multibody._errors import NotFinalizedError
 from reimpl.multibody.plant._demands import demand
 from reimpl.multibody.plant._elements import Elements
 from reimpl.multibody.tree import Joint, ModelInstanceIndex
+from reimpl.systems._context_keyword import context_argument
 from reimpl.systems.framework import Context, LeafContext
 
 __all__ = ["Positions"]
@@ -74,6 +75,7 @@ class Positions(Elements):
         context._values[_POSITIONS] = self.GetDefaultPositions()
         return context
 
+    @context_argument
     def SetDefaultContext(self, context: Context) -> None:
         """Resets the context's q to the joints' default positions."""
         self._context_positions(context)[:] = self.GetDefaultPositions()
