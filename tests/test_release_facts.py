@@ -115,6 +115,40 @@ def test_a_crash_is_the_release_s_answer_only_in_its_row_s_cases_and_releases() 
     )
 
 
+#: Segfaults of one release each, measured alone in a fresh process on every release from
+#: 1.31.0 to 1.58.0 (the crash rows' summaries): (case, the release that crashes, its row,
+#: the neighbouring releases that answer).
+_ONE_RELEASE_CRASHES = [
+    (
+        "real_models/robot_models > drake_models/dishes/evo_bowl_compliant.urdf",
+        "1.51.0",
+        "vtk-mesh-segfaults-1.51.0",
+        ("1.50.0", "1.51.1"),
+    ),
+    (
+        "real_models/robot_models > drake_models/jaco_description/urdf/j2s7s300.urdf",
+        "1.52.0",
+        "mesh-file-segfaults-1.52.0",
+        ("1.51.0", "1.51.1", "1.52.1"),
+    ),
+    (
+        "real_models/drake_repository > drake/multibody/plant/test/deformable_box.sdf",
+        "1.41.0",
+        "deformable-continuous-plant-segfaults-1.41",
+        ("1.40.0", "1.42.0"),
+    ),
+]
+
+
+@pytest.mark.parametrize(("case", "crashes", "row", "answers"), _ONE_RELEASE_CRASHES)
+def test_a_segfault_of_one_release_is_that_release_s_answer_alone(
+    case: str, crashes: str, row: str, answers: tuple[str, ...]
+) -> None:
+    assert recorded_crash(case, crashes) == row
+    for release in answers:
+        assert recorded_crash(case, release) is None, release
+
+
 def test_reimpl_follows_a_release_of_the_table_named_by_its_spec() -> None:
     span = table_releases()
     assert (span.since, span.until) == ("1.12.0", "1.58.0")

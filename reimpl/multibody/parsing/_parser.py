@@ -156,9 +156,9 @@ def _read_file(context: ParseContext, path: str, model_name: str | None, scope: 
 
 
 def _sdf_label(path: str) -> str:
-    """How an SDFormat file's diagnostics name it: '/' + its absolute path since 1.40, its
-    absolute path before (sdf-file-path-double-slash-since-1.40)."""
-    slash = "/" if release.has("sdf-file-path-double-slash-since-1.40") else ""
+    """How an SDFormat file's diagnostics name it: '/' + its absolute path since 1.34
+    (sdformat 15), its absolute path before (sdf-file-path-double-slash-since-1.34)."""
+    slash = "/" if release.has("sdf-file-path-double-slash-since-1.34") else ""
     return slash + os.path.abspath(path)
 
 
