@@ -77,7 +77,11 @@ def test_a_divergence_exits_1_and_is_written_as_a_valid_scenario(tmp_path: Path)
 
 
 def test_the_same_seed_gives_the_same_finding_and_counts(tmp_path: Path) -> None:
-    spec = "conformance._testing.mutants:stale_has_transient_history"
+    # A mutant found and shrunk within seconds: a long shrink ends at Hypothesis' own
+    # 300 s bound on a busy machine, and the counts then depend on the machine's speed
+    # (measured: stale_has_transient_history at seed 5 ran 1030 then 1848 examples under
+    # load, 4.5 minutes each; no_same_frame_invariant: 5 examples, 9 steps, 2 s).
+    spec = "conformance._testing.mutants:no_same_frame_invariant"
     runs = []
     for attempt in ("a", "b"):
         code, out, _ = fuzz(
