@@ -18,6 +18,7 @@ os.environ.setdefault("REIMPL_DRAKE_RELEASE", version("drake"))
 
 import pytest
 from hypothesis import settings
+from hypothesis.configuration import set_hypothesis_home_dir
 
 from conformance._backends.environments import CACHE_VARIABLE, ENV_PATH_VARIABLE, cache_dir
 from conformance._backends.pydrake_api import pydrake_api
@@ -63,6 +64,9 @@ def pytest_unconfigure(config: pytest.Config) -> None:
 # the developer saw (a random search once failed CI on a strategy bug no local run
 # drew). Exploration is the fuzz campaigns' job: `python -m conformance fuzz --seed N`,
 # or HYPOTHESIS_PROFILE=explore for the tests.
+# Hypothesis' own folder (its constants cache; example databases are the campaigns' own,
+# under tmp_path) lives under the temporary directory, not in the working tree.
+set_hypothesis_home_dir(str(Path(tempfile.gettempdir()) / "drake-filter-conformance-tests"))
 settings.register_profile("deterministic", derandomize=True)
 settings.register_profile("explore", derandomize=False)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "deterministic"))
