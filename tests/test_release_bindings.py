@@ -93,11 +93,16 @@ BINDING_ROWS = sorted(f.id for f in release_facts().values() if f.kind is FactKi
 
 
 @functools.cache
-def _bindings_at(release: str) -> dict[str, bool]:
+def _run_as(release: str, code: str) -> subprocess.CompletedProcess[str]:
+    """``code`` in a fresh interpreter whose reimpl follows ``release``."""
     env = {**os.environ, "REIMPL_DRAKE_RELEASE": release, "PYTHONPATH": str(ROOT)}
-    done = subprocess.run(
-        [sys.executable, "-c", _PROBE], capture_output=True, text=True, env=env, check=False
+    return subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=False
     )
+
+
+def _bindings_at(release: str) -> dict[str, bool]:
+    done = _run_as(release, _PROBE)
     assert done.returncode == 0, done.stderr
     found: dict[str, bool] = json.loads(done.stdout)
     return found
@@ -127,10 +132,7 @@ def test_set_default_context_before_1_15_takes_its_context_by_position() -> None
     code = _PROBE.split("plant = MultibodyPlant", maxsplit=1)[0] + (
         "scene_graph.SetDefaultContext(context)\nprint('reset')\n"
     )
-    env = {**os.environ, "REIMPL_DRAKE_RELEASE": "1.14.0", "PYTHONPATH": str(ROOT)}
-    done = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=False
-    )
+    done = _run_as("1.14.0", code)
     assert (done.returncode, done.stdout) == (0, "reset\n"), done.stderr
 
 
@@ -139,10 +141,7 @@ def test_find_collision_candidates_before_1_48_raises_pybind11_s_conversion_erro
     code = _PROBE.split("plant = MultibodyPlant", maxsplit=1)[0] + (
         "try:\n    query.FindCollisionCandidates()\nexcept TypeError as e:\n    print(e)\n"
     )
-    env = {**os.environ, "REIMPL_DRAKE_RELEASE": "1.45.0", "PYTHONPATH": str(ROOT)}
-    done = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=False
-    )
+    done = _run_as("1.45.0", code)
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith(
         "Unable to convert function return value to a Python type! The signature was\n\t(self: "
