@@ -25,7 +25,7 @@ from conformance._corpus.loader import Case, load_corpus
 from conformance._run.html_report import html_report
 from conformance._run.matrix import Cell, Matrix, Outcome, ReleaseRun, run_matrix
 from conformance._run.matrix_report import write_heatmap, write_report
-from conformance._run.report_rows import release_baselines
+from conformance._run.report_rows import bands, release_baselines, rows, sections
 from conformance.cli.main import main
 
 SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
@@ -267,6 +267,26 @@ def test_the_heatmap_draws_only_the_changing_rows(tmp_path: Path) -> None:
     none = _size(write_heatmap(_two_releases(alike), tmp_path / "none.png"))
     assert none[1] < few[1]
     assert none[1] <= 140  # one line of words
+
+
+def test_cases_that_look_alike_are_one_heatmap_row_and_a_failing_case_keeps_its_own(
+    tmp_path: Path,
+) -> None:
+    arrive = {f"f > arrives {i}": (Cell(Outcome.SKIP), Cell(Outcome.PASS)) for i in range(40)}
+    failing = {
+        f"f > fails {i}": (Cell(Outcome.FAIL, "step 1: no error"), Cell(Outcome.PASS))
+        for i in range(2)
+    }
+    matrix = _two_releases(failing | arrive)
+    drawn = bands(sections(rows(matrix, release_baselines(matrix))).changed)
+    assert [b.label for b in drawn] == [
+        "f > fails 0",
+        "f > fails 1",
+        "40 cases: unsupported 1.30.0 · pass 1.51.1",
+    ]
+    many = _size(write_heatmap(_two_releases(dict(list(arrive.items())[:40])), tmp_path / "a.png"))
+    two = _size(write_heatmap(_two_releases(dict(list(arrive.items())[:20])), tmp_path / "b.png"))
+    assert many == two  # 40 alike rows are drawn as one, as 20 are
 
 
 # ------------------------------------------------------------------ real releases

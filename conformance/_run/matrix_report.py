@@ -13,10 +13,12 @@
   whose outcome or answers change across the releases first, each changed
   cell opening the first step that differs with both answers; the cases
   alike everywhere folded into one count.
-- ``heatmap.png``: the cases that change (or fail alike) × releases, one
-  colour per kind of cell (an expected crash pale, an unexpected one dark and
-  crossed), a dot where the answers differ from the release before; with no
-  such case, a line of text that says so (matplotlib).
+- ``heatmap.png``: the cases that change (or fail alike) × releases, cases
+  whose cells look alike folded into one labelled row (``report_rows.bands``;
+  a failing case always has its own row), one colour per kind of cell (an
+  expected crash pale, an unexpected one dark and crossed), a dot where the
+  answers differ from the release before; with no such case, a line of text
+  that says so (matplotlib).
 
 Nothing in the files depends on timing or on the order the releases
 finished, so the same corpus on the same releases writes the same files.
@@ -33,7 +35,7 @@ from typing import Any
 from conformance._run.case_report import Failure
 from conformance._run.html_report import write_html
 from conformance._run.matrix import MATRIX_ORDER, Cell, Matrix, Outcome, label
-from conformance._run.report_rows import release_baselines, rows, sections
+from conformance._run.report_rows import bands, release_baselines, rows, sections
 
 __all__ = [
     "COLOURS",
@@ -297,16 +299,17 @@ def write_heatmap(matrix: Matrix, path: Path, against: Mapping[str, str] | None 
     columns = [v for v in matrix.versions if matrix.runs[v].error is None]
     if not shown:
         return _no_change(matrix, columns, path)
+    drawn = bands(shown)
     kinds = list(KIND_COLOURS)
     index = {k: i for i, k in enumerate(kinds)}
-    grid = [[index[cell.kind] for cell in row.cells] for row in shown]
+    grid = [[index[cell.kind] for cell in band.cells] for band in drawn]
     colours = ListedColormap([KIND_COLOURS[k] for k in kinds])
-    labels = [_label(row.case) for row in shown]
+    labels = [_label(band.label) for band in drawn]
     longest = max(len(text) for text in labels)
     label_width = 0.062 * longest  # inches at 8.5 pt
     column = max(0.3, min(0.85, 14.0 / len(columns)))  # inches: ≤ about 15 for them all
     width = label_width + column * len(columns) + 2.6
-    height = 0.22 * len(shown) + 1.6
+    height = 0.22 * len(drawn) + 1.6
     figure, axes = plt.subplots(figsize=(width, height), dpi=110)
     axes.imshow(
         grid, aspect="auto", cmap=colours, vmin=-0.5, vmax=len(kinds) - 0.5, interpolation="nearest"
@@ -314,16 +317,18 @@ def write_heatmap(matrix: Matrix, path: Path, against: Mapping[str, str] | None 
     rotation = 90 if len(columns) > 12 else 0
     axes.set_xticks(range(len(columns)), columns, fontsize=9, rotation=rotation)
     axes.xaxis.tick_top()
-    axes.set_yticks(range(len(shown)), labels, fontsize=8.5)
+    axes.set_yticks(range(len(drawn)), labels, fontsize=8.5)
     axes.set_xticks([x - 0.5 for x in range(1, len(columns))], minor=True)
-    axes.set_yticks([y - 0.5 for y in range(1, len(shown))], minor=True)
+    axes.set_yticks([y - 0.5 for y in range(1, len(drawn))], minor=True)
     axes.grid(which="minor", color="white", linewidth=1.5)
     axes.tick_params(which="minor", length=0)
-    marks = [(x, y) for y, row in enumerate(shown) for x, cell in enumerate(row.cells) if cell.step]
+    marks = [
+        (x, y) for y, band in enumerate(drawn) for x, cell in enumerate(band.cells) if cell.step
+    ]
     unexpected = [
         (x, y)
-        for y, row in enumerate(shown)
-        for x, cell in enumerate(row.cells)
+        for y, band in enumerate(drawn)
+        for x, cell in enumerate(band.cells)
         if cell.kind in ("crash", "timeout", "error")
     ]
     if marks:
@@ -332,14 +337,17 @@ def write_heatmap(matrix: Matrix, path: Path, against: Mapping[str, str] | None 
         axes.scatter(
             [x for x, _ in unexpected], [y for _, y in unexpected], s=40, c="white", marker="x"
         )
-    handles = _handles({cell.kind for row in shown for cell in row.cells}, unexpected, marks)
+    handles = _handles({cell.kind for band in drawn for cell in band.cells}, unexpected, marks)
     axes.legend(
         handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8.5, frameon=False
     )
     alike = len(parts.alike)
+    folded = (
+        f", in {len(drawn)} rows (cases that look alike folded)" if len(drawn) < len(shown) else ""
+    )
     axes.set_title(
-        f"{len(shown)} of {len(matrix.cases)} cases change or fail × {len(columns)} columns "
-        f"({alike} alike everywhere, not drawn)",
+        f"{len(shown)} of {len(matrix.cases)} cases change or fail × {len(columns)} columns"
+        f"{folded}; {alike} alike everywhere, not drawn",
         pad=28 if rotation == 0 else 40,
         fontsize=10,
     )

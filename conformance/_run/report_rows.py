@@ -18,6 +18,11 @@ then a break, then answers that differ, then outcomes alone, e.g. a feature a
 release lacks; each in corpus order), those alike everywhere but failing, and
 those alike everywhere (which a report folds into one count).
 
+``bands`` folds the changing rows for a picture: rows whose cells look alike
+column by column (the same kinds, answers differing in the same columns) are
+one band, labelled by what they share (``unsupported 1.12.0–1.30.0 · pass
+1.31.0–1.58.0``); a failing row is always a band of its own, named by its case.
+
 A cell's ``kind`` names how it looks: its outcome's label, except that a
 crash, timeout or error that a crash row or a known divergence expects is
 ``expected-crash`` (``expected-timeout``, ``expected-error``): the report
@@ -40,10 +45,12 @@ from conformance._run.report import RunReport
 
 __all__ = [
     "BROKEN_KINDS",
+    "Band",
     "Row",
     "RowCell",
     "Sections",
     "Step",
+    "bands",
     "kind",
     "matrix_of_run",
     "reference_baselines",
@@ -210,6 +217,50 @@ def sections(all_rows: Sequence[Row]) -> Sections:
         tuple(r for r in same if r.failing),
         tuple(r for r in same if not r.failing),
     )
+
+
+@dataclass(frozen=True)
+class Band:
+    """One drawn row of a picture: one case, or several whose cells look alike."""
+
+    rows: tuple[Row, ...]
+
+    @property
+    def cells(self) -> tuple[RowCell, ...]:
+        return self.rows[0].cells
+
+    @property
+    def label(self) -> str:
+        """The case's name, or for several cases how their cells run across the columns:
+        ``43 cases: unsupported 1.12.0–1.30.0 · pass 1.31.0–1.58.0`` (then ``· answers
+        change at …`` where they differ from the baseline column)."""
+        if len(self.rows) == 1:
+            return self.rows[0].case
+        spans = []
+        for kind_, group in itertools.groupby(self.cells, key=lambda c: c.kind):
+            columns = [c.column for c in group]
+            span = columns[0] if len(columns) == 1 else f"{columns[0]}–{columns[-1]}"
+            spans.append(f"{kind_.replace('-', ' ')} {span}")
+        changed = [c.column for c in self.cells if c.step is not None]
+        if changed:
+            spans.append(f"answers change at {', '.join(changed)}")
+        return f"{len(self.rows)} cases: {' · '.join(spans)}"
+
+
+def _look(row: Row) -> tuple[tuple[str, bool], ...]:
+    """What a row looks like in a picture: each cell's kind and whether it carries a
+    difference from its baseline column."""
+    return tuple((c.kind, c.step is not None) for c in row.cells)
+
+
+def bands(shown: Sequence[Row]) -> list[Band]:
+    """``shown`` folded for a picture, in its order (a band where its first row was): rows
+    that look alike (``_look``) are one band; a failing row is always its own."""
+    folded: dict[object, list[Row]] = {}
+    for index, row in enumerate(shown):
+        key: object = ("failing", index) if row.failing else _look(row)
+        folded.setdefault(key, []).append(row)
+    return [Band(tuple(group)) for group in folded.values()]
 
 
 def _run_cell(case: CaseReport, backend: str) -> Cell:
