@@ -168,10 +168,13 @@ def _ranges(numbers: tuple[int, ...]) -> str:
 class BranchCoverage:
     """coverage.py over ``packages`` while ``measuring``; see the module doc."""
 
-    def __init__(self, packages: tuple[str, ...] = MEASURED) -> None:
+    def __init__(self, packages: tuple[str, ...] = MEASURED, *, feedback: bool = True) -> None:
         import coverage  # noqa: PLC0415 (only a measuring campaign needs it)
 
         self.packages = packages
+        #: Give each example's new branches to ``hypothesis.target`` (False: measure only,
+        #: as ``benchmarks/bench_guidance.py`` does to weigh the feedback).
+        self.feedback = feedback
         self._coverage = coverage.Coverage(
             branch=True,
             data_file=None,
@@ -251,4 +254,5 @@ def _relative(file: str, root: Path) -> str:
 def example_feedback() -> None:
     """At the end of an example: ``target`` the new branches it took (while measuring)."""
     for measuring in _measuring:
-        target(float(measuring.new_arcs()), label=NEW_BRANCHES)
+        if measuring.feedback:
+            target(float(measuring.new_arcs()), label=NEW_BRANCHES)
