@@ -1134,6 +1134,53 @@ def test_sdf_a_merge_include_dissolves_into_its_parent(mb: Modules, tmp_path: Pa
     assert parsed.report() == ({}, set())
 
 
+#: A URDF arm whose parse warns: ``version`` is an attribute Drake does not read.
+WARNING_ARM = (
+    '<?xml version="1.0"?>\n<robot name="arm" version="1.0">\n<link name="L1"/>\n'
+    '<joint name="J1" type="revolute"><parent link="L1"/><child link="L2"/>'
+    '<axis xyz="0 0 1"/></joint>\n<link name="L2"/>\n</robot>\n'
+)
+
+
+def test_sdf_a_custom_include_that_warns_is_left_out_of_the_sdformat_model(
+    mb: Modules, tmp_path: Path
+) -> None:
+    """Drake hands a URDF's warnings to libsdformat as errors, and libsdformat then drops
+    the include's interface model: its bodies stay in the plant, but no SDFormat name can
+    refer to them, merged or not, and a model holding only it has no link (measured on
+    pydrake 1.12.0, 1.16.0, 1.22.0-1.25.0, 1.51.1 and 1.58.0 with this arm's ``version``;
+    without it each text loads)."""
+    joint = '<joint name="jj" type="fixed"><parent>torso</parent><child>{}</child></joint>\n'
+    texts = {
+        "merged": ('<include merge="true"><uri>package://inc/arm.urdf</uri></include>\n'
+                   + joint.format("L1"),
+                   "error: Child frame with name[L1] specified by joint with name[jj] not found "
+                   "in model with name[top]."),
+        "nested": ("<include><uri>package://inc/arm.urdf</uri></include>\n"
+                   + joint.format("arm::L1"),
+                   "error: Child frame with name[arm::L1] specified by joint with name[jj] not "
+                   "found in model with name[top]."),
+        "alone": ('<model name="w"><include merge="true"><uri>package://inc/arm.urdf</uri>'
+                  "</include></model>\n",
+                  "error: A model must have at least one link."),
+    }  # fmt: skip
+    quiet_arm = WARNING_ARM.replace(' version="1.0"', "")
+    for body, message in texts.values():
+        text = sdf(f'<model name="top">\n<link name="torso"/>\n{body}</model>\n')
+        with pytest.raises(RuntimeError) as info:
+            included(mb, tmp_path, **{"arm.urdf": WARNING_ARM}).add(text, "sdf")
+        assert str(info.value) == message
+        assert included(mb, tmp_path, **{"arm.urdf": quiet_arm}).add(text, "sdf")[0] == "top"
+    parsed = included(mb, tmp_path, **{"arm.urdf": WARNING_ARM})
+    text = sdf(
+        '<model name="top">\n<link name="torso"/>\n<model name="w"><link name="own"/>'
+        '<include merge="true"><uri>package://inc/arm.urdf</uri></include></model>\n'
+        "</model>\n"
+    )
+    assert parsed.add(text, "sdf") == ["top", "top::w"]
+    assert parsed.bodies() == {"top::torso", "top::w::own", "top::w::L1", "top::w::L2"}
+
+
 def test_sdf_errors_come_in_libsdformats_then_drakes_order(mb: Modules) -> None:
     """Reading (an undefined element) before loading (a reserved link name) before the
     frame graphs (an unknown frame) before Drake's own checks (negative damping)."""

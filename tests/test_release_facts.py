@@ -260,3 +260,93 @@ def test_reimpl_at_a_release_reads_member_groups_as_that_release_does(release: s
             assert report.status[backend.name] is Outcome.PASS, (name, report.failures)
     finally:
         backend.close()  # type: ignore[attr-defined]
+
+
+#: The cases of mjcf-eulerseq-since-1.25: arm.xml's eulerseq is a warning up to 1.24, so its
+#: merge-include is dropped and the arm_mjcf model has no link; up to 1.22 the URDF merge is
+#: refused first (sdf-merge-include-custom-parser-since-1.23). Each case expects the answer
+#: of its release, as the release matrix measured them on 1.22.0-1.25.0.
+_TOP_MERGE_INCLUDE_CASES = [
+    "real_models/drake_repository > drake/multibody/parsing/test/sdf_parser_test/"
+    f"interface_api_test/{name}.sdf"
+    for name in (
+        "top_merge_include",
+        "top_merge_include_in_nested_model",
+        "top_merge_include_world",
+    )
+]
+
+
+@pytest.mark.parametrize("release", ["1.22.0", "1.24.0", "1.25.0"])
+def test_reimpl_at_a_release_merge_includes_the_mujoco_arm_as_that_release_does(
+    release: str,
+) -> None:
+    cases = {c.qualified_name: c for f in load_corpus() for c in f.cases}
+    backend = load_backend(f"reimpl=={release}")
+    try:
+        for name in _TOP_MERGE_INCLUDE_CASES:
+            report = run_case(cases[name], [backend])
+            assert report.status[backend.name] is Outcome.PASS, (name, report.failures)
+    finally:
+        backend.close()  # type: ignore[attr-defined]
+
+
+#: A MuJoCo body at euler="5.7 11.5 17.2" (degrees) in a free body: the first row of its
+#: rotation in the parent, with no eulerseq, then with eulerseq="zyx", then eulerseq="abc".
+_EULERSEQ_PROBE = """
+import logging
+from reimpl.multibody.plant import MultibodyPlant
+from reimpl.multibody.parsing import Parser
+logging.basicConfig(format="%(message)s")
+body = (
+    '<worldbody><body name="L1"><geom type="sphere" size="0.4"/><freejoint/>'
+    '<body name="L2" euler="5.7295779513082321 11.459155902616466 17.188733853924695">'
+    '<geom type="sphere" size="0.4"/><joint name="J1" type="hinge"/></body></body></worldbody>'
+)
+for compiler in ("", '<compiler eulerseq="zyx"/>', '<compiler eulerseq="abc"/>'):
+    plant = MultibodyPlant(0.0)
+    try:
+        Parser(plant).AddModelsFromString(f'<mujoco model="arm">{compiler}{body}</mujoco>', "xml")
+    except RuntimeError as e:
+        print(e)
+        continue
+    plant.Finalize()
+    X = plant.CalcRelativeTransform(
+        plant.CreateDefaultContext(), plant.GetFrameByName("L1"), plant.GetFrameByName("L2")
+    )
+    print([round(float(v), 6) for v in X.rotation().matrix()[0]])
+"""
+
+
+@pytest.mark.parametrize(
+    ("release", "rows", "warnings"),
+    [
+        (
+            "1.24.0",
+            [[0.936293, -0.275096, 0.218351]] * 3,
+            ["<literal-string>.urdf:1: warning: The attribute 'eulerseq' found in a 'compiler' "
+             "tag is currently unsupported and will be ignored."] * 2,
+        ),
+        (
+            "1.25.0",
+            [
+                [0.936293, -0.289629, 0.198669],
+                [0.97517, -0.036957, 0.218351],
+                "<literal-string>.urdf:1: error: Illegal value 'abc' for the eulerseq in "
+                "compiler. Valid eulerseq are exactly three characters from the set "
+                "[x,y,z,X,Y,Z]",
+            ],
+            [],
+        ),
+    ],
+)  # fmt: skip
+def test_reimpl_at_a_release_reads_a_mujoco_eulerseq_as_that_release_does(
+    release: str, rows: list[object], warnings: list[str]
+) -> None:
+    """Up to 1.24 eulerseq is ignored with a warning and euler is roll-pitch-yaw (extrinsic
+    XYZ); from 1.25 it is read, the default intrinsic xyz (mjcf-eulerseq-since-1.25,
+    measured on pydrake 1.24.0 and 1.25.0 with these bodies)."""
+    done = _reimpl_at(release, _EULERSEQ_PROBE)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == [str(r) for r in rows]
+    assert done.stderr.splitlines() == warnings

@@ -15,17 +15,23 @@ it knows one:
 A model given as text is named ``<literal-string>.<file_type>``; a file by its
 path. SDFormat's own checks name the text ``<data-string>`` instead, and end
 with a newline; ``SdformatSource`` formats those. Warnings go to the ``drake``
-logger, as pydrake's do.
+logger, as pydrake's do; inside ``recorded_warnings()`` they are also collected
+(as Drake's sub-diagnostic policy collects a custom-parsed include's).
 """
 
 from __future__ import annotations
 
 import logging
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 
-__all__ = ["Diagnostics", "ModelParseError", "literal_string_name"]
+__all__ = ["Diagnostics", "ModelParseError", "literal_string_name", "recorded_warnings"]
 
 _LOG = logging.getLogger("drake")
+#: the innermost ``recorded_warnings()`` block's list, if any
+_RECORDER: ContextVar[list[str] | None] = ContextVar("reimpl_recorded_warnings", default=None)
 
 
 class ModelParseError(RuntimeError):
@@ -63,3 +69,18 @@ class Diagnostics:
         if self.strict:
             raise self.error(message, line)
         _LOG.warning("%swarning: %s", self._locate(line), message)
+        recorder = _RECORDER.get()
+        if recorder is not None:
+            recorder.append(f"{self._locate(line)}warning: {message}")
+
+
+@contextmanager
+def recorded_warnings() -> Iterator[list[str]]:
+    """The warnings reported while the block runs (logged as well), in order; a block
+    inside another records its own only."""
+    found: list[str] = []
+    token = _RECORDER.set(found)
+    try:
+        yield found
+    finally:
+        _RECORDER.reset(token)

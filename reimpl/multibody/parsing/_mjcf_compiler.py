@@ -16,7 +16,9 @@
  ``assetdir``        the mesh folder; ``meshdir`` overrides it
  ``eulerseq``        three of ``xyzXYZ``, else ``Illegal value 'X' for the
                      eulerseq in compiler. Valid eulerseq are exactly three
-                     characters from the set [x,y,z,X,Y,Z]``
+                     characters from the set [x,y,z,X,Y,Z]``; up to 1.24 an
+                     unsupported attribute, warned about after ``fitaabb``
+                     (mjcf-eulerseq-since-1.25)
  ``inertiafromgeom`` a tinyxml2 bool, or ``auto``; else a warning (``The
                      attribute 'inertiafromgeom' found in a 'compiler' tag
                      cannot be interpreted as a boolean nor 'auto' and will be
@@ -34,12 +36,16 @@ from __future__ import annotations
 
 import re
 
+from reimpl._release import release
 from reimpl.multibody.parsing import _mjcf_values as values
 from reimpl.multibody.parsing._mjcf_context import InertiaFromGeom, MjcfContext
 from reimpl.multibody.parsing._xml import XmlElement
 
 __all__ = ["read_compiler", "read_option", "tinyxml_bool"]
 
+#: Whether ``eulerseq`` is read (since 1.25) or warned about as unsupported (measured on
+#: pydrake 1.24.0: the warning, and any value, even an illegal one, is ignored).
+_READS_EULERSEQ = release.has("mjcf-eulerseq-since-1.25")
 _COMPILER_UNSUPPORTED = (
     "boundmass",
     "boundinertia",
@@ -47,6 +53,7 @@ _COMPILER_UNSUPPORTED = (
     "balanceinertia",
     "strippath",
     "fitaabb",
+    *(() if _READS_EULERSEQ else ("eulerseq",)),
     "texturedir",
     "discardvisual",
     "fusestatic",
@@ -132,7 +139,7 @@ def read_compiler(context: MjcfContext, node: XmlElement) -> None:
         folder = values.string(node, attribute)
         if folder is not None:
             compiler.meshdir = folder
-    sequence = values.string(node, "eulerseq")
+    sequence = values.string(node, "eulerseq") if _READS_EULERSEQ else None
     if sequence is not None:
         _eulerseq(context, node, sequence)
     inertia = node.get("inertiafromgeom")

@@ -21,11 +21,18 @@ from dataclasses import dataclass, field
 from enum import Enum
 from typing import Any
 
+from reimpl._release import release
 from reimpl.multibody.parsing._diagnostics import Diagnostics, ModelParseError
 from reimpl.multibody.parsing._parse_context import ParseContext
 from reimpl.multibody.parsing._xml import XmlElement, children
 
 __all__ = ["Compiler", "InertiaFromGeom", "MjcfContext", "MjcfDiagnostics", "unsupported"]
+
+#: The axes of ``euler=`` angles when no ``<compiler eulerseq>`` sets them: MuJoCo's
+#: intrinsic ``xyz`` since 1.25; up to 1.24 Drake reads euler as roll-pitch-yaw, which is
+#: extrinsic ``XYZ`` (mjcf-eulerseq-since-1.25: measured on pydrake 1.12.0, 1.22.0-1.24.0
+#: vs 1.25.0, 1.26.0 with euler="5.73 11.46 17.19").
+_DEFAULT_EULERSEQ = "xyz" if release.has("mjcf-eulerseq-since-1.25") else "XYZ"
 
 
 @dataclass(frozen=True)
@@ -85,7 +92,7 @@ class Compiler:
     autolimits: bool = True
     degrees: bool = True
     meshdir: str | None = None
-    eulerseq: str = "xyz"
+    eulerseq: str = _DEFAULT_EULERSEQ
     inertia_from_geom: InertiaFromGeom = InertiaFromGeom.AUTO
 
 

@@ -69,6 +69,13 @@ def _error(message: str) -> ModelParseError:
     return Diagnostics(None).error(message)
 
 
+class _ModelWithoutLinkError(ModelParseError):
+    """``A model must have at least one link.``: libsdformat records it and goes on."""
+
+    def __init__(self) -> None:
+        super().__init__(*_error("A model must have at least one link.").args)
+
+
 @dataclass
 class Link:
     name: str
@@ -209,19 +216,24 @@ class _Loader:
         self.version = version
         #: A custom merge-include refused up to 1.22, raised once the document is loaded.
         self.refused: ModelParseError | None = None
+        #: The first nested model without a link, raised once the document is loaded.
+        self.linkless: ModelParseError | None = None
 
     @contextlib.contextmanager
     def refusal_first(self) -> Iterator[None]:
         """Raises the refused merge-include, if any, once loading ends: before a later
-        error of the document (measured on pydrake 1.16.0: it is the error reported)."""
+        error of the document (measured on pydrake 1.16.0: it is the error reported);
+        else the first nested model without a link, before a later error."""
         try:
             yield
         except ModelParseError:
-            if self.refused is not None:
-                raise self.refused from None
+            recorded = self.refused or self.linkless
+            if recorded is not None:
+                raise recorded from None
             raise
-        if self.refused is not None:
-            raise self.refused
+        recorded = self.refused or self.linkless
+        if recorded is not None:
+            raise recorded
 
     # ----------------------------------------------------------- elements
     def link(self, element: XmlElement) -> Link:
@@ -288,11 +300,18 @@ class _Loader:
         """``model()``, or None once a merge-include was refused (up to 1.22): libsdformat
         records a later model's error and goes on loading the document, so the custom
         models after it are parsed too, and the refusal is the error reported (measured
-        with top_merge_include_world.sdf on pydrake 1.16.0: both tops' URDFs parsed)."""
+        with top_merge_include_world.sdf on pydrake 1.16.0: both tops' URDFs parsed).
+        A nested model without a link is recorded the same way and left out (measured with
+        top_merge_include_world.sdf and top_merge_include_in_nested_model.sdf on pydrake
+        1.23.0 and 1.24.0, whose first arm_mjcf has none: the later includes are parsed)."""
         try:
             return self.model(element, parents)
+        except _ModelWithoutLinkError as error:
+            if self.linkless is None:
+                self.linkless = error
+            return None
         except ModelParseError:
-            if self.refused is None:
+            if self.refused is None and self.linkless is None:
                 raise
             return None
 
@@ -341,7 +360,7 @@ class _Loader:
             or model.models
             or model.interfaces
         ):
-            raise _error("A model must have at least one link.")
+            raise _ModelWithoutLinkError()
         return model
 
     def _check_collision(self, item: Any, tag: str, model: str, implicit: set[str]) -> None:
@@ -392,6 +411,8 @@ class _Loader:
                 merge=merge and not unmergeable,
                 static=bool(sdformat_bool(statics[0].text or "")) if statics else False,
             )
+            if interface.warned:
+                continue  # left out by libsdformat; its bodies stay in the plant
             if unmergeable and self.refused is None:
                 self.refused = Diagnostics(None).error(
                     "Custom parser does not support merge-include, but merge-include was "

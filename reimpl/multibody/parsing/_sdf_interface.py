@@ -24,6 +24,16 @@ the include's ``<name>`` or ``<mujoco model>``).
 Errors: ``//include/static`` is refused; a model with no link (body) is
 ``Model must have at least one link.``. Other files (``.dmd.yaml``, …) are
 dropped silently.
+
+A custom file whose parse reports a warning is dropped too, its bodies left in
+the plant: Drake hands its warnings to libsdformat as errors, and libsdformat
+then leaves the interface model out (``warned``). So SDFormat names cannot
+refer to it, it is not a link of the enclosing model (which, with nothing
+else, is ``A model must have at least one link.``), and up to 1.22 its
+``merge="true"`` is not refused. Measured on pydrake 1.12.0, 1.16.0, 1.22.0,
+1.23.0, 1.24.0, 1.25.0, 1.51.1 and 1.58.0 with a URDF ``<robot version>`` and
+a MuJoCo ``<compiler fitaabb>`` (unsupported attributes), included and
+merge-included.
 """
 
 from __future__ import annotations
@@ -36,7 +46,7 @@ from reimpl._release import release
 from reimpl.math import RigidTransform
 from reimpl.multibody import kinematics
 from reimpl.multibody.parsing import _scoped_name as scoped
-from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._diagnostics import Diagnostics, recorded_warnings
 from reimpl.multibody.parsing._parse_context import ParseContext
 from reimpl.multibody.parsing._sdf_graph import GFrame, GJoint, GLink, GModel
 from reimpl.multibody.parsing._sdf_poses import GzPose
@@ -85,6 +95,8 @@ class InterfaceModel:
     #: the include's ``<pose>`` (relative_to, X), ``<placement_frame>``
     include_pose: tuple[str, GzPose] | None = None
     placement_frame: str = ""
+    #: whether its parse reported a warning (then libsdformat leaves it out)
+    warned: bool = False
 
     @property
     def model_frame(self) -> str:
@@ -142,16 +154,18 @@ def load_interface_model(
         before = _snapshot(plant, instance)
         fields = {f.name: getattr(context, f.name) for f in dataclasses.fields(ParseContext)}
         merging = _MergingContext(**fields, target=instance)
-        context.read_file(merging, path, local_name, "")
+        with recorded_warnings() as warnings:
+            context.read_file(merging, path, local_name, "")
         name = merging.requested
     else:
-        instance = context.read_file(context, path, local_name, parent_name or "")[0]
+        with recorded_warnings() as warnings:
+            instance = context.read_file(context, path, local_name, parent_name or "")[0]
         name = scoped.split(plant.GetModelInstanceName(instance))[1]
         before = ([], [], [])
     bodies = plant.GetBodyIndices(instance)
     if not bodies:
         raise Diagnostics(None).error("Model must have at least one link.")
-    model = InterfaceModel(name, instance, merge, "", GzPose())
+    model = InterfaceModel(name, instance, merge, "", GzPose(), warned=bool(warnings))
     canonical = plant.get_body(bodies[0])
     plant.AddFrame(
         FixedOffsetFrame(model.model_frame, canonical.body_frame(), RigidTransform(), instance)
