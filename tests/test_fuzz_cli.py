@@ -64,9 +64,9 @@ def test_fuzz_of_reimpl_against_pydrake_exits_0_and_writes_nothing(tmp_path: Pat
 
 def test_a_divergence_exits_1_and_is_written_as_a_valid_scenario(tmp_path: Path) -> None:
     spec = "conformance._testing.mutants:reverse_statement_order"
-    # Bounded: at seed 1 it shrinks for minutes; the unbounded shrink is the next test's.
-    argv = ("--seed", "1", "--max-examples", "300", "--shrink-time", "10")
-    code, out, _ = fuzz("--backend", spec, *argv, "--out", str(tmp_path))
+    # docs/fuzzing.md's command (default seed and examples), its shrink bounded to 10 s there
+    # 30: it shrinks for minutes without; the unbounded shrink is the next test's.
+    code, out, _ = fuzz("--backend", spec, "--out", str(tmp_path), "--shrink-time", "10")
     assert code == EXIT_FAILURE
     (path,) = tmp_path.glob("*.json")
     assert "(reproduces)" in out

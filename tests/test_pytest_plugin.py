@@ -114,11 +114,12 @@ def collected(result: pytest.RunResult) -> list[str]:
 def test_a_scenario_file_named_on_the_command_line_is_collected_anywhere(
     user_dir: pytest.Pytester,
 ) -> None:
-    (user_dir.path / "mine").mkdir()
-    (user_dir.path / "mine" / "case.json").write_text(scenario())
-    result = run(user_dir, "mine/case.json", "-v")
+    (user_dir.path / "my").mkdir()
+    (user_dir.path / "my" / "case.json").write_text(scenario())
+    result = run(user_dir, "my/case.json", "-v")  # docs/user-guide.md's command
     result.assert_outcomes(passed=2)
-    result.stdout.fnmatch_lines(["mine/case.json::*case > first PASSED*"])
+    assert result.ret == pytest.ExitCode.OK
+    result.stdout.fnmatch_lines(["my/case.json::*case > first PASSED*"])
 
 
 def test_without_conformance_paths_a_users_folder_is_not_a_scenario_folder(
@@ -304,6 +305,24 @@ def test_a_case_two_of_three_backends_run_is_compared_and_passes(
     result.assert_outcomes(passed=2)
     junit = (user_dir.path / "report.xml").read_text()
     assert junit.count('name="no_roles_skip_reason" value="needs feature(s) roles"') == 2
+
+
+def test_a_users_backend_module_runs_a_scenario_folder_beside_reimpl(
+    user_dir: pytest.Pytester,
+) -> None:
+    """docs/user-guide.md's command: a folder holding the schema, and a backend of the
+    user's package named ``module:attribute`` (here reimpl reporting every feature)."""
+    (user_dir.path / "mypkg").mkdir()
+    (user_dir.path / "mypkg" / "__init__.py").write_text("")
+    (user_dir.path / "mypkg" / "backend.py").write_text("from partial import full as Backend\n")
+    (user_dir.path / "scenarios").mkdir()
+    (user_dir.path / "scenarios" / "scenario.schema.json").write_text("{}")
+    (user_dir.path / "scenarios" / "case.json").write_text(scenario())
+    args = ("scenarios/", "--conformance-backend", "reimpl")
+    result = run(user_dir, *args, "--conformance-backend", "mypkg.backend:Backend", "-v")
+    result.assert_outcomes(passed=2)
+    assert result.ret == pytest.ExitCode.OK
+    result.stdout.fnmatch_lines(["scenarios/case.json::*case > first PASSED*"])
 
 
 def test_a_single_backend_that_runs_the_case_passes_it(user_dir: pytest.Pytester) -> None:
