@@ -159,6 +159,119 @@ def test_query_through_filter_asks_every_query_after_the_filter_and_after_its_re
     assert _ops(recorder, since) == ["apply_transient", *queries, "remove_declaration", *queries]
 
 
+class _Answers(Recorder):
+    """A Recorder that keeps pydrake's Result of each command too."""
+
+    def __init__(self) -> None:
+        super().__init__(backend=PYDRAKE, queries=True, special=False)
+        self.results: list[Any] = []
+
+    def step(self, op: str, **args: Any) -> Any:
+        result = super().step(op, **args)
+        self.results.append(result)
+        return result
+
+
+def _answering(poses: dict[str, Any] | None = None) -> _Answers:
+    """``_recorder(posed=True)``'s scene on an ``_Answers``, fa posed as given."""
+    recorder = _Answers()
+    recorder.keep("sources", "source")
+    recorder.keep("frames", "world")
+    for frame in ("fa", "fb"):
+        recorder.step("register_frame", name=frame)
+        recorder.keep("frames", frame)
+    for name, frame in (("a", "fa"), ("b", "fb"), ("c", "fb")):
+        recorder.step("register_geometry", name=name, frame=frame, roles=["proximity"])
+        recorder.keep("geometries", name)
+    if poses:
+        recorder.step("set_poses", poses=poses)
+    return recorder
+
+
+_QUERIES = [
+    "compute_point_pair_penetration",
+    "has_collisions",
+    "compute_signed_distance_pairwise_closest_points",
+    "find_collision_candidates",
+    "compute_signed_distance_pair_closest_points",
+]
+
+
+def _by_op(recorder: _Answers, since: int, op: str) -> list[Any]:
+    pairs = zip(recorder.commands[since:], recorder.results[since:], strict=True)
+    return [r.value for c, r in pairs if c.op == op]
+
+
+def test_an_aimed_filter_excludes_every_penetrating_pair_and_has_collisions_turns_false() -> None:
+    recorder = _answering()  # a, b, c at the origin: a-b and a-c penetrate (b-c share fb)
+    since = len(recorder.commands)
+    query_through_filter(recorder, bytes([0, 0, 1, 3]), EVERYTHING)
+    ops = _ops(recorder, since)
+    assert ops == [
+        "compute_point_pair_penetration",
+        "apply_transient",
+        *_QUERIES,
+        "remove_declaration",
+        *_QUERIES,
+    ]
+    statements = recorder.commands[since + 1].args["declaration"]["statements"]
+    assert [(s["a"]["geometries"], s["b"]["geometries"]) for s in statements] == [
+        (["a"], ["b"]),
+        (["a"], ["c"]),
+    ]
+    # pydrake 1.51.1: filtered, nothing collides, is a candidate or has a distance; then back.
+    assert _by_op(recorder, since, "has_collisions") == [False, True]
+    assert _by_op(recorder, since, "find_collision_candidates") == [[], [["a", "b"], ["a", "c"]]]
+    pairwise = _by_op(recorder, since, "compute_signed_distance_pairwise_closest_points")
+    assert [[r["pair"] for r in answer] for answer in pairwise] == [[], [["a", "b"], ["a", "c"]]]
+
+
+def test_an_aimed_filter_where_nothing_penetrates_excludes_a_candidate_pair() -> None:
+    # a 0.212 from b and c: no penetration, but the boxes overlap (a-b, a-c are candidates).
+    recorder = _answering({"fa": {"xyz": [0.15, 0.15, 0.0]}})
+    since = len(recorder.commands)
+    query_through_filter(recorder, bytes([0, 0, 1, 1]), EVERYTHING)
+    assert _ops(recorder, since)[:3] == [
+        "compute_point_pair_penetration",
+        "find_collision_candidates",
+        "apply_transient",
+    ]
+    statements = recorder.commands[since + 2].args["declaration"]["statements"]
+    assert [(s["a"]["geometries"], s["b"]["geometries"]) for s in statements] == [(["a"], ["b"])]
+    # pydrake 1.51.1: the filter takes a-b out of the candidates and the pairwise distances.
+    candidates = _by_op(recorder, since, "find_collision_candidates")
+    assert candidates == [[["a", "b"], ["a", "c"]], [["a", "c"]], [["a", "b"], ["a", "c"]]]
+    pairwise = _by_op(recorder, since, "compute_signed_distance_pairwise_closest_points")
+    assert [[r["pair"] for r in answer] for answer in pairwise] == [
+        [["a", "c"]],
+        [["a", "b"], ["a", "c"]],
+    ]
+    assert _by_op(recorder, since, "has_collisions") == [False, False]
+
+
+def test_query_at_max_distance_aims_at_a_scene_pairs_own_distance() -> None:
+    answers = []
+    for aim in range(3):
+        recorder = _answering({"fa": {"xyz": [0.15, 0.15, 0.0]}})
+        since = len(recorder.commands)
+        query_at_max_distance(recorder, bytes([0, 1, aim, 1]))
+        assert _ops(recorder, since) == ["compute_signed_distance_pairwise_closest_points"] * 2
+        first, aimed = _by_op(recorder, since, "compute_signed_distance_pairwise_closest_points")
+        assert [r["pair"] for r in first] == [["a", "b"], ["a", "c"]]
+        distance = first[1]["distance"]  # a-c, drawn by picks[1]
+        assert (
+            recorder.commands[-1].args["max_distance"]
+            == [
+                distance,
+                math.nextafter(distance, -math.inf),
+                math.nextafter(distance, math.inf),
+            ][aim]
+        )
+        answers.append([r["pair"] for r in aimed])
+    # pydrake 1.51.1: a-b and a-c are equally far (0.01213203435596423): both in, out, in.
+    assert answers == [[["a", "b"], ["a", "c"]], [], [["a", "b"], ["a", "c"]]]
+
+
 def test_query_at_max_distance_aims_at_the_pairs_own_distance_and_one_ulp_either_side() -> None:
     answers = []
     for aim in range(3):

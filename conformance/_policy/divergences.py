@@ -25,7 +25,9 @@ also say when a failure is *expected* (its ``xfail`` object):
   its error message), ``backend_error`` (whether the blamed backend raised
   too), ``backend_kinds`` (the error kinds the blamed backend may have
   raised), ``backend_broke`` (whether the blamed backend broke at the step:
-  crashed, timed out). A field about the reference does not match where
+  crashed, timed out), ``boundary_pairs`` (true: the two answers of a pairwise
+  signed distance query differ only in pairs at its ``max_distance``, as
+  ``at_max_distance`` says). A field about the reference does not match where
   no reference answered (a backend run alone); ``backend_broke`` false and
   the backend fields do not match where the backend broke;
 - ``cases``: ``fnmatch`` patterns of case qualified names (``file > description``),
@@ -51,6 +53,7 @@ from functools import cache
 from importlib import resources
 from typing import Any
 
+from conformance._policy.at_max_distance import differs_only_at_max_distance
 from conformance._policy.release_facts import release_fact
 from conformance._policy.versions import VersionRange
 from conformance.protocol import BackendId, Command, Result
@@ -76,12 +79,17 @@ class StepPattern:
     backend_error: bool | None = None
     backend_kinds: frozenset[str] = frozenset()
     backend_broke: bool | None = None
+    boundary_pairs: bool | None = None
 
     def matches(self, command: Command, reference: Result | None, backend: Result | None) -> bool:
         """``reference``: None where no reference answered; ``backend``: None where it broke."""
         if command.op not in self.ops:
             return False
         if self.backend_broke is not None and (backend is None) != self.backend_broke:
+            return False
+        if self.boundary_pairs is not None and self.boundary_pairs != (
+            differs_only_at_max_distance(command, reference, backend)
+        ):
             return False
         return self._reference_matches(reference) and self._backend_matches(backend)
 
@@ -198,6 +206,7 @@ def _matcher(data: Mapping[str, Any] | None, releases: VersionRange) -> XfailMat
                 backend_error=step.get("backend_error"),
                 backend_kinds=frozenset(step.get("backend_kinds", ())),
                 backend_broke=step.get("backend_broke"),
+                boundary_pairs=step.get("boundary_pairs"),
             )
             for step in data.get("steps", ())
         ),
