@@ -29,7 +29,8 @@ unscoped ``f`` is searched plant-wide (GetFrameByName's errors).
                               ``model_namespace`` if given, else at global scope
  add_directives               ``file``'s directives in ``join(ns,
                               model_namespace)``, which must be an existing
-                              model instance
+                              model instance (else RuntimeError ``Namespace
+                              ... does not exist``, since 1.58 ``error: ...``)
 ===========================  ====================================================
 
 Errors from URIs, groups and default poses carry no source (``error: ...``).
@@ -319,7 +320,11 @@ class _Run:
     def add_directives(self, sub: AddDirectives, namespace: str) -> None:
         inner = scoped.join(namespace, sub.model_namespace or "")
         if inner and not self.plant.HasModelInstanceNamed(inner):
-            raise RuntimeError(f"Namespace '{inner}' does not exist as model instance")
+            problem = f"Namespace '{inner}' does not exist as model instance"
+            # Since 1.58 a parse error ('error: ...'); up to 1.57 a bare RuntimeError.
+            if release.has("directives-namespace-error-wording-since-1.58"):
+                raise self.diagnostics.error(problem)
+            raise RuntimeError(problem)
         path = self.resolve(sub.file)
         self.run(load_model_directives(path), inner)
 

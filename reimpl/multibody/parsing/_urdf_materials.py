@@ -25,10 +25,13 @@ the material's line unless said otherwise):
          - existing definition: RGBA: 0.93333333333 ... 1, Diffuse map: None
          - new definition:      RGBA: ..., Diffuse map: None
 
-   An RGBA prints as Eigen prints a row vector with 16 significant digits,
-   each number right-aligned to the widest (pydrake 1.58.0 prints it as a
-   column, one number a line). A new name is stored, a missing colour as
-   transparent black (0 0 0 0).
+   Up to 1.51 an RGBA prints as Eigen prints a row vector with 16 significant
+   digits, each number right-aligned to the widest, without brackets; since
+   1.52 as fmt writes a column vector, ``[0.93333333333, 0.2, 0.2, 1]ᵀ``
+   (release fact eigen-vector-wording-since-1.52; measured with Drake's
+   duplicate_materials.urdf and conflicting_materials.urdf on 1.51.1, 1.52.0
+   and 1.58.0). A new name is stored, a missing colour as transparent black
+   (0 0 0 0).
 """
 
 from __future__ import annotations
@@ -37,7 +40,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from reimpl.geometry._drake_text import eigen_row
+from reimpl._release import release
+from reimpl.geometry._drake_text import eigen_row, eigen_vector
 from reimpl.multibody.parsing._diagnostics import Diagnostics
 from reimpl.multibody.parsing._urdf_values import vector
 from reimpl.multibody.parsing._xml import XmlElement, children
@@ -59,7 +63,7 @@ class Material:
     diffuse_map: str | None = None
 
     def describe(self) -> str:
-        rgba = "RGBA: None" if self.rgba is None else f"RGBA: {_eigen_row(self.rgba)}"
+        rgba = "RGBA: None" if self.rgba is None else f"RGBA: {_rgba_text(self.rgba)}"
         diffuse = "None" if self.diffuse_map is None else self.diffuse_map
         return f"{rgba}, Diffuse map: {diffuse}"
 
@@ -74,8 +78,11 @@ class Material:
         return math.dist(self.rgba, stored.rgba) > _SAME_COLOUR
 
 
-def _eigen_row(values: tuple[float, ...]) -> str:
-    """Eigen's ``operator<<`` of a row, without eigen_row's brackets."""
+def _rgba_text(values: tuple[float, ...]) -> str:
+    """Since 1.52 fmt's column vector (``eigen_vector``); up to 1.51 Eigen's
+    ``operator<<`` of a row, without eigen_row's brackets."""
+    if release.has("eigen-vector-wording-since-1.52"):
+        return eigen_vector(values)
     return eigen_row(values)[1:-1]
 
 
