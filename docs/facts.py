@@ -41,6 +41,7 @@ __all__ = [
     "release_changes_table",
     "release_counts_table",
     "release_facts_summary",
+    "release_report_folder",
     "release_report_summary",
     "scale_import_rss",
     "scale_ratios",
@@ -461,3 +462,18 @@ def bench_matrix_summary() -> str:
 def legacy_table(name: str) -> str:
     """docs/reports/bench_legacy.json (benchmarks/bench_legacy.py): one of its three tables."""
     return "\n".join(_report("bench_legacy.json")["tables"][name])
+
+
+def release_report_folder(folder: str) -> str:
+    """docs/releases/report.json restricted to one corpus folder: outcome counts, and crashes
+    that a known divergence expects (``expected_by``) apart from those none does."""
+    report = _json(RELEASE_REPORT)
+    cases = {name: row for name, row in report["cases"].items() if name.startswith(folder + "/")}
+    outcomes: Counter[str] = Counter()
+    for name, row in cases.items():
+        for version, outcome in row.items():
+            detail = report["details"].get(name, {}).get(version, {})
+            expected = outcome == "crash" and detail.get("expected_by")
+            outcomes["expected crash" if expected else outcome] += 1
+    counts = ", ".join(f"{count:,} {outcome}" for outcome, count in sorted(outcomes.items()))
+    return f"its {len(cases)} cases on {len(report['versions'])} releases: {counts}"
