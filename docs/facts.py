@@ -32,6 +32,7 @@ __all__ = [
     "corpus_summary",
     "feature_counts",
     "file_count",
+    "finding_steps",
     "fuzz_features_sentence",
     "fuzz_report",
     "legacy_table",
@@ -477,3 +478,21 @@ def release_report_folder(folder: str) -> str:
             outcomes["expected crash" if expected else outcome] += 1
     counts = ", ".join(f"{count:,} {outcome}" for outcome, count in sorted(outcomes.items()))
     return f"its {len(cases)} cases on {len(report['versions'])} releases: {counts}"
+
+
+def finding_steps(name: str, indent: str = "") -> str:
+    """A committed fuzz finding (a scenario file in docs/reports/): its step count, then each
+    step as compact JSON, one list item a step, and the disagreement its comment records."""
+    scenario = _report(name)
+    (case,) = scenario["cases"]
+    steps = case["steps"]
+    items = [
+        f"{indent}{number}. `{json.dumps(step, separators=(', ', ': '))}`"
+        for number, step in enumerate(steps, 1)
+    ]
+    disagreement = scenario["comment"].split("The disagreement: ", 1)[-1]
+    return (
+        f"{len(steps)} steps:\n\n"
+        + "\n".join(items)
+        + f"\n\n{indent}The disagreement (the reference is pydrake): `{disagreement}`"
+    )
