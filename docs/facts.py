@@ -456,8 +456,13 @@ def bench_matrix_summary() -> str:
         f"the {len(matrix['releases'])} releases {releases} over the corpus "
         f"({matrix['cases']:,} cases) took {_seconds(matrix['seconds'])} with `--jobs "
         f"{matrix['jobs']}`; a worker cost {worker:,.0f} µs per step against "
-        f"{local:,.0f} µs for pydrake {overhead['release']} in-process, {worker / local:.2f}×"
+        f"{local:,.0f} µs for pydrake {overhead['release']} in-process, {worker / local:.2f}× "
+        f"(the matrix {_met(matrix['seconds'] < 120)}, the worker {_met(worker / local < 2)})"
     )
+
+
+def _met(ok: bool) -> str:
+    return "within its target" if ok else "**over its target**"
 
 
 def legacy_table(name: str) -> str:
