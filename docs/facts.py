@@ -314,7 +314,7 @@ def bench_queries_table(*names: str) -> str:
     """docs/reports/bench_queries*.json (benchmarks/bench_queries.py): reimpl/pydrake ratios."""
     reports = [_report(name) for name in names]
     hows = ("same poses", "new poses")
-    columns = [f"{r['scene']}: {how}" for r in reports for how in hows]
+    columns = [f"{r['scene'].split(',')[0].split(' (')[0]}: {how}" for r in reports for how in hows]
     lines = [_row(["query", *columns]), _row(["---"] * (len(columns) + 1))]
     for index, row in enumerate(reports[0]["rows"]):
         cells = [
