@@ -4,7 +4,16 @@ Every function reads a file the repository commits (a report a command wrote, th
 the release table) and returns Markdown. ``cog -r README.md docs/*.md`` (run from the
 repository root, with this folder importable: ``cog -I docs``) rewrites the text between a
 block and its ``[[[end]]]``; ``cog --check`` in CI fails when a committed file changed and
-the docs did not follow. Nothing here runs a backend or a release.
+the docs did not follow. Nothing here runs a backend or a release. Run cog with the
+worktree's own package first on the path (``PYTHONPATH=. cog -I docs ...``): the counts
+come from its ``conformance`` (corpus, mutants), not from another installed copy.
+
+Measured numbers come from reports under docs/reports/, each written by one command (the
+page that quotes it names the command): ``benchmarks/bench_{calls,filter,queries,fuzz,
+matrix,legacy}.py --json FILE``, ``python -m conformance fuzz ... --json FILE`` (a
+campaign's statistics and coverage), a fuzz finding file (a shrunk example), and
+``python -m conformance bisect ...``'s stdout. To refresh one, run its command again,
+then ``cog -r``. A timing the docs would quote from nowhere else is left out of the text.
 """
 
 from __future__ import annotations
@@ -38,6 +47,7 @@ __all__ = [
     "legacy_table",
     "model_mutant_count",
     "model_report_summary",
+    "module_constant",
     "mutant_count",
     "release_changes_table",
     "release_counts_table",
@@ -426,6 +436,11 @@ def mutant_count(*modules: str) -> int:
         (name,) = (name for name in loaded.__all__ if name.endswith("MUTANTS"))
         total += len(getattr(loaded, name))
     return total
+
+
+def module_constant(module: str, name: str) -> str:
+    """A constant of a module of this repository (e.g. a mutant's word width), as text."""
+    return str(getattr(importlib.import_module(module), name))
 
 
 def model_mutant_count(prefix: str) -> int:
