@@ -39,6 +39,7 @@ __all__ = [
     "corpus_count",
     "corpus_files",
     "corpus_summary",
+    "coverage_features_text",
     "feature_counts",
     "file_count",
     "finding_steps",
@@ -441,6 +442,22 @@ def mutant_count(*modules: str) -> int:
 def module_constant(module: str, name: str) -> str:
     """A constant of a module of this repository (e.g. a mutant's word width), as text."""
     return str(getattr(importlib.import_module(module), name))
+
+
+def coverage_features_text() -> str:
+    """What conformance/_fuzz/coverage.py counts as a feature, with its thresholds."""
+    coverage = importlib.import_module("conformance._fuzz.coverage")
+    crowd, stack, stretch = coverage._CROWD, coverage._STACK, coverage._STRETCH
+    return (
+        "The features are the largest count of proximity geometries at a location (and "
+        f"growth past {crowd} during a sequence), {stack} or more active transient "
+        f"declarations, out-of-order removals (also from a stack of {stack}), clones of "
+        "contexts with history, then edited on both sides, model edits after contexts exist, "
+        f"edits in clones and in their origins, stretches of {stretch} model and context "
+        "edits without history, filter edits after roles were removed and re-assigned by "
+        "frame, each op at each kind of location (model, context, clone), and each kind of "
+        "error."
+    )
 
 
 def model_mutant_count(prefix: str) -> int:
