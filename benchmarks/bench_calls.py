@@ -6,16 +6,21 @@ scene has n frames with one proximity sphere each. Prints microseconds per call
 (the median of ``--repeat`` batches) and the ratio reimpl/pydrake; the target
 is at most 3 at n = 10 and n = 100.
 
-Usage: python benchmarks/bench_calls.py [n ...] [--repeat R]     (default: 10 100)
+Usage: python benchmarks/bench_calls.py [n ...] [--repeat R] [--json FILE]   (default: 10 100)
+
+``--json FILE`` writes the rows too (the committed one is ``docs/reports/bench_calls.json``,
+whose table docs/performance.md renders).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import statistics
 import sys
 import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 # n frames with one proximity sphere each: bench_filter's scene (run from benchmarks/).
@@ -107,6 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("sizes", nargs="*", type=int, default=[10, 100])
     parser.add_argument("--repeat", type=int, default=7)
+    parser.add_argument("--json", type=Path, metavar="FILE", help="write the rows to this file")
     args = parser.parse_args(argv)
     apis = [reimpl_api(), pydrake_api()]
     print(f"reimpl against pydrake {apis[1].version}, µs per call, median of {args.repeat}")
@@ -114,13 +120,18 @@ def main(argv: list[str] | None = None) -> int:
     print(header)
     print("-" * len(header))
     worst = 0.0
+    rows: list[dict[str, object]] = []
     for n in args.sizes:
         for op, (ours, theirs) in measure(apis, n, args.repeat).items():
             ratio = ours / theirs
             worst = max(worst, ratio)
             print(f"{n:>5}  {op:<36} {ours:>9.2f} {theirs:>9.2f} {ratio:>6.2f}")
+            rows.append({"n": n, "operation": op, "reimpl_us": ours, "pydrake_us": theirs})
         sys.stdout.flush()
     print(f"worst ratio: {worst:.2f} (target: at most 3)")
+    if args.json is not None:
+        report = {"pydrake": apis[1].version, "repeat": args.repeat, "rows": rows}
+        args.json.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     return 0
 
 

@@ -1,15 +1,21 @@
 """Times reimpl against pydrake in one run; prints milliseconds and the ratio reimpl/pydrake.
 
 Scene: n frames with one proximity sphere each (|C| = n(n-1)/2). Usage:
-    python benchmarks/bench_filter.py [n ...]        (default: 100 300 1000)
+    python benchmarks/bench_filter.py [n ...] [--json FILE]      (default: 100 300 1000)
+
+``--json FILE`` writes the rows too (the committed one is ``docs/reports/bench_filter.json``,
+whose table docs/performance.md renders).
 """
 
 from __future__ import annotations
 
+import argparse
+import json
 import random
 import sys
 import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 from conformance._backends.pydrake_api import pydrake_api
@@ -75,15 +81,26 @@ def measure(api: Api, n: int) -> dict[str, float]:
     return results
 
 
-def main(sizes: list[int]) -> None:
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("sizes", nargs="*", type=int, default=[100, 300, 1000])
+    parser.add_argument("--json", type=Path, metavar="FILE", help="write the rows to this file")
+    args = parser.parse_args(argv)
     apis = [reimpl_api(), pydrake_api()]
     print(f"{'n':>5}  {'operation':<34} {'reimpl ms':>10} {'pydrake ms':>11} {'ratio':>7}")
-    for n in sizes:
+    rows: list[dict[str, object]] = []
+    for n in args.sizes:
         ours, theirs = (measure(api, n) for api in apis)
         for op in ours:
             ratio = ours[op] / theirs[op]
             print(f"{n:>5}  {op:<34} {ours[op]:>10.3f} {theirs[op]:>11.3f} {ratio:>7.2f}")
+            rows.append({"n": n, "operation": op, "reimpl_ms": ours[op], "pydrake_ms": theirs[op]})
+        sys.stdout.flush()
+    if args.json is not None:
+        report = {"pydrake": apis[1].version, "rows": rows}
+        args.json.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
+    return 0
 
 
 if __name__ == "__main__":
-    main([int(a) for a in sys.argv[1:]] or [100, 300, 1000])
+    sys.exit(main())

@@ -279,7 +279,19 @@ def main(argv: list[str] | None = None) -> int:
     print(f"bound: steps/s if {reimpl.name} took no time at all (pydrake and Hypothesis only)")
     if args.json is not None:
         args.json.write_text(
-            json.dumps({"hypothesis_steps_per_s": floor, "rows": [asdict(r) for r in rows]}) + "\n"
+            json.dumps(
+                {
+                    "pydrake": pydrake.version(),
+                    "seed": args.seed,
+                    "examples": args.examples,
+                    "steps": args.steps,
+                    "repeat": args.repeat,
+                    "hypothesis_steps_per_s": floor,
+                    "rows": [asdict(r) for r in rows],
+                },
+                indent=1,
+            )
+            + "\n"
         )
     if args.reimpl_from:
         passed = _without_option(_without_option(raw, "--reimpl-from"), "--json")

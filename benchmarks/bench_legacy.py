@@ -18,15 +18,21 @@ chains and trees (two collision elements per link, auto cliques) and several
 Table 3: random pair sets over 60 elements: the cover against the lower
 bounds (greedy cliques are |F|, one per pair).
 
-Usage: python benchmarks/bench_legacy.py [--quick]
+Usage: python benchmarks/bench_legacy.py [--quick] [--json FILE]
+
+``--json FILE`` writes the three tables' Markdown rows too (the committed one is
+``docs/reports/bench_legacy.json``, whose tables docs/legacy-representations.md renders).
 """
 
 from __future__ import annotations
 
+import json
+import platform
 import random
 import sys
 import timeit
 from collections.abc import Callable, Sequence
+from pathlib import Path
 
 from reimpl.legacy import (
     BodyGraph,
@@ -219,13 +225,20 @@ def random_table(quick: bool) -> list[str]:
 
 def main(argv: Sequence[str]) -> int:
     quick = "--quick" in argv
+    json_path = argv[argv.index("--json") + 1] if "--json" in argv else None
     random.seed(0)
+    tables = {"pair_cost": pair_cost_table(quick)}
     print("Per-pair test cost (CPython, ns per test; lower is better)\n")
-    print("\n".join(pair_cost_table(quick)))
+    print("\n".join(tables["pair_cost"]))
+    tables["cliques"] = clique_count_table(quick)
     print("\nCliques needed for an exact mapping (greedy vs cover)\n")
-    print("\n".join(clique_count_table(quick)))
+    print("\n".join(tables["cliques"]))
+    tables["random"] = random_table(quick)
     print("\nRandom pair sets over 60 elements (20 per density): cover against the lower bounds\n")
-    print("\n".join(random_table(quick)))
+    print("\n".join(tables["random"]))
+    if json_path is not None:
+        report = {"python": platform.python_version(), "quick": quick, "tables": tables}
+        Path(json_path).write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     return 0
 
 

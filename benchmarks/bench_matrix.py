@@ -16,16 +16,22 @@ Two measurements, both with the environments already cached (a first
    in-process is one round trip per case plus the JSON of each answer.
 
 Usage: python benchmarks/bench_matrix.py [--drake V ...] [--jobs J] [--repeat R]
-                                         [--skip-matrix] [--skip-overhead]
+                                         [--skip-matrix] [--skip-overhead] [--json FILE]
+
+``--json FILE`` writes both measurements too (the committed one is
+``docs/reports/bench_matrix.json``, which docs/releases.md quotes).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import statistics
 import sys
 import time
 from importlib import metadata
+from pathlib import Path
+from typing import Any
 
 from conformance._backends.loader import load_backend
 from conformance._corpus.loader import Case, load_corpus
@@ -47,7 +53,7 @@ def _corpus_seconds(backend: Backend, cases: list[Case]) -> float:
     return time.perf_counter() - start
 
 
-def matrix_wall_time(releases: list[str], jobs: int) -> None:
+def matrix_wall_time(releases: list[str], jobs: int) -> dict[str, Any]:
     cases = _cases()
     start = time.perf_counter()
     matrix = run_matrix(releases, cases, jobs=jobs)
@@ -60,9 +66,16 @@ def matrix_wall_time(releases: list[str], jobs: int) -> None:
             f"  {version:>8}: {run.seconds:6.1f} s" + (f"  ERROR {run.error}" if run.error else "")
         )
     print(f"  wall time {seconds:.1f} s (target < 120 s){'  [releases broken]' if broken else ''}")
+    return {
+        "cases": len(cases),
+        "releases": releases,
+        "jobs": jobs,
+        "seconds": seconds,
+        "broken": bool(broken),
+    }
 
 
-def per_step_overhead(repeat: int) -> None:
+def per_step_overhead(repeat: int) -> dict[str, Any]:
     release = metadata.version("drake")
     cases = _cases()
     in_process = load_backend("pydrake")
@@ -86,6 +99,15 @@ def per_step_overhead(repeat: int) -> None:
     print(f"  pydrake in-process      {a / steps * 1e6:8.1f} us/step  ({a:.2f} s)")
     print(f"  drake=={release} worker  {b / steps * 1e6:8.1f} us/step  ({b:.2f} s)")
     print(f"  ratio worker / in-process: {b / a:.2f}x (target < 2x)")
+    return {
+        "release": release,
+        "cases": len(cases),
+        "crashing": len(crashing),
+        "steps": steps,
+        "repeat": repeat,
+        "in_process_us_per_step": a / steps * 1e6,
+        "worker_us_per_step": b / steps * 1e6,
+    }
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -95,11 +117,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--skip-matrix", action="store_true")
     parser.add_argument("--skip-overhead", action="store_true")
+    parser.add_argument("--json", type=Path, metavar="FILE", help="write the results to this file")
     args = parser.parse_args(argv)
+    report: dict[str, Any] = {}
     if not args.skip_overhead:
-        per_step_overhead(args.repeat)
+        report["overhead"] = per_step_overhead(args.repeat)
     if not args.skip_matrix:
-        matrix_wall_time(args.drake, args.jobs)
+        report["matrix"] = matrix_wall_time(args.drake, args.jobs)
+    if args.json is not None:
+        args.json.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     return 0
 
 

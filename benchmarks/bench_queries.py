@@ -17,12 +17,17 @@ Jaco forearm (``drake_models/jaco_description/meshes/forearm.obj``, 0.08 x 0.25
 x 0.06 m, its convex hull in the proximity role), posed the same way in a cube of
 side L (defaults n = 200, L = 2).
 
-Usage: python benchmarks/bench_queries.py [n [r [L]]]
-       python benchmarks/bench_queries.py mesh [n [L]]
+Usage: python benchmarks/bench_queries.py [n [r [L]]] [--json FILE]
+       python benchmarks/bench_queries.py mesh [n [L]] [--json FILE]
+
+``--json FILE`` writes the medians too (the committed ones are
+``docs/reports/bench_queries.json`` and ``bench_queries_mesh.json``, whose tables
+docs/performance.md renders).
 """
 
 from __future__ import annotations
 
+import json
 import sys
 import time
 from collections.abc import Callable
@@ -123,16 +128,21 @@ def median(values: list[float]) -> float:
     return sorted(values)[len(values) // 2]
 
 
-def main(n: int, shape: Callable[[Api], Any], side: float, title: str) -> None:
+def main(n: int, shape: Callable[[Api], Any], side: float, title: str) -> dict[str, Any]:
+    reference = pydrake_api()
+    pydrake_version = reference.version
     scenes = {
-        "pydrake": Posed(pydrake_api(), n, shape, side),
+        "pydrake": Posed(reference, n, shape, side),
         "reimpl": Posed(reimpl_api(), n, shape, side),
     }
     print(f"n = {n} {title}, cube side {side}")
+    rows: list[dict[str, Any]] = []
     for name, call in QUERIES.items():
         counts = {k: call(s.query) for k, s in scenes.items()}
         sizes = {k: v if isinstance(v, bool) else len(v) for k, v in counts.items()}
         print(f"\n{name}: pydrake {sizes['pydrake']}, reimpl {sizes['reimpl']}")
+        row: dict[str, Any] = {"query": name, "answers": sizes}
+        rows.append(row)
         for how, repeat in (("same poses", 41), ("new poses", 11)):
             times: dict[str, list[float]] = {k: [] for k in scenes}
             for _ in range(repeat):
@@ -141,12 +151,19 @@ def main(n: int, shape: Callable[[Api], Any], side: float, title: str) -> None:
                     times[key].append(elapsed_ms(partial(run, call, scene, query)))
             pd, rm = median(times["pydrake"]), median(times["reimpl"])
             print(f"  {how:10s}  pydrake {pd:9.4f} ms   reimpl {rm:9.4f} ms   ratio {rm / pd:6.2f}")
+            row[how] = {"pydrake_ms": pd, "reimpl_ms": rm}
+    version = pydrake_version
+    return {"n": n, "scene": title, "side": side, "pydrake": version, "rows": rows}
 
 
 if __name__ == "__main__":
     args = sys.argv[1:]
+    json_path = None
+    if "--json" in args:
+        at = args.index("--json")
+        json_path, args = Path(args[at + 1]), args[:at] + args[at + 2 :]
     if args[:1] == ["mesh"]:
-        main(
+        report = main(
             int(args[1]) if len(args) > 1 else 200,
             mesh,
             float(args[2]) if len(args) > 2 else 2.0,
@@ -154,9 +171,11 @@ if __name__ == "__main__":
         )
     else:
         radius = float(args[1]) if len(args) > 1 else 0.3
-        main(
+        report = main(
             int(args[0]) if args else 1000,
             sphere(radius),
             float(args[2]) if len(args) > 2 else 10.0,
             f"spheres, r = {radius}",
         )
+    if json_path is not None:
+        json_path.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")

@@ -4,11 +4,21 @@ Every function reads a file the repository commits (a report a command wrote, th
 the release table) and returns Markdown. ``cog -r README.md docs/*.md`` (run from the
 repository root, with this folder importable: ``cog -I docs``) rewrites the text between a
 block and its ``[[[end]]]``; ``cog --check`` in CI fails when a committed file changed and
-the docs did not follow. Nothing here runs a backend or a release.
+the docs did not follow. Nothing here runs a backend or a release. Run cog with the
+worktree's own package first on the path (``PYTHONPATH=. cog -I docs ...``): the counts
+come from its ``conformance`` (corpus, mutants), not from another installed copy.
+
+Measured numbers come from reports under docs/reports/, each written by one command (the
+page that quotes it names the command): ``benchmarks/bench_{calls,filter,queries,fuzz,
+matrix,legacy}.py --json FILE``, ``python -m conformance fuzz ... --json FILE`` (a
+campaign's statistics and coverage), a fuzz finding file (a shrunk example), and
+``python -m conformance bisect ...``'s stdout. To refresh one, run its command again,
+then ``cog -r``. A timing the docs would quote from nowhere else is left out of the text.
 """
 
 from __future__ import annotations
 
+import importlib
 import json
 import re
 from collections import Counter
@@ -20,15 +30,35 @@ from typing import Any
 from conformance._corpus.loader import load_corpus
 
 __all__ = [
+    "bench_calls_table",
+    "bench_filter_table",
+    "bench_fuzz_table",
+    "bench_matrix_summary",
+    "bench_queries_table",
+    "bisect_summary",
     "corpus_count",
     "corpus_files",
     "corpus_summary",
+    "coverage_features_text",
+    "feature_counts",
     "file_count",
+    "finding_steps",
+    "fuzz_features_sentence",
+    "fuzz_report",
+    "legacy_table",
+    "model_mutant_count",
     "model_report_summary",
+    "module_constant",
+    "mutant_count",
     "release_changes_table",
     "release_counts_table",
     "release_facts_summary",
+    "release_report_folder",
     "release_report_summary",
+    "scale_import_rss",
+    "scale_ratios",
+    "scale_split",
+    "scale_stage",
     "scale_table",
 ]
 
@@ -36,6 +66,8 @@ ROOT = Path(__file__).resolve().parent.parent
 RELEASE_REPORT = ROOT / "docs" / "releases" / "report.json"
 MODEL_REPORT = ROOT / "docs" / "models" / "drake-examples.txt"
 SCALE = ROOT / "docs" / "img" / "scale.json"
+#: Reports that commands and benchmarks wrote (each names its command in docs/reports/README.md).
+REPORTS = ROOT / "docs" / "reports"
 RELEASE_FACTS = ROOT / "conformance" / "_policy" / "release_facts.json"
 OUTCOMES = ("pass", "fail", "xfail", "unsupported", "crash", "timeout", "error")
 
@@ -174,3 +206,330 @@ def scale_table() -> str:
             )
         )
     return "\n".join(lines)
+
+
+def _scale_run(label: str, n: int) -> dict[str, Any]:
+    (run,) = (r for r in _json(SCALE)["runs"] if r["label"] == label and r["n"] == n)
+    return dict(run)
+
+
+def _factor(value: float) -> str:
+    """A ratio as ``0.032×`` or, when small, ``1.9·10⁻⁵×``."""
+    if value >= 0.001:
+        return f"{value:.2g}×"
+    mantissa, exponent = f"{value:.1e}".split("e")
+    sup = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+    return f"{mantissa}·10{str(int(exponent)).translate(sup)}×"
+
+
+def scale_ratios(n: int) -> str:
+    """docs/img/scale.json at one n: reimpl's case time, cycle and peak RSS over each pydrake's."""
+    ours = _scale_run("reimpl", n)
+    others = [r for r in _json(SCALE)["runs"] if r["n"] == n and r["label"] != "reimpl"]
+
+    def ratios(key: str) -> str:
+        return " and ".join(_factor(value(ours, key) / value(r, key)) for r in others)
+
+    def value(run: dict[str, Any], key: str) -> float:
+        return float(sum(run["seconds"].values()) if key == "case" else run[key])
+
+    names = " and ".join(r["label"] for r in others)
+    return (
+        f"At n = {n:,} the case takes reimpl {ratios('case')} the time of {names} (in that order), "
+        f"a transient cycle {ratios('cycle_ms')}, and peak RSS {ratios('peak_rss_mb')}. "
+        f"All three agree on |C| ({ours['candidates']:,}) and on how many of the 10,000 "
+        f"random pairs are filtered ({ours['filtered']:,})."
+    )
+
+
+def scale_import_rss() -> str:
+    """docs/img/scale.json: the RSS of each implementation's import alone, as a range."""
+    per: dict[str, list[float]] = {}
+    for run in _json(SCALE)["runs"]:
+        per.setdefault("reimpl" if run["label"] == "reimpl" else "pydrake", []).append(
+            run["import_rss_mb"]
+        )
+    low, high = (f"{min(per['pydrake']):.0f}", f"{max(per['pydrake']):.0f}")
+    span = low if low == high else f"{low}–{high}"
+    return f"pydrake's import alone is {span} MB, reimpl's {max(per['reimpl']):.0f} MB"
+
+
+def scale_split(n: int) -> str:
+    """docs/img/scale.json: reimpl's registration and candidate stages against its whole case."""
+    run = _scale_run("reimpl", n)
+    seconds = run["seconds"]
+    return (
+        f"at n = {n:,}, registration takes {_seconds(seconds['register'])} and the "
+        f"{run['candidates']:,} candidate pairs {_seconds(seconds['candidate count'])} of "
+        f"the case's {_seconds(sum(seconds.values()))}."
+    )
+
+
+def scale_stage(label: str, n: int, stage: str) -> str:
+    """docs/img/scale.json: one stage's seconds of one run, e.g. reimpl's ``register``."""
+    return _seconds(_scale_run(label, n)["seconds"][stage])
+
+
+def _report(name: str) -> Any:
+    return _json(REPORTS / name)
+
+
+def _us(value: float) -> str:
+    return f"{value:.3g}" if value < 1000 else f"{value:,.0f}"
+
+
+def bench_calls_table() -> str:
+    """docs/reports/bench_calls.json (benchmarks/bench_calls.py): µs per call and the ratio."""
+    data = _report("bench_calls.json")
+    lines = [_row(["n", "operation", "reimpl", "pydrake", "ratio"]), _row(["---"] * 5)]
+    lines += [
+        _row(
+            [
+                row["n"],
+                row["operation"],
+                _us(row["reimpl_us"]),
+                _us(row["pydrake_us"]),
+                f"{row['reimpl_us'] / row['pydrake_us']:.2f}",
+            ]
+        )
+        for row in data["rows"]
+    ]
+    worst = max(row["reimpl_us"] / row["pydrake_us"] for row in data["rows"])
+    head = (
+        f"µs per call against pydrake {data['pydrake']}, the median of {data['repeat']} "
+        f"batches; the largest ratio is {worst:.2f}:"
+    )
+    return head + "\n\n" + "\n".join(lines)
+
+
+def bench_filter_table() -> str:
+    """docs/reports/bench_filter.json (benchmarks/bench_filter.py): median ms and the ratio."""
+    data = _report("bench_filter.json")
+    lines = [_row(["n", "operation", "reimpl ms", "pydrake ms", "ratio"]), _row(["---"] * 5)]
+    lines += [
+        _row(
+            [
+                f"{row['n']:,}",
+                row["operation"],
+                _us(row["reimpl_ms"]),
+                _us(row["pydrake_ms"]),
+                f"{row['reimpl_ms'] / row['pydrake_ms']:.3g}",
+            ]
+        )
+        for row in data["rows"]
+    ]
+    return f"Against pydrake {data['pydrake']}:\n\n" + "\n".join(lines)
+
+
+def bench_queries_table(*names: str) -> str:
+    """docs/reports/bench_queries*.json (benchmarks/bench_queries.py): reimpl/pydrake ratios."""
+    reports = [_report(name) for name in names]
+    hows = ("same poses", "new poses")
+    columns = [f"{r['scene'].split(',')[0].split(' (')[0]}: {how}" for r in reports for how in hows]
+    lines = [_row(["query", *columns]), _row(["---"] * (len(columns) + 1))]
+    for index, row in enumerate(reports[0]["rows"]):
+        cells = [
+            f"{r['rows'][index][how]['reimpl_ms'] / r['rows'][index][how]['pydrake_ms']:.2g}×"
+            for r in reports
+            for how in hows
+        ]
+        lines.append(_row([row["query"], *cells]))
+    scenes = "; ".join(
+        f"{r['scene']}: n = {r['n']:,}, cube side {r['side']:g}, pydrake {r['pydrake']}, "
+        f"{r['rows'][0]['answers']['pydrake']:,} penetrating pairs"
+        for r in reports
+    )
+    return f"reimpl / pydrake, medians ({scenes}):\n\n" + "\n".join(lines)
+
+
+def bench_fuzz_table() -> str:
+    """docs/reports/bench_fuzz.json (benchmarks/bench_fuzz.py): one row per band of sizes."""
+    data = _report("bench_fuzz.json")
+    head = [
+        "geometries",
+        "steps/s",
+        "bound",
+        "in backends",
+        "reimpl µs/step",
+        "pydrake µs/step",
+        "reimpl / pydrake",
+        "overhead ratio",
+        "at end",
+    ]
+    lines = [_row(head), _row(["---"] * len(head))]
+    for row in data["rows"]:
+        lines.append(
+            _row(
+                [
+                    row["band"],
+                    f"{row['steps_per_s']:,.0f}",
+                    f"{row['bound_steps_per_s']:,.0f}",
+                    f"{row['in_backends']:.0%}",
+                    f"{row['backend_us_per_step']:,.0f}",
+                    f"{row['reference_us_per_step']:,.0f}",
+                    f"{row['backend_us_per_step'] / row['reference_us_per_step']:.2f}",
+                    f"{row['overhead_ratio']:.2f}",
+                    f"{row['final_geometries']:.1f}",
+                ]
+            )
+        )
+    rows = data["rows"]
+    cheaper = sum(row["backend_us_per_step"] < row["reference_us_per_step"] for row in rows)
+    ceiling = max(row["bound_steps_per_s"] / row["steps_per_s"] for row in rows)
+    return (
+        f"Against pydrake {data['pydrake']}, seed {data['seed']}, {data['examples']} examples, "
+        f"{data['repeat']} run(s) per band (Hypothesis alone, a state machine of two no-op "
+        f"rules: {data['hypothesis_steps_per_s']:,.0f} steps/s in the same run):"
+        "\n\n" + "\n".join(lines) + "\n\n"
+        f"reimpl takes less time per step than pydrake in {cheaper} of {len(rows)} bands; "
+        f"if reimpl took no time at all, steps/s would rise by at most {ceiling:.2f}×."
+    )
+
+
+def fuzz_report(name: str) -> dict[str, Any]:
+    """A committed ``fuzz --json`` report below docs/reports/."""
+    return dict(_report(name))
+
+
+def feature_counts(feature: str, *names: str) -> str:
+    """How often ``fuzz --json`` reports reached one feature (``35, 26 and 58 times at ...``)."""
+    reports = [fuzz_report(name) for name in names]
+    counts = _and([f"{r['coverage']['features'][feature]:,}" for r in reports])
+    seeds = _and([str(r["seed"]) for r in reports])
+    return f"{counts} times at seed{'s' if len(reports) > 1 else ''} {seeds}"
+
+
+def _and(items: list[str]) -> str:
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def fuzz_features_sentence(*names: str) -> str:
+    """``fuzz --json`` reports of one campaign at several seeds: features reached, steps."""
+    reports = [fuzz_report(name) for name in names]
+    parts = []
+    for r in reports:
+        coverage = r["coverage"]
+        expected = coverage["expected"]
+        reached = len(expected) - len(coverage["gaps"])
+        parts.append(
+            f"all {reached}" if reached == len(expected) else f"{reached} of {len(expected)}"
+        )
+    least = min(
+        min(r["coverage"]["features"][f] for f in r["coverage"]["expected"]) for r in reports
+    )
+    seeds = _and([str(r["seed"]) for r in reports])
+    examples = _and(sorted({f"{r['examples']:,}" for r in reports}))
+    what = parts[0] if len(set(parts)) == 1 else _and(parts)
+    steps = _and([f"{r['steps']:,}" for r in reports])
+    divergences = sum(r["divergences"] for r in reports)
+    return (
+        f"at seed{'s' if len(reports) > 1 else ''} {seeds}, {examples} examples reach {what} "
+        f"features of the campaign, each at least {least:,} time{'s' if least != 1 else ''} "
+        f"({steps} steps), with {divergences} divergence{'s' if divergences != 1 else ''}"
+    )
+
+
+def mutant_count(*modules: str) -> int:
+    """How many mutants these modules of conformance/_testing list (``mutants_state`` ...)."""
+    total = 0
+    for module in modules:
+        loaded = importlib.import_module(f"conformance._testing.{module}")
+        (name,) = (name for name in loaded.__all__ if name.endswith("MUTANTS"))
+        total += len(getattr(loaded, name))
+    return total
+
+
+def module_constant(module: str, name: str) -> str:
+    """A constant of a module of this repository (e.g. a mutant's word width), as text."""
+    return str(getattr(importlib.import_module(module), name))
+
+
+def coverage_features_text() -> str:
+    """What conformance/_fuzz/coverage.py counts as a feature, with its thresholds."""
+    coverage = importlib.import_module("conformance._fuzz.coverage")
+    crowd, stack, stretch = coverage._CROWD, coverage._STACK, coverage._STRETCH
+    return (
+        "The features are the largest count of proximity geometries at a location (and "
+        f"growth past {crowd} during a sequence), {stack} or more active transient "
+        f"declarations, out-of-order removals (also from a stack of {stack}), clones of "
+        "contexts with history, then edited on both sides, model edits after contexts exist, "
+        f"edits in clones and in their origins, stretches of {stretch} model and context "
+        "edits without history, filter edits after roles were removed and re-assigned by "
+        "frame, each op at each kind of location (model, context, clone), and each kind of "
+        "error."
+    )
+
+
+def model_mutant_count(prefix: str) -> int:
+    """How many model mutants (conformance/_testing/model_mutants.py) have names so starting."""
+    loaded = importlib.import_module("conformance._testing.model_mutants")
+    return sum(name.startswith(prefix) for name in loaded.MODEL_MUTANTS)
+
+
+def bisect_summary(name: str) -> str:
+    """A committed ``bisect`` output (docs/reports/): how many releases it tested, its answer."""
+    lines = (REPORTS / name).read_text(encoding="utf-8").splitlines()
+    (head,) = (line for line in lines if line.startswith("first release that differs"))
+    answer, tested = head.split("; ")
+    first_step = next(line.strip() for line in lines if line.strip().startswith("at "))
+    return (
+        f"tests {tested.removesuffix(' tested')} and prints `{answer}` with the first "
+        f"difference (`{first_step}`)"
+    )
+
+
+def bench_matrix_summary() -> str:
+    """docs/reports/bench_matrix.json (benchmarks/bench_matrix.py): matrix time, worker cost."""
+    data = _report("bench_matrix.json")
+    matrix, overhead = data["matrix"], data["overhead"]
+    releases = _and(matrix["releases"])
+    local, worker = overhead["in_process_us_per_step"], overhead["worker_us_per_step"]
+    return (
+        f"the {len(matrix['releases'])} releases {releases} over the corpus "
+        f"({matrix['cases']:,} cases) took {_seconds(matrix['seconds'])} with `--jobs "
+        f"{matrix['jobs']}`; a worker cost {worker:,.0f} µs per step against "
+        f"{local:,.0f} µs for pydrake {overhead['release']} in-process, {worker / local:.2f}× "
+        f"(the matrix {_met(matrix['seconds'] < 120)}, the worker {_met(worker / local < 2)})"
+    )
+
+
+def _met(ok: bool) -> str:
+    return "within its target" if ok else "**over its target**"
+
+
+def legacy_table(name: str) -> str:
+    """docs/reports/bench_legacy.json (benchmarks/bench_legacy.py): one of its three tables."""
+    return "\n".join(_report("bench_legacy.json")["tables"][name])
+
+
+def release_report_folder(folder: str) -> str:
+    """docs/releases/report.json restricted to one corpus folder: outcome counts, and crashes
+    that a known divergence expects (``expected_by``) apart from those none does."""
+    report = _json(RELEASE_REPORT)
+    cases = {name: row for name, row in report["cases"].items() if name.startswith(folder + "/")}
+    outcomes: Counter[str] = Counter()
+    for name, row in cases.items():
+        for version, outcome in row.items():
+            detail = report["details"].get(name, {}).get(version, {})
+            expected = outcome == "crash" and detail.get("expected_by")
+            outcomes["expected crash" if expected else outcome] += 1
+    counts = ", ".join(f"{count:,} {outcome}" for outcome, count in sorted(outcomes.items()))
+    return f"its {len(cases)} cases on {len(report['versions'])} releases: {counts}"
+
+
+def finding_steps(name: str, indent: str = "") -> str:
+    """A committed fuzz finding (a scenario file in docs/reports/): its step count, then each
+    step as compact JSON, one list item a step, and the disagreement its comment records."""
+    scenario = _report(name)
+    (case,) = scenario["cases"]
+    steps = case["steps"]
+    items = [
+        f"{indent}{number}. `{json.dumps(step, separators=(', ', ': '))}`"
+        for number, step in enumerate(steps, 1)
+    ]
+    disagreement = scenario["comment"].split("The disagreement: ", 1)[-1]
+    return (
+        f"{len(steps)} steps:\n\n"
+        + "\n".join(items)
+        + f"\n\n{indent}The disagreement (the reference is pydrake): `{disagreement}`"
+    )

@@ -124,6 +124,10 @@ def test_the_table_lists_a_feature_never_reached_as_a_gap() -> None:
         "apply@model": 2,
         "apply@clone": 0,
     }
+    assert coverage.to_json(["apply@model", "apply@clone"])["expected"] == [
+        "apply@model",
+        "apply@clone",
+    ]
 
 
 @pytest.mark.fuzz

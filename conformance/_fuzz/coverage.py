@@ -463,6 +463,7 @@ class Coverage:
         expected = list(expected)
         return {
             "features": dict(self.rows(expected)),
+            "expected": expected,
             "gaps": self.gaps(expected),
             "max_proximity_geometries": self.max_proximity,
             "max_active_transients": self.max_transients,
