@@ -99,7 +99,7 @@ _GAPS_LEFT = pytest.mark.xfail(
 @pytest.mark.parametrize(
     "mode",
     [
-        pytest.param((), id="default", marks=_GAPS_LEFT),
+        pytest.param((), id="default"),
         pytest.param(("--poses",), id="poses", marks=_GAPS_LEFT),
         pytest.param(("--models",), id="models"),
     ],
