@@ -84,13 +84,6 @@ def test_fuzz_models_coverage_has_one_reachable_pair(tmp_path: Path) -> None:
     assert "\nreimpl branches: " in text
 
 
-#: Measured at seed 1 x 300 (reimpl against pydrake 1.51.1): the default campaign leaves 6
-#: pairs unreached and the posed one 1, each next to a context maker (issue 30 is open).
-_GAPS_LEFT = pytest.mark.xfail(
-    strict=True, reason="pairs next to create_context/clone_context are left unreached"
-)
-
-
 @pytest.mark.fuzz
 @pytest.mark.skipif(
     load_backend("pydrake").version() != load_backend("reimpl").version(),
@@ -100,7 +93,7 @@ _GAPS_LEFT = pytest.mark.xfail(
     "mode",
     [
         pytest.param((), id="default"),
-        pytest.param(("--poses",), id="poses", marks=_GAPS_LEFT),
+        pytest.param(("--poses",), id="poses"),
         pytest.param(("--models",), id="models"),
     ],
 )
