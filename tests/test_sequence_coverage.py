@@ -19,7 +19,7 @@ from conformance._fuzz.sequence_coverage import (
     expected_pairs,
     sequence_events,
 )
-from conformance._fuzz.sequence_tour import TOUR, guided, tour
+from conformance._fuzz.sequence_tour import TOUR, guided, tour, tours
 from conformance.protocol import Command
 
 _EXCLUDE_G1_G2 = {"exclude_between": [{"geometries": ["g1"]}, {"geometries": ["g2"]}]}
@@ -120,6 +120,22 @@ def test_the_tour_holds_every_ordered_pair_once_as_consecutive_entries() -> None
     pairs = Counter(itertools.pairwise(circuit))
     assert set(pairs) == {(a, b) for a in events for b in events}
     assert set(pairs.values()) == {1}
+
+
+def test_the_two_tours_hold_every_ordered_pair_once_the_making_one_those_with_a_maker() -> None:
+    events = tuple(sequence_events(["apply", "create_context", "clone_context", "remove_role"]))
+    making, plain = tours(events)
+    makers = {"create_context@model", "clone_context@context", "clone_context@clone"}
+    for circuit in (making, plain):
+        assert circuit[0] == circuit[-1]
+    pairs = Counter(itertools.pairwise(making)) + Counter(itertools.pairwise(plain))
+    assert set(pairs) == {(a, b) for a in events for b in events}
+    assert set(pairs.values()) == {1}
+    assert set(itertools.pairwise(making)) == {
+        (a, b) for a in events for b in events if {a, b} & makers
+    }
+    assert len(making) == 3 * 9 + 6 * 3 + 1  # 9 events, 3 of them makers
+    assert len(plain) == 6 * 6 + 1
 
 
 def test_the_table_names_the_pairs_never_reached() -> None:
