@@ -240,11 +240,10 @@ def _first(exc: Exception) -> str:
     return re.sub(r" by [-+.e\d]+, exceeding the threshold [-+.e\d]+\.", ".", text)
 
 
-def _scene_lines(seed: int, scenes: int) -> Iterator[dict[str, Any]]:
+def _scene_lines(seed: int, scenes: int, start: int = 0) -> Iterator[dict[str, Any]]:
     """Each scene's line from child processes; a scene whose process died gives
     ``{"aborted": i, "side": ..., "phase": ..., "message": ...}`` (the side and phase the
     child last announced, FCL's original error message from its stderr, else its last line)."""
-    start = 0
     while start < scenes:
         stop = min(start + CHUNK, scenes)
         child = subprocess.run(
