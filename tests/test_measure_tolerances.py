@@ -23,7 +23,8 @@ pytest.importorskip("pydrake")
 def _script() -> ModuleType:
     path = ROOT / "benchmarks" / "measure_tolerances.py"
     spec = importlib.util.spec_from_file_location("measure_tolerances", path)
-    assert spec is not None and spec.loader is not None
+    assert spec is not None
+    assert spec.loader is not None
     module = importlib.util.module_from_spec(spec)
     sys.modules[spec.name] = module
     spec.loader.exec_module(module)
@@ -50,4 +51,5 @@ def test_an_fcl_abort_in_reimpl_loses_one_scene_not_the_run() -> None:
     assert aborted["message"].startswith(
         "validateNearestFeatureOfPolytopeBeingEdge(): The origin is outside of the polytope."
     )
-    assert "pydrake" in lines[1] and "reimpl" in lines[1]
+    assert "pydrake" in lines[1]
+    assert "reimpl" in lines[1]
