@@ -27,9 +27,9 @@ capsule along a cylinder at ``|d| = 1e-11``), nor is the normal (pydrake
 Poses (``x_wg``, ``x_wf``) are products of transforms, compared within
 ``POSE_TOLERANCE`` per entry of ``xyz`` and of the rotation matrix.
 
-The values come from measurement: docs/queries.md has the table, with the
-largest differences seen between reimpl and pydrake 1.51.1 on random and
-near-touching posed pairs, and between pydrake releases on the corpus.
+The values come from measurement: docs/queries.md renders the table, and the
+largest differences between reimpl and pydrake on near-touching posed pairs from
+docs/reports/tolerances.json (``benchmarks/measure_tolerances.py``).
 """
 
 from __future__ import annotations

@@ -10,7 +10,8 @@ come from its ``conformance`` (corpus, mutants), not from another installed copy
 
 Measured numbers come from reports under docs/reports/, each written by one command (the
 page that quotes it names the command): ``benchmarks/bench_{calls,filter,queries,fuzz,
-matrix,legacy}.py --json FILE``, ``python -m conformance fuzz ... --json FILE`` (a
+matrix,legacy}.py --json FILE``, ``benchmarks/measure_{tolerances,mesh_script}.py --json
+FILE`` (reimpl's numbers against pydrake's), ``python -m conformance fuzz ... --json FILE`` (a
 campaign's statistics and coverage), a fuzz finding file (a shrunk example), and
 ``python -m conformance bisect ...``'s stdout. To refresh one, run its command again,
 then ``cog -r``. A timing the docs would quote from nowhere else is left out of the text.
@@ -46,6 +47,7 @@ __all__ = [
     "fuzz_features_sentence",
     "fuzz_report",
     "legacy_table",
+    "mesh_script_differences",
     "model_mutant_count",
     "model_report_summary",
     "module_constant",
@@ -60,6 +62,9 @@ __all__ = [
     "scale_split",
     "scale_stage",
     "scale_table",
+    "tolerance_rows_table",
+    "tolerance_study_summary",
+    "tolerance_study_table",
 ]
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -532,4 +537,112 @@ def finding_steps(name: str, indent: str = "") -> str:
         f"{len(steps)} steps:\n\n"
         + "\n".join(items)
         + f"\n\n{indent}The disagreement (the reference is pydrake): `{disagreement}`"
+    )
+
+
+def _sci(value: float) -> str:
+    return "0" if value == 0 else f"{value:.1e}"
+
+
+def tolerance_study_table() -> str:
+    """docs/reports/tolerances.json (benchmarks/measure_tolerances.py): one row per shape
+    pair, the largest differences reimpl-pydrake and the counts outside the tolerances."""
+    data = _report("tolerances.json")
+    far = f"{data['far']:g}"
+    head = [
+        "shape pair",
+        "scenes",
+        "records",
+        "max \\|Δd\\|",
+        f"max ‖Δp‖, \\|d\\| ≥ {far}",
+        "max ‖Δp‖, any d",
+        f"max ‖Δ(d·n)‖, \\|d\\| ≥ {far}",
+        "outside (d / p / d·n)",
+        "missed the gap",
+        "HasCollisions differs",
+        "raised",
+        "aborted",
+    ]
+    lines = [_row(head), _row(["---", *["---:"] * (len(head) - 1)])]
+    for pair, row in data["pairs"].items():
+        outside = "/".join(str(row[f"outside_{k}"]) for k in ("distance", "witness", "normal"))
+        lines.append(
+            _row(
+                [
+                    pair,
+                    f"{row['scenes']:,}",
+                    f"{row['records']:,}",
+                    _sci(row["max_dd"]),
+                    _sci(row["max_dp_far"]),
+                    _sci(row["max_dp"]),
+                    _sci(row["max_dn_far"]),
+                    f"{row['outside']} ({outside})" if row["outside"] else "0",
+                    f"{row['gap_missed']:,}",
+                    row["has_collisions_disagreements"],
+                    row["raised"],
+                    row["aborted"],
+                ]
+            )
+        )
+    return "\n".join(lines)
+
+
+def tolerance_study_summary() -> str:
+    """docs/reports/tolerances.json: the study's size, its command and its totals."""
+    data = _report("tolerances.json")
+    rows = data["pairs"].values()
+    total = {key: sum(row[key] for row in rows) for key in next(iter(rows))}
+    low, high = data["gap_range"]
+    errors = "".join(f"\n- {count:,} × {message}" for message, count in data["errors"].items())
+    return (
+        f"`{data['command']} --json docs/reports/tolerances.json` on pydrake "
+        f"{data['pydrake']}: {total['scenes']:,} scenes measured, gaps ±[{low:g}, {high:g}], "
+        f"{total['records']:,} records; {total['outside']:,} records with a number outside "
+        f"the tolerances, {total['has_collisions_disagreements']:,} `HasCollisions` "
+        f"disagreements, {total['penetration_set_disagreements']:,} records one side "
+        f"reports and the other does not; on {total['gap_missed']:,} scenes pydrake's signed "
+        f"distance missed the gap by more than {data['gap_miss']:g} m. "
+        f"{total['raised']:,} scenes raised an error and {total['aborted']:,} ended their "
+        f"process (side, phase, FCL's message):\n{errors or ' none'}"
+    )
+
+
+def tolerance_rows_table() -> str:
+    """conformance/_tolerances.py: each row's values and the unordered shape pairs it
+    covers (a mesh and a convex hull written as one, ``mesh/convex``)."""
+    module = importlib.import_module("conformance._tolerances")
+    names = ("CLOSED", "ITERATIVE", "HULL", "HULL_HALFSPACE")
+    rows = {id(getattr(module, name)): name for name in names}
+    order = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "halfspace", "mesh/convex")
+    pairs: dict[str, set[tuple[str, ...]]] = {name: set() for name in names}
+    for pair, row in module.TOLERANCES.items():
+        shapes = sorted(
+            {"mesh/convex" if s in ("mesh", "convex") else s for s in pair},
+            key=lambda s: order.index(s) if s in order else len(order),
+        )
+        pairs[rows[id(row)]].add(tuple(shapes))
+    head = ["row", "shape pairs", "distance", "witness", "normal", "touching"]
+    lines = [_row(head), _row(["---"] * len(head))]
+    for name in names:
+        row = getattr(module, name)
+        covered = sorted(
+            pairs[name],
+            key=lambda p: [order.index(s) if s in order else len(order) for s in p],
+        )
+        text = ", ".join("–".join(p) if len(p) > 1 else f"{p[0]}–{p[0]}" for p in covered)
+        values = (row.distance, row.witness, row.normal, row.touching)
+        lines.append(_row([f"`{name}`", text, *(f"{v:g}" for v in values)]))
+    return "\n".join(lines)
+
+
+def mesh_script_differences() -> str:
+    """docs/reports/mesh_script.json (benchmarks/measure_mesh_script.py): the largest
+    differences of examples/mesh_robot_queries.py's numbers, reimpl against pydrake."""
+    data = _report("mesh_script.json")
+    largest = list(data["largest"].items())
+    named = [f"{value:.3g} ({kind.replace('-', '–')})" for kind, value in largest[:2]]
+    rest = max((value for _, value in largest[2:]), default=0.0)
+    return (
+        f"{data['lines']} lines; reimpl's numbers differ from pydrake {data['pydrake']}'s "
+        f"by at most {', '.join(named)} and ≤ {rest:.2g} elsewhere"
     )
