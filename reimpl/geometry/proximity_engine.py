@@ -53,7 +53,7 @@ from reimpl.geometry.proximity.narrowphase import (
     point_signed_distance,
 )
 from reimpl.geometry.proximity.sphere_sphere import sphere_sphere
-from reimpl.geometry.proximity.tight_aabb import overlapping_pairs
+from reimpl.geometry.proximity.tight_aabb import local_box, overlapping_pairs
 from reimpl.geometry.proximity.transforms import EPS, Array, Pose, Vec, compose_poses
 from reimpl.geometry.shape import Box, Capsule, Cylinder, Ellipsoid, HalfSpace, Shape, Sphere
 
@@ -587,9 +587,12 @@ class ProximityEngine:
 
     def _tight_boxes(self, met: list[_Met]) -> list[_Met]:
         """The met pairs under Drake 1.58's boxes (``proximity.tight_aabb``)."""
-        kinds = [(body.kind, body.m) for body in self._bodies]
+        boxes = [
+            local_box(body.kind, body.m, None if body.hull is None else body.hull.vertices)
+            for body in self._bodies
+        ]
         dynamic = [body.dynamic for body in self._bodies]
-        return overlapping_pairs(met, kinds, dynamic, self._R_WG, self._p_WG)
+        return overlapping_pairs(met, boxes, dynamic, self._R_WG, self._p_WG)
 
     def distance_pairs(self, max_distance: float) -> list[_Met]:
         """Pairs FCL's distance traversal visits when it prunes at ``max(max_distance, ε/10)``
