@@ -646,3 +646,26 @@ def mesh_script_differences() -> str:
         f"{data['lines']} lines; reimpl's numbers differ from pydrake {data['pydrake']}'s "
         f"by at most {', '.join(named)} and ≤ {rest:.2g} elsewhere"
     )
+
+
+def guidance_table() -> str:
+    """What coverage guidance bought a campaign: ``docs/reports/guidance.json``, written by
+    ``python benchmarks/bench_guidance.py --examples 100 --seeds 1 --json ...``."""
+    report = _json(ROOT / "docs" / "reports" / "guidance.json")
+    names = {
+        "plain": "plain (`fuzz`)",
+        "target": "`hypothesis.target` on new branches",
+        "tour": "`sequence_tour`",
+        "both": "both (`fuzz --coverage`)",
+    }
+    lines = [
+        "| arm | seed × examples | steps | reimpl branches run | sequence pairs reached |",
+        "|---|---:|---:|---:|---:|",
+    ]
+    for row in report["rows"]:
+        lines.append(
+            f"| {names[row['arm']]} | {row['seed']} × {row['examples']} | {row['steps']:,} "
+            f"| {row['covered_branches']} of {row['branches']} "
+            f"| {row['pairs_reached']} of {row['pairs']} |"
+        )
+    return "\n".join(lines)
