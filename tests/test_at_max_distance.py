@@ -56,7 +56,7 @@ def test_only_a_pairwise_query_with_a_finite_max_distance_qualifies() -> None:
     assert not differs_only_at_max_distance(_at(PHI), Result([AB]), error)
 
 
-def test_the_last_bits_entry_sets_aside_a_boundary_pair_for_any_backend_on_1_51_and_1_58() -> None:
+def test_the_last_bits_entry_sets_aside_reimpls_boundary_pair_on_1_51_and_1_58() -> None:
     entry = divergence("sphere-distance-last-bits")
     assert entry.kind == "reimpl_vs_drake"
     assert entry.xfail is not None
@@ -75,3 +75,17 @@ def test_the_last_bits_entry_sets_aside_a_boundary_pair_for_any_backend_on_1_51_
         blamed=BackendId("reimpl", "1.51.1"),
         release="1.51.1",
     )
+
+
+def test_the_boundary_entries_set_aside_reimpls_answers_only_not_a_mutants() -> None:
+    """A mutant that is one ulp wide or strict at max_distance differs exactly at the
+    boundary; the entries excuse reimpl's arithmetic and tree, so a mutant stays a finding
+    (the mutant proofs pairwise_one_ulp_wide and pairwise_strict_at_max_distance)."""
+    for name in ("sphere-distance-last-bits", "pairwise-prunes-ties-at-max-distance"):
+        entry = divergence(name)
+        assert entry.xfail is not None
+        args = (_at(PHI), Result([AB]), Result([]))
+        reimpl = BackendId("reimpl", "1.51.1")
+        mutant = BackendId("mutant:pairwise_one_ulp_wide", "1.51.1")
+        assert entry.xfail.matches_step(*args, blamed=reimpl, release="1.51.1")
+        assert not entry.xfail.matches_step(*args, blamed=mutant, release="1.51.1")
