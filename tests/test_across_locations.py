@@ -46,10 +46,8 @@ EVERYTHING = _Fixed(
 )
 
 
-def _recorder(*, posed: bool = False) -> Recorder:
-    """pydrake with frames fa, fb; proximity spheres a on fa, b and c on fb (names no
-    ``fresh`` name can take)."""
-    recorder = Recorder(backend=PYDRAKE, queries=posed, special=False)
+def _register_scene(recorder: Recorder) -> None:
+    """Frames fa, fb; proximity spheres a on fa, b and c on fb, kept under their names."""
     recorder.keep("sources", "source")
     recorder.keep("frames", "world")
     for frame in ("fa", "fb"):
@@ -58,6 +56,13 @@ def _recorder(*, posed: bool = False) -> Recorder:
     for name, frame in (("a", "fa"), ("b", "fb"), ("c", "fb")):
         recorder.step("register_geometry", name=name, frame=frame, roles=["proximity"])
         recorder.keep("geometries", name)
+
+
+def _recorder(*, posed: bool = False) -> Recorder:
+    """pydrake with frames fa, fb; proximity spheres a on fa, b and c on fb (names no
+    ``fresh`` name can take)."""
+    recorder = Recorder(backend=PYDRAKE, queries=posed, special=False)
+    _register_scene(recorder)
     return recorder
 
 
@@ -183,14 +188,7 @@ class _Answers(Recorder):
 def _answering(poses: dict[str, Any] | None = None) -> _Answers:
     """``_recorder(posed=True)``'s scene on an ``_Answers``, fa posed as given."""
     recorder = _Answers()
-    recorder.keep("sources", "source")
-    recorder.keep("frames", "world")
-    for frame in ("fa", "fb"):
-        recorder.step("register_frame", name=frame)
-        recorder.keep("frames", frame)
-    for name, frame in (("a", "fa"), ("b", "fb"), ("c", "fb")):
-        recorder.step("register_geometry", name=name, frame=frame, roles=["proximity"])
-        recorder.keep("geometries", name)
+    _register_scene(recorder)
     if poses:
         recorder.step("set_poses", poses=poses)
     return recorder
