@@ -24,10 +24,17 @@ import pytest
 
 from conformance._backends import exec_backend
 from conformance._backends.calls import StepTimeoutError
-from conformance._backends.exec_backend import ExecBackend, ExecSpecError, exec_spec_command
+from conformance._backends.exec_backend import (
+    CORPUS_PLACEHOLDER,
+    ExecBackend,
+    ExecSpecError,
+    exec_spec_command,
+    portable,
+)
 from conformance._backends.loader import BackendLoadError, load_backend
 from conformance._backends.wire import CALLS, PROTOCOL_VERSION
 from conformance._corpus.loader import default_corpus_root, load_corpus, load_file
+from conformance._corpus_root import corpus_root
 from conformance._engine import Outcome
 from conformance._fuzz import operations
 from conformance._fuzz.lockstep import _supported
@@ -457,3 +464,15 @@ def test_a_process_that_never_answers_hello_times_out_saying_how_long_it_waited(
     assert str(raised.value) == (
         "backend 'exec:sleep 60' at hello: no answer within 1 s (a new process's hello)"
     )
+
+
+def test_a_quoted_stderr_writes_the_corpus_folder_as_a_placeholder() -> None:
+    """A worker's stderr names model files by absolute path; a report quotes it the same
+    from any checkout (measured: Drake 1.41.0's PackageMap warning named the matrix's checkout)."""
+    root = corpus_root()
+    said = f"WARNING:drake:ignoring '{root}/real_models/a/' vs '{root}/real_models/b/'"
+    assert portable(said) == (
+        f"WARNING:drake:ignoring '{CORPUS_PLACEHOLDER}/real_models/a/' vs "
+        f"'{CORPUS_PLACEHOLDER}/real_models/b/'"
+    )
+    assert portable("/elsewhere/model.sdf") == "/elsewhere/model.sdf"

@@ -54,19 +54,38 @@ from conformance._backends.calls import (
     StepTimeoutError,
 )
 from conformance._backends.wire import PROTOCOL_VERSION, hello_request
+from conformance._corpus_root import corpus_root
 from conformance.protocol import Command, Observation, Result, UnknownNameError
 
 __all__ = [
+    "CORPUS_PLACEHOLDER",
     "EXEC_PREFIX",
     "STARTUP_SECONDS",
     "ExecBackend",
     "ExecSpecError",
     "exec_spec_command",
+    "portable",
 ]
 
 EXEC_PREFIX = "exec:"
 #: Lines of the process's stderr quoted when it dies.
 _STDERR_TAIL = 8
+
+#: What stands for the corpus's folder in a quoted stderr (``portable``).
+CORPUS_PLACEHOLDER = "<corpus>"
+
+
+def portable(text: str) -> str:
+    """``text`` with the corpus's folder (``corpus_root``) written as ``CORPUS_PLACEHOLDER``:
+    a worker's stderr quotes the model files it read by absolute path, and a report
+    that keeps it must read the same from any checkout or install."""
+    try:
+        root = str(corpus_root())
+    except FileNotFoundError:
+        return text
+    return text.replace(root, CORPUS_PLACEHOLDER)
+
+
 #: Seconds a new process may take for its ``hello`` (a Python worker imports pydrake first).
 STARTUP_SECONDS = 120.0
 #: Characters of a bad line quoted in an error.
@@ -231,7 +250,7 @@ class ExecBackend:
             return ""
         self._stderr.seek(0)
         lines = self._stderr.read().strip().splitlines()[-_STDERR_TAIL:]
-        return "\n".join(lines)
+        return portable("\n".join(lines))
 
     def _crash(self, process: subprocess.Popen[bytes], call: str) -> BackendCrashError:
         """The error for a process that died; the process is discarded."""
