@@ -134,3 +134,29 @@ def test_ctrl_c_during_shrinking_keeps_the_finding(tmp_path: Path) -> None:
     assert "interrupted" in out
     (path,) = tmp_path.glob("*.json")
     load_file(path, root=tmp_path)
+
+
+def test_what_drake_logs_during_a_campaign_is_shown_only_with_verbose(tmp_path: Path) -> None:
+    """At seed 1 the fifth example assigns the illustration role in a context, and pydrake
+    1.51.1 logs its one-time warning (its own process: Drake logs it once per process)."""
+    warning = (
+        "WARNING:drake:Updating illustration role properties must be done before visualizer "
+        "initialization to have an effect."
+    )
+
+    def run(*extra: str) -> subprocess.CompletedProcess[str]:
+        argv = ["fuzz", "--seed", "1", "--max-examples", "5", "-q", "--out", str(tmp_path)]
+        return subprocess.run(
+            [sys.executable, "-m", "conformance", *argv, *extra],
+            capture_output=True,
+            text=True,
+            cwd=tmp_path,
+            check=False,
+        )
+
+    quiet, verbose = run(), run("-v")
+    assert quiet.returncode == verbose.returncode == EXIT_OK, quiet.stderr + verbose.stderr
+    assert "WARNING:drake" not in quiet.stderr + quiet.stdout
+    lines = verbose.stderr.splitlines()
+    assert "fuzz: Drake logged 1 warning line(s), 1 distinct" in lines
+    assert any(line.startswith(f"  1 x {warning}") for line in lines)

@@ -44,6 +44,7 @@ import json
 import signal
 import threading
 import time
+from collections import Counter
 from collections.abc import Iterator
 from contextlib import contextmanager, nullcontext
 from pathlib import Path
@@ -68,6 +69,7 @@ from conformance._fuzz.sequence_coverage import expected_pairs
 from conformance._fuzz.sequence_tour import guided
 from conformance._fuzz.stats import FuzzStats, interrupt_requested
 from conformance._grammar import GRAMMAR
+from conformance._run.drake_log import drake_log_of_case
 from conformance._run.outputs import unwritable, unwritable_dir, write_or_fall_back
 from conformance.cli.exit_codes import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from conformance.cli.options import refuse
@@ -152,6 +154,15 @@ def _broken(exc: HarnessError, args: argparse.Namespace, out: TextIO, err: TextI
             f"  replay:     {replay_command(PROG, path, args.backend, args.against)}\n"
         )
     return EXIT_USAGE
+
+
+def _drake_log(lines: list[str], err: TextIO) -> None:
+    """``-v``: each distinct line Drake (or reimpl) logged during the campaign, with its count
+    (without ``-v`` they are kept from stderr: a campaign that passes says nothing of them)."""
+    counts = Counter(lines)
+    err.write(f"fuzz: Drake logged {len(lines)} warning line(s), {len(counts)} distinct\n")
+    for line, count in counts.most_common():
+        err.write(f"  {count} x {line}\n")
 
 
 def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
@@ -364,7 +375,11 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     prepare_writing()
     watching = progress.watch()
     try:
-        with _interrupts(), branches.measuring() if branches else nullcontext():
+        with (
+            _interrupts(),
+            branches.measuring() if branches else nullcontext(),
+            drake_log_of_case() as logged,
+        ):
             result = campaign.run()
     except HarnessError as exc:
         findings.kept(err)
@@ -379,6 +394,8 @@ def fuzz_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         return EXIT_USAGE
     finally:
         watching.set()
+    if args.verbose:
+        _drake_log(logged, err)
     _summary(result, out, progress)
     _report(args, result, (backend, reference), branches, out=out, err=err)
     return _exit_code(result, findings.written, err)

@@ -189,6 +189,13 @@ def _add_fuzz(commands: Any) -> None:
         timeout="breaks the run",
         quiet="no progress lines",
     )
+    fuzz.add_argument(
+        "-v",
+        "--verbose",
+        action="store_true",
+        help="after the run, what Drake logged during it (WARNING:drake lines, each distinct "
+        "line with its count); otherwise they are not shown",
+    )
 
 
 def main(
