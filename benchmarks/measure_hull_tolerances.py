@@ -301,7 +301,7 @@ def main(argv: list[str]) -> None:
         return
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--scenes", type=int, default=700)
+    parser.add_argument("--scenes", type=int, default=3500)
     parser.add_argument("--json", type=Path)
     args = parser.parse_args(argv)
     report = measure(args.seed, args.scenes)
