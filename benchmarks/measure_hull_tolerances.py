@@ -26,7 +26,9 @@ only ComputePointPairPenetration and HasCollisions are compared.
 The report has the columns of ``measure_tolerances.py``'s (per shape pair: ``records``,
 ``max_dd``, ``max_dp_far``, ``max_dp``, ``max_dn_far``, ``outside``..., ``gap_missed``,
 ``has_collisions_disagreements``, ``penetration_set_disagreements``, ``raised``,
-``aborted``) plus ``equal_dd`` (records whose ``d`` is equal to the bit) and ``hulls`` (how
+``aborted``) plus ``equal_dd`` (records whose ``d`` is equal to the bit), ``max_d_disagreeing`` (the
+largest ``|d|`` of pydrake on a scene where ``HasCollisions`` or a pair set disagrees: its
+signed distance, else minus its depth, else the gap) and ``hulls`` (how
 many scenes each hull file took part in).
 
 Usage: python3 benchmarks/measure_hull_tolerances.py [--seed S] [--scenes N] [--json FILE]
@@ -241,10 +243,23 @@ def _reached(line: dict[str, Any], other: str) -> float | None:
     return -float(records["penetration"][0]) if "penetration" in records else math.inf
 
 
+def _pydrake_d(line: dict[str, Any]) -> float:
+    """pydrake's signed distance at the scene's offset, else minus its penetration depth
+    (a half space), else the scene's gap (a half space beyond contact)."""
+    records = line["pydrake"]["records"]
+    if "pair" in records:
+        return float(records["pair"][0])
+    if "penetration" in records:
+        return -float(records["penetration"][0])
+    return float(line["gap"])
+
+
 def measure(seed: int, scenes: int) -> dict[str, Any]:
     from conformance._tolerances import tolerance  # noqa: PLC0415
 
-    rows = {pair_name(o): {**base._empty(), "equal_dd": 0} for o in OTHERS}
+    rows = {
+        pair_name(o): {**base._empty(), "equal_dd": 0, "max_d_disagreeing": 0.0} for o in OTHERS
+    }
     hulls = {path: 0 for path, _ in HULLS}
     version = None
     errors: dict[str, int] = {}
@@ -273,14 +288,18 @@ def measure(seed: int, scenes: int) -> dict[str, Any]:
         reached = _reached(line, other)
         if reached is not None:
             row["gap_missed"] += not abs(reached - line["gap"]) <= base.GAP_MISS
-        row["has_collisions_disagreements"] += ref["has_collisions"] != new["has_collisions"]
+        disagrees = ref["has_collisions"] != new["has_collisions"]
+        row["has_collisions_disagreements"] += disagrees
         for kind in ("penetration", "pairwise", "pair"):
             present = (kind in ref["records"], kind in new["records"])
             if present[0] != present[1]:
                 row["penetration_set_disagreements"] += 1
+                disagrees = True
             elif present[0]:
                 base._compare(row, ref["records"][kind], new["records"][kind], tol)
                 row["equal_dd"] += ref["records"][kind][0] == new["records"][kind][0]
+        if disagrees:
+            row["max_d_disagreeing"] = max(row["max_d_disagreeing"], abs(_pydrake_d(line)))
     return {
         "command": f"python3 benchmarks/measure_hull_tolerances.py --seed {seed} --scenes {scenes}",
         "pydrake": version,

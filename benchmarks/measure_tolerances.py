@@ -33,7 +33,9 @@ the scene it was on is counted as aborted and a new child continues after it.
 Usage: python3 benchmarks/measure_tolerances.py [--seed S] [--scenes N] [--json FILE]
 
 The committed report is ``docs/reports/tolerances.json``; docs/queries.md renders it
-(``docs/facts.py``: ``tolerance_study_table``).
+(``docs/facts.py``: ``tolerance_study_table``). ``benchmarks/measure_hull_tolerances.py``
+measures a Mesh or Convex (and a half space against it) with this script's scenes, record
+comparison and child processes.
 """
 
 from __future__ import annotations

@@ -643,11 +643,13 @@ def hull_study_outside() -> str:
 
     differ = total([*hull, *halfspace], "has_collisions_disagreements")
     sets = total([*hull, *halfspace], "penetration_set_disagreements")
+    nearest = max(row["max_d_disagreeing"] for row in rows.values())
     return (
         f"Outside the `HULL` row: {outside(hull)}; outside the `HULL_HALFSPACE` row: "
         f"{outside(halfspace)}, {total(halfspace, 'equal_dd'):,} of its depths equal to the "
-        f"bit; {differ:,} `HasCollisions` disagreements, {sets:,} records one side reports "
-        f"and the other does not"
+        f"bit; {differ:,} `HasCollisions` disagreements and {sets:,} records one side "
+        f"reports and the other does not, all on scenes where pydrake's signed distance (or "
+        f"depth) is at most {_sci(nearest)} m from contact"
     )
 
 

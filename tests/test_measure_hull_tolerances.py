@@ -62,6 +62,7 @@ def test_seven_seeded_scenes_measure_a_hull_against_each_other_shape() -> None:
     # distance from a half space to a hull, and the two do not penetrate.
     assert [row["records"] for row in rows] == [3, 2, 2, 3, 2, 3, 0]
     assert all(row["outside"] == row["has_collisions_disagreements"] == 0 for row in rows)
+    assert all(row["max_d_disagreeing"] == 0.0 for row in rows)
     assert sum(report["hulls"].values()) == 8
 
 
