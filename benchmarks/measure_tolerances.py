@@ -33,7 +33,9 @@ the scene it was on is counted as aborted and a new child continues after it.
 Usage: python3 benchmarks/measure_tolerances.py [--seed S] [--scenes N] [--json FILE]
 
 The committed report is ``docs/reports/tolerances.json``; docs/queries.md renders it
-(``docs/facts.py``: ``tolerance_study_table``).
+(``docs/facts.py``: ``tolerance_study_table``). ``benchmarks/measure_hull_tolerances.py``
+measures a Mesh or Convex (and a half space against it) with this script's scenes, record
+comparison and child processes.
 """
 
 from __future__ import annotations
@@ -99,6 +101,7 @@ class Scene:
     def __init__(self, api: Any, spec: dict[str, Any]) -> None:
         g, m = api.geometry, api.math
         self.api = api
+        self.spec = spec
         self.sg = g.SceneGraph()
         source = self.sg.RegisterSource(name="tolerances")
         self.frames, self.ids = [], []
@@ -106,7 +109,7 @@ class Scene:
             frame = self.sg.RegisterFrame(
                 source_id=source, frame=g.GeometryFrame(frame_name=f"f{key}")
             )
-            shape = _make_shape(api, spec[f"shape_{key}"], spec[f"m_{key}"])
+            shape = self.make_shape(key)
             geometry = self.sg.RegisterGeometry(
                 source_id=source,
                 frame_id=frame,
@@ -119,7 +122,10 @@ class Scene:
             self.ids.append(geometry)
         self.context = self.sg.CreateDefaultContext()
         self.port = self.sg.get_source_pose_port(source)
-        self.spec = spec
+
+    def make_shape(self, key: str) -> Any:
+        """The shape of role ``key`` ("a" or "b")."""
+        return _make_shape(self.api, self.spec[f"shape_{key}"], self.spec[f"m_{key}"])
 
     def query(self, t: float) -> Any:
         """The QueryObject with B's frame at ``t`` along the scene's direction."""
@@ -171,8 +177,9 @@ def _find_offset(scene: Scene) -> float:
     return (lo + hi) / 2
 
 
-def _records(scene: Scene, t: float) -> dict[str, Any]:
-    """Every record of the three queries, witness points and normal named by role a/b."""
+def _records(scene: Scene, t: float, signed_distance: bool = True) -> dict[str, Any]:
+    """Every record of the three queries (the penetration query alone without
+    ``signed_distance``), witness points and normal named by role a/b."""
     q = scene.query(t)
     role = {scene.ids[0]: "a", scene.ids[1]: "b"}
     records: dict[str, Any] = {}
@@ -184,15 +191,20 @@ def _records(scene: Scene, t: float) -> dict[str, Any]:
             [list(pb), list(pa)] if swap else [list(pa), list(pb)],
             list(-np.asarray(n)) if swap else list(n),
         )
-    for name, pair in (
-        ("pairwise", next(iter(q.ComputeSignedDistancePairwiseClosestPoints()), None)),
+    distances = (
         (
-            "pair",
-            q.ComputeSignedDistancePairClosestPoints(
-                geometry_id_A=scene.ids[0], geometry_id_B=scene.ids[1]
+            ("pairwise", next(iter(q.ComputeSignedDistancePairwiseClosestPoints()), None)),
+            (
+                "pair",
+                q.ComputeSignedDistancePairClosestPoints(
+                    geometry_id_A=scene.ids[0], geometry_id_B=scene.ids[1]
+                ),
             ),
-        ),
-    ):
+        )
+        if signed_distance
+        else ()
+    )
+    for name, pair in distances:
         if pair is None:
             continue
         swap = role[pair.id_A] == "b"
@@ -240,14 +252,17 @@ def _first(exc: Exception) -> str:
     return re.sub(r" by [-+.e\d]+, exceeding the threshold [-+.e\d]+\.", ".", text)
 
 
-def _scene_lines(seed: int, scenes: int, start: int = 0) -> Iterator[dict[str, Any]]:
-    """Each scene's line from child processes; a scene whose process died gives
-    ``{"aborted": i, "side": ..., "phase": ..., "message": ...}`` (the side and phase the
-    child last announced, FCL's original error message from its stderr, else its last line)."""
+def _scene_lines(
+    seed: int, scenes: int, start: int = 0, script: str = __file__
+) -> Iterator[dict[str, Any]]:
+    """Each scene's line from child processes of ``script`` (``--worker``); a scene whose
+    process died gives ``{"aborted": i, "side": ..., "phase": ..., "message": ...}`` (the
+    side and phase the child last announced, FCL's original error message from its stderr,
+    else its last line)."""
     while start < scenes:
         stop = min(start + CHUNK, scenes)
         child = subprocess.run(
-            [sys.executable, __file__, "--worker", str(seed), str(start), str(stop)],
+            [sys.executable, script, "--worker", str(seed), str(start), str(stop)],
             capture_output=True,
             text=True,
             check=False,

@@ -14,22 +14,35 @@ With ``d`` the record's depth (penetration) or signed distance:
   normal are not compared, only ``d``.
 
 Why the separation vector: near contact the normal is ill-conditioned for
-the iterative algorithms (measured: opposite normals from pydrake and
-reimpl at ``|d| = 1e-11``, and ``‖Δn‖·|d| ≤ 7.6e-7`` throughout), while
-``d·n`` stays a small, well-defined vector; far from contact it compares
-the normal to ``tolerance / |d|``. Why ``touching``: below it the contact is
-a touch within the solver's precision, and its witness points are not
-unique along flat or straight features (measured: 0.063 m apart for a
-capsule along a cylinder at ``|d| = 1e-11``), nor is the normal (pydrake
-1.51.1 reports NaN for a box exactly touching a cylinder, where reimpl,
-1.4e-14 inside, reports one). Elsewhere a NaN agrees only with a NaN.
+the iterative algorithms (pydrake and reimpl can give opposite normals a
+hair's breadth from contact, while ``‖Δn‖·|d|`` stays small), whereas ``d·n``
+stays a small, well-defined vector; far from contact it compares the normal
+to ``tolerance / |d|``. Why ``touching``: below it the contact is a touch
+within the solver's precision, and its witness points are not unique along
+flat or straight features (a capsule lying along a cylinder a touch apart
+gets witness points centimetres apart), nor is the normal (pydrake 1.51.1
+reports NaN for a box exactly touching a cylinder, where reimpl, a rounding
+error inside, reports one). Elsewhere a NaN agrees only with a NaN.
 
 Poses (``x_wg``, ``x_wf``) are products of transforms, compared within
 ``POSE_TOLERANCE`` per entry of ``xyz`` and of the rotation matrix.
 
-The values come from measurement: docs/queries.md renders the table, and the
-largest differences between reimpl and pydrake on near-touching posed pairs from
-docs/reports/tolerances.json (``benchmarks/measure_tolerances.py``).
+No measured number is written here: the reports below hold them, each written
+by a committed command, and docs/queries.md renders this table and them.
+
+- docs/reports/tolerances.json (``benchmarks/measure_tolerances.py``): the five
+  shapes other than the half space, near-touching posed pairs (rows ``CLOSED``
+  and ``ITERATIVE``; no study measures a shape against a half space, which the
+  posed fuzz campaigns compare against ``CLOSED``);
+- docs/reports/tolerances_hull.json (``benchmarks/measure_hull_tolerances.py``):
+  a Mesh or Convex against each shape, another hull and a half space,
+  near-touching (rows ``HULL`` and ``HULL_HALFSPACE``);
+- docs/reports/mesh_script.json (``benchmarks/measure_mesh_script.py``): Drake's
+  jaco arm's collision meshes beside a box and a cylinder, and the signed
+  distance to points (rows ``HULL``, ``CLOSED`` for ``point``).
+
+The rows were set from earlier studies; where a report finds records outside
+a row, docs/queries.md states it as an open finding about the row.
 """
 
 from __future__ import annotations
@@ -72,56 +85,54 @@ def shape_pair(a: str, b: str) -> frozenset[str]:
 
 #: Drake's closed forms (sphere against sphere, box, cylinder, capsule, half space), which
 #: reimpl writes as Drake does, and FCL's analytic box-box and X-halfspace code, which
-#: python-fcl shares: measured ≤ 9.7e-16 on ~30,000 values; 1e-12 leaves a margin of 1000.
+#: python-fcl shares: the two differ by rounding. Measured in docs/reports/tolerances.json.
 CLOSED = Tolerance(
     1e-12,
     1e-12,
     1e-12,
     0.0,
-    "closed form or FCL's analytic code in both: measured <= 9.7e-16",
+    "closed form or FCL's analytic code in both: they differ by rounding "
+    "(docs/reports/tolerances.json)",
 )
 
 #: GJK/EPA signed distance and libccd MPR penetration, whose answers end where each
-#: solver's tolerance (Drake gives FCL 1e-6) stops them: measured |Δd| <= 2.0e-5 (one
-#: ellipsoid-sphere signed distance 4e-12 inside; otherwise <= 6.6e-6), ‖Δp‖ <= 7.1e-7
-#: where |d| >= 1e-5, ‖Δ(d·n)‖ <= 2.0e-5.
+#: solver's tolerance (Drake gives FCL its own) stops them, so the two implementations'
+#: answers differ by up to about that tolerance. Measured in docs/reports/tolerances.json.
 ITERATIVE = Tolerance(
     5e-5,
     1e-5,
     5e-5,
     1e-5,
-    "GJK/EPA and MPR stop at the solver's tolerance: measured |Δd| <= 2.0e-5, "
-    "‖Δp‖ <= 7.1e-7 for |d| >= 1e-5",
+    "GJK/EPA and MPR stop at the solver's tolerance (docs/reports/tolerances.json)",
 )
 
 #: A Mesh or Convex (its convex hull, FCL's Convex) against anything but a half space.
 #: reimpl's hull has pydrake's vertices and polygons but numbers the vertices in file order:
 #: Drake's are in Qhull's internal vertex list, which scipy does not expose. Where MPR's
 #: support search meets (near-)ties, the order decides which vertex it takes, and MPR's
-#: penetration depth (an estimate along its search, not the minimum) follows another path.
-#: Measured against pydrake 1.51.1 on 6 hulls (Drake's jaco and iiwa collision meshes, the
-#: octahedron, generated 8/12/20-vertex hulls) x 7 shapes x 300 random poses: penetration
-#: |Δd| <= 9.3e-3 (box-hull; 0 for 95 % of records), ‖Δp‖ <= 1.7e-2, ‖Δ(d·n)‖ <= 3.5e-2;
-#: signed distance (GJK/EPA) |Δd| <= 3.6e-6, ‖Δp‖ <= 4.2e-4; HasCollisions and pair sets
-#: always equal.
+#: penetration depth (an estimate along its search, not the minimum) follows another path;
+#: GJK/EPA's signed distance stops at the solver's tolerance as for ``ITERATIVE``.
+#: Measured in docs/reports/tolerances_hull.json and docs/reports/mesh_script.json.
 HULL = Tolerance(
     1e-2,
     2e-2,
     4e-2,
     1e-5,
     "a convex hull: the same hull, its vertices numbered otherwise, so MPR may take another "
-    "path: measured |Δd| <= 9.3e-3 (penetration), 3.6e-6 (signed distance)",
+    "path (docs/reports/tolerances_hull.json, docs/reports/mesh_script.json)",
 )
-#: A Mesh or Convex against a half space: FCL's closed form (the hull's deepest vertex) in both;
-#: measured equal to the bit on 1,404 records; the deepest vertex among exact ties (a hull face
-#: parallel to the plane) is the first in each implementation's numbering.
+#: A Mesh or Convex against a half space: FCL's closed form (the hull's deepest vertex) in
+#: both, so the depth and normal are the same; the deepest vertex among exact ties (a hull
+#: face parallel to the plane) is the first in each implementation's numbering, so the
+#: witness point may be another vertex of that face. Measured in
+#: docs/reports/tolerances_hull.json.
 HULL_HALFSPACE = Tolerance(
     1e-12,
     2e-2,
     1e-12,
     0.0,
-    "FCL's convex-halfspace closed form in both: measured bit-equal; the contact point of a "
-    "face parallel to the plane is a vertex of that face",
+    "FCL's convex-halfspace closed form in both; the contact point of a face parallel to the "
+    "plane is a vertex of that face (docs/reports/tolerances_hull.json)",
 )
 
 _ITERATIVE_PAIRS = (
@@ -142,10 +153,8 @@ _SHAPES = ("sphere", "box", "cylinder", "capsule", "ellipsoid", "halfspace")
 #: iterative pairs ``ITERATIVE``, the others (sphere with anything but an ellipsoid, box-box,
 #: anything with a half space) ``CLOSED``; a mesh or convex hull against anything ``HULL``,
 #: against a half space ``HULL_HALFSPACE``. A shape against ``point`` (the signed distance
-#: to a point): ``CLOSED``, measured against pydrake 1.51.1 on 11 shapes (meshes of the three
-#: file kinds among them) x 400 points: |Δd| <= 1.7e-16, ‖Δp_GN‖ <= 7.7e-15,
-#: ‖Δgrad_W‖ <= 1.3e-13 (the ellipsoid's through FCL in both, the meshes' through the same
-#: surface).
+#: to a point): ``CLOSED``, the ellipsoid's through FCL in both, the meshes' through the
+#: same surface (measured for a Mesh, a box and a cylinder in docs/reports/mesh_script.json).
 TOLERANCES: Mapping[frozenset[str], Tolerance] = {
     **{
         shape_pair(a, b): ITERATIVE

@@ -10,9 +10,10 @@ come from its ``conformance`` (corpus, mutants), not from another installed copy
 
 Measured numbers come from reports under docs/reports/, each written by one command (the
 page that quotes it names the command): ``benchmarks/bench_{calls,filter,queries,fuzz,
-matrix,legacy}.py --json FILE``, ``benchmarks/measure_{tolerances,mesh_script}.py --json
-FILE`` (reimpl's numbers against pydrake's), ``python -m conformance fuzz ... --json FILE`` (a
-campaign's statistics and coverage), a fuzz finding file (a shrunk example), and
+matrix,legacy}.py --json FILE``,
+``benchmarks/measure_{tolerances,hull_tolerances,mesh_script}.py --json FILE`` (reimpl's
+numbers against pydrake's), ``python -m conformance fuzz ... --json FILE`` (a campaign's
+statistics and coverage), a fuzz finding file (a shrunk example), and
 ``python -m conformance bisect ...``'s stdout. To refresh one, run its command again,
 then ``cog -r``. A timing the docs would quote from nowhere else is left out of the text.
 """
@@ -544,15 +545,19 @@ def _sci(value: float) -> str:
     return "0" if value == 0 else f"{value:.1e}"
 
 
-def tolerance_study_table() -> str:
-    """docs/reports/tolerances.json (benchmarks/measure_tolerances.py): one row per shape
-    pair, the largest differences reimpl-pydrake and the counts outside the tolerances."""
-    data = _report("tolerances.json")
+def tolerance_study_table(report: str = "tolerances.json") -> str:
+    """docs/reports/tolerances.json (benchmarks/measure_tolerances.py; or ``report``, e.g.
+    tolerances_hull.json of measure_hull_tolerances.py): one row per shape pair, the
+    largest differences reimpl-pydrake and the counts outside the tolerances (and, where
+    the report counts them, the records whose ``d`` is equal to the bit)."""
+    data = _report(report)
     far = f"{data['far']:g}"
+    equal = "equal_dd" in next(iter(data["pairs"].values()))
     head = [
         "shape pair",
         "scenes",
         "records",
+        *(["d equal to the bit"] if equal else []),
         "max \\|Δd\\|",
         f"max ‖Δp‖, \\|d\\| ≥ {far}",
         "max ‖Δp‖, any d",
@@ -572,6 +577,7 @@ def tolerance_study_table() -> str:
                     pair,
                     f"{row['scenes']:,}",
                     f"{row['records']:,}",
+                    *([f"{row['equal_dd']:,}"] if equal else []),
                     _sci(row["max_dd"]),
                     _sci(row["max_dp_far"]),
                     _sci(row["max_dp"]),
@@ -587,15 +593,16 @@ def tolerance_study_table() -> str:
     return "\n".join(lines)
 
 
-def tolerance_study_summary() -> str:
-    """docs/reports/tolerances.json: the study's size, its command and its totals."""
-    data = _report("tolerances.json")
+def tolerance_study_summary(report: str = "tolerances.json") -> str:
+    """docs/reports/tolerances.json (or ``report``): the study's size, its command and its
+    totals."""
+    data = _report(report)
     rows = data["pairs"].values()
     total = {key: sum(row[key] for row in rows) for key in next(iter(rows))}
     low, high = data["gap_range"]
     errors = "".join(f"\n- {count:,} × {message}" for message, count in data["errors"].items())
     return (
-        f"`{data['command']} --json docs/reports/tolerances.json` on pydrake "
+        f"`{data['command']} --json docs/reports/{report}` on pydrake "
         f"{data['pydrake']}: {total['scenes']:,} scenes measured, gaps ±[{low:g}, {high:g}], "
         f"{total['records']:,} records; {total['outside']:,} records with a number outside "
         f"the tolerances, {total['has_collisions_disagreements']:,} `HasCollisions` "
@@ -604,6 +611,45 @@ def tolerance_study_summary() -> str:
         f"distance missed the gap by more than {data['gap_miss']:g} m. "
         f"{total['raised']:,} scenes raised an error and {total['aborted']:,} ended their "
         f"process (side, phase, FCL's message):\n{errors or ' none'}"
+    )
+
+
+def hull_study_hulls() -> str:
+    """docs/reports/tolerances_hull.json: the hull files the study drew from, with the
+    number of scenes each took part in."""
+    data = _report("tolerances_hull.json")
+    return ", ".join(f"`{path}` ({count:,})" for path, count in data["hulls"].items())
+
+
+def hull_study_outside() -> str:
+    """docs/reports/tolerances_hull.json: the records outside conformance/_tolerances.py's
+    ``HULL`` and ``HULL_HALFSPACE`` rows, and the disagreements of pair sets and booleans."""
+    data = _report("tolerances_hull.json")
+    rows = data["pairs"]
+    halfspace = [row for pair, row in rows.items() if pair.endswith("halfspace")]
+    hull = [row for pair, row in rows.items() if not pair.endswith("halfspace")]
+
+    def total(group: list[dict[str, Any]], key: str) -> int:
+        return sum(row[key] for row in group)
+
+    def outside(group: list[dict[str, Any]]) -> str:
+        counts = "/".join(
+            f"{total(group, f'outside_{k}'):,}" for k in ("distance", "witness", "normal")
+        )
+        return (
+            f"{total(group, 'outside'):,} of {total(group, 'records'):,} records "
+            f"(d / p / d·n: {counts})"
+        )
+
+    differ = total([*hull, *halfspace], "has_collisions_disagreements")
+    sets = total([*hull, *halfspace], "penetration_set_disagreements")
+    nearest = max(row["max_d_disagreeing"] for row in rows.values())
+    return (
+        f"Outside the `HULL` row: {outside(hull)}; outside the `HULL_HALFSPACE` row: "
+        f"{outside(halfspace)}, {total(halfspace, 'equal_dd'):,} of its depths equal to the "
+        f"bit; {differ:,} `HasCollisions` disagreements and {sets:,} records one side "
+        f"reports and the other does not, all on scenes where pydrake's signed distance (or "
+        f"depth) is at most {_sci(nearest)} m from contact"
     )
 
 
