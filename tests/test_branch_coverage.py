@@ -95,15 +95,7 @@ def test_fuzz_models_coverage_has_one_reachable_pair(tmp_path: Path) -> None:
     "mode",
     [
         pytest.param((), id="default"),
-        pytest.param(
-            ("--poses",),
-            id="poses",
-            # Measured in a fresh clone's CI at bd70a75: since the posed query operations
-            # changed (query_at_max_distance, query_through_filter), the posed campaign
-            # leaves 5 pairs unreached, each next to create_context or set_default_context
-            # (issue 30 is open).
-            marks=pytest.mark.xfail(strict=True, reason="5 posed pairs unreached at seed 1"),
-        ),
+        pytest.param(("--poses",), id="poses"),
         pytest.param(("--models",), id="models"),
     ],
 )

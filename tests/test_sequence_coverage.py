@@ -19,7 +19,7 @@ from conformance._fuzz.sequence_coverage import (
     expected_pairs,
     sequence_events,
 )
-from conformance._fuzz.sequence_tour import TOUR, guided, tour, tours
+from conformance._fuzz.sequence_tour import _ROOM, TOUR, guided, tour, tours, walk_starts
 from conformance.protocol import Command
 
 _EXCLUDE_G1_G2 = {"exclude_between": [{"geometries": ["g1"]}, {"geometries": ["g2"]}]}
@@ -136,6 +136,33 @@ def test_the_two_tours_hold_every_ordered_pair_once_the_making_one_those_with_a_
     }
     assert len(making) == 3 * 9 + 6 * 3 + 1  # 9 events, 3 of them makers
     assert len(plain) == 6 * 6 + 1
+
+
+def _walk_with_room(circuit: tuple[str, ...], start: int, room: int) -> list[tuple[str, str]]:
+    """The pairs a walk from ``start`` issues before a maker it has no room for."""
+    points, issued = len(circuit) - 1, []
+    for i in range(points):
+        event = circuit[(start + i) % points]
+        if event.rpartition("@")[0] in ("create_context", "clone_context"):
+            if room == 0:
+                break
+            room -= 1
+        issued.append(event)
+    return list(itertools.pairwise(issued))
+
+
+def test_walks_from_the_making_starts_with_room_for_three_contexts_reach_every_pair() -> None:
+    """Each start of ``making`` is the third maker from the one before, so a walk with
+    room for ``_ROOM`` (3) contexts reaches the pair that ends at the next start."""
+    events = tuple(sequence_events(["apply", "create_context", "clone_context", "remove_role"]))
+    making, plain = tours(events)
+    assert _ROOM == 3
+    starts = walk_starts(making)
+    assert starts[0] == 0
+    reached = {pair for s in starts for pair in _walk_with_room(making, s, _ROOM)}
+    assert reached == set(itertools.pairwise(making))
+    assert not {pair for s in starts for pair in _walk_with_room(making, s, _ROOM - 1)} >= reached
+    assert walk_starts(plain) == tuple(range(len(plain) - 1))
 
 
 def test_the_table_names_the_pairs_never_reached() -> None:

@@ -13,14 +13,15 @@ next event at a clone is at the same location, as the pair's principal
 relation says).
 
 Drawn pairs alone would need thousands of tries to meet 400 pairs (a coupon
-collector); a walk of 12 reaches 11 at once. Where a walk starts is a hash
-of its picks and of the example's command count (``_start``). An example
-makes at most ``_MAX_CONTEXTS`` contexts (each costs every later state
+collector); a walk of 12 reaches 11 at once. Where a walk starts is one of
+``walk_starts``, chosen by a hash of its picks and of the example's command
+count (``_start``). Contexts are dear (each costs every later state
 comparison), so the pairs split in two circuits: ``making``, every pair
 with create_context or clone_context on either side (one event in two
 makes a context there), and ``plain``, every other pair. While the example
-has room for a context the walk goes along ``making``, and ends before a
-context there is no room for; after that along ``plain``, for the whole
+has made fewer than ``_MAX_CONTEXTS`` contexts the walk goes along
+``making``, starting at one of points ``_ROOM`` makers apart and making at
+most ``_ROOM`` contexts; after that along ``plain``, for the whole
 example: Hypothesis's examples share long prefixes, and only walks after
 the point where two examples part differ. Every name a walk uses is one its
 location has (``SequenceBook.names``): a refusal for an unknown name is no
@@ -38,7 +39,7 @@ three or four, so the pairs further along were met only by walks that
 started past them with room left.
 
 Measured at seed 1 x 300, reimpl against pydrake 1.51.1 (``fuzz --coverage``):
-400 of 400 pairs of the default campaign and of the posed one.
+see ``tests/test_branch_coverage.py``, which runs the command for each campaign.
 
 ``guided`` adds the walk to a machine class as the operation
 ``sequence_tour``. Only a guided campaign (``fuzz --coverage``) has it, so
@@ -69,10 +70,15 @@ __all__ = ["SEQUENCE_TOUR", "TOUR", "TOUR_LENGTH", "TOUR_WEIGHT", "guided", "seq
 
 #: Events per ``sequence_tour``: a run of this many reaches this many less one pairs.
 TOUR_LENGTH = 12
-#: Once the example has made this many contexts, the walk skips the events that make one
-#: (each context costs every later state comparison).
-_MAX_CONTEXTS = 8
+#: A walk goes along ``making`` while the example has made fewer contexts than this (each
+#: costs every later state comparison): after drawn operations (at most
+#: ``operations.MAX_CONTEXTS``, 3) and ``_slots`` (2), room for two walks of ``_ROOM``.
+_MAX_CONTEXTS = 11
 _MAKERS = frozenset({"create_context", "clone_context"})
+#: Contexts one walk along ``making`` makes at most (it starts only while the example has
+#: made fewer than ``_MAX_CONTEXTS``, so an example makes at most ``_MAX_CONTEXTS - 1 +
+#: _ROOM``).
+_ROOM = 3
 
 
 def _circuit(successors: Mapping[str, tuple[str, ...]], first: str) -> tuple[str, ...]:
@@ -172,9 +178,47 @@ def _slots(m: _Tourist) -> dict[str, str | None] | None:
     return {MODEL: None, CONTEXT: context, CLONE: clone}
 
 
+@cache
+def walk_starts(circuit: tuple[str, ...]) -> tuple[int, ...]:
+    """The points of ``circuit`` where a walk may start. Along a circuit without a maker
+    (``plain``), every point. Along ``making``, the points ``_ROOM`` makers apart: the
+    first at 0, each next at the ``_ROOM``-th maker from the one before (itself counted),
+    so that a walk from any of them, which may make ``_ROOM`` contexts, reaches the pair
+    that ends at the next, and every pair is one such walk's.
+
+    N.B. Walks from every point of ``making`` (hashed starts) left 5 of 400 pairs of the
+    posed campaign unreached at seed 1 x 300: Hypothesis's examples share long
+    prefixes, so a few starts were drawn over and over (counts of 165 along one
+    stretch, 0-5 along the 15 points after it), and a walk ran out of room after
+    a few makers; the pairs further on were met only by a start just before them.
+    Starts ``_ROOM`` makers apart, with walks that ended at the example's
+    ``_MAX_CONTEXTS``, still left one pair of the default campaign unreached: the
+    pair ending at a walk's third maker needs room for three, which the walks
+    drawn at that start did not have. With walks of their own ``_ROOM`` but one
+    such walk per example (``_MAX_CONTEXTS`` 8), two starts of the default
+    campaign were never drawn: an example's first walk starts where the
+    examples that share its prefix start theirs. A second walk per example
+    (``_MAX_CONTEXTS`` 11) starts after the point where examples part.
+    """
+    points = len(circuit) - 1
+    if not any(_makes(e) for e in circuit):
+        return tuple(range(points))
+    starts, at = [0], 0
+    while True:
+        makers = 0
+        while makers < _ROOM:
+            makers += _makes(circuit[at % points])
+            if makers < _ROOM:
+                at += 1
+        if at >= points:
+            return tuple(starts)
+        starts.append(at)
+
+
 def _start(picks: bytes, commands: int, points: int) -> int:
-    """Where the walk starts: a hash of the picks and of the example's commands so far
-    (its scene's registrations included, which differ from example to example).
+    """Which of ``points`` starts the walk takes: a hash of the picks and of the example's
+    commands so far (its scene's registrations included, which differ from example to
+    example).
 
     N.B. Not the picks read as a number: Hypothesis draws bytes far from
     uniformly (zeros, repeats, boundary values), and a start read from them
@@ -203,7 +247,8 @@ def sequence_tour(
     if len(circuit) < 2 or slots is None:
         return
     points = len(circuit) - 1  # a circuit ends where it starts: walk it round
-    start = _start(picks, m.sequence.commands, points)
+    starts = walk_starts(circuit)
+    start = starts[_start(picks, m.sequence.commands, len(starts))]
     events = tuple(circuit[(start + i) % points] for i in range(TOUR_LENGTH))
     special, m.special = m.special, False  # no @unknown names: each event is one
     try:
@@ -219,14 +264,17 @@ def _walk(
     picks: bytes,
     drawn: tuple[cs.DeclarationTemplate, cs.SetTemplate],
 ) -> None:
-    """Issues ``events`` in turn; the walk ends before a context the example has no room
-    for (skipped, its neighbours would be a pair of the other circuit's, in a place
-    of this one)."""
+    """Issues ``events`` in turn; the walk ends before its ``_ROOM + 1``-th context
+    (skipped, its neighbours would be a pair of the other circuit's, in a place of
+    this one)."""
     declaration, geometry_set = drawn
+    room = _ROOM
     for i, event in enumerate(events):
         op, _, kind = event.rpartition("@")
-        if op in _MAKERS and m.contexts_made >= _MAX_CONTEXTS:
-            return
+        if op in _MAKERS:
+            if room == 0:
+                return
+            room -= 1
         made = _issue(
             m,
             op,
