@@ -8,7 +8,11 @@ reimpl asks python-fcl (0.7.0.11) for these signed distances; its FCL throws the
 as a std::logic_error that python-fcl does not translate (its ``distance`` is declared
 without ``except +``), so std::terminate ends the process with SIGABRT. Known divergence
 ``reimpl-fcl-epa-aborts``. Every expectation was measured on pydrake 1.51.1 and 1.58.0
-(the same on both) and on reimpl following each.
+(the same on both) and on reimpl following each. Older releases differ on the pydrake side
+only (measured, every release 1.12.0-1.58.0; the suite runs on 1.51.1 and 1.58.0): the
+box-ellipsoid scene raises the same RuntimeError on 1.15.0-1.49.0 and is answered since
+1.50.0; the message has "by ..., exceeding the threshold ..." since 1.40.0; 1.12.0-1.14.0
+do not support either pair.
 """
 
 from __future__ import annotations
