@@ -24,8 +24,9 @@ raised, in the search or in the queries; ``errors`` counts the messages), ``abor
 (scenes whose process died; ``errors`` says in which implementation).
 
 FCL's EPA can fail near contact (``validateNearestFeatureOfPolytopeBeingEdge()``):
-pydrake 1.51.1 raises it as RuntimeError, which is caught and counted; python-fcl, which
-reimpl calls, let it end the process (``terminate``) in our runs. So that an abort loses
+pydrake raises it as RuntimeError (past a threshold its FCL allows), which is caught and
+counted; python-fcl, which reimpl calls, ends the process (``terminate``), and on other
+scenes than pydrake's (known divergence ``reimpl-fcl-epa-aborts``). So that an abort loses
 one scene, not the run, the scenes run in child processes of this
 script, ``CHUNK`` scenes each, which print one JSON line per scene; when a child dies,
 the scene it was on is counted as aborted and a new child continues after it.
