@@ -39,7 +39,6 @@ The committed report is ``docs/reports/tolerances_hull.json``; docs/queries.md r
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import sys
@@ -315,19 +314,7 @@ def measure(seed: int, scenes: int) -> dict[str, Any]:
 
 
 def main(argv: list[str]) -> None:
-    if argv[:1] == ["--worker"]:
-        _worker(*(int(v) for v in argv[1:4]))
-        return
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--scenes", type=int, default=3500)
-    parser.add_argument("--json", type=Path)
-    args = parser.parse_args(argv)
-    report = measure(args.seed, args.scenes)
-    text = json.dumps(report, indent=1) + "\n"
-    if args.json is not None:
-        args.json.write_text(text, encoding="utf-8")
-    print(text)
+    base.cli(argv, doc=__doc__, worker=_worker, study=measure, scenes=3500)
 
 
 if __name__ == "__main__":

@@ -47,7 +47,7 @@ import math
 import re
 import subprocess
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -385,20 +385,32 @@ def measure(seed: int, scenes: int) -> dict[str, Any]:
     }
 
 
-def main(argv: list[str]) -> None:
+def cli(
+    argv: list[str],
+    *,
+    doc: str,
+    worker: Callable[[int, int, int], None],
+    study: Callable[[int, int], dict[str, Any]],
+    scenes: int,
+) -> None:
+    """A study's command line: ``--worker SEED START STOP`` (a child process), else
+    ``[--seed S] [--scenes N] [--json FILE]``, printing the report."""
     if argv[:1] == ["--worker"]:
-        _worker(*(int(v) for v in argv[1:4]))
+        worker(*(int(v) for v in argv[1:4]))
         return
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--scenes", type=int, default=1500)
+    parser.add_argument("--scenes", type=int, default=scenes)
     parser.add_argument("--json", type=Path)
     args = parser.parse_args(argv)
-    report = measure(args.seed, args.scenes)
-    text = json.dumps(report, indent=1) + "\n"
+    text = json.dumps(study(args.seed, args.scenes), indent=1) + "\n"
     if args.json is not None:
         args.json.write_text(text, encoding="utf-8")
     print(text)
+
+
+def main(argv: list[str]) -> None:
+    cli(argv, doc=__doc__, worker=_worker, study=measure, scenes=1500)
 
 
 if __name__ == "__main__":

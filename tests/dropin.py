@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import subprocess
 import sys
 from pathlib import Path
+from types import ModuleType
 
 __all__ = ["ROOT", "as_reimpl", "run_script"]
 
@@ -22,19 +24,39 @@ def as_reimpl(script: str) -> str:
     )
 
 
-def run_script(script: str) -> str:
-    """The script's stdout, run in a fresh interpreter from the repository; it must exit 0
-    without a traceback."""
+def run_python(script: str, *args: str, cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
+    """``python -c script args...`` in a fresh interpreter that imports this checkout."""
     path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)
-    completed = subprocess.run(
-        [sys.executable, "-c", script],
+    return subprocess.run(
+        [sys.executable, "-c", script, *args],
         capture_output=True,
         text=True,
-        cwd=ROOT,
+        cwd=cwd,
         env=dict(os.environ, PYTHONPATH=path),
         timeout=120,
         check=False,
     )
+
+
+def run_script(script: str) -> str:
+    """The script's stdout, run in a fresh interpreter from the repository; it must exit 0
+    without a traceback."""
+    completed = run_python(script)
     assert completed.returncode == 0, completed.stderr
     assert "Traceback" not in completed.stderr, completed.stderr
     return completed.stdout
+
+
+def benchmark_module(name: str) -> ModuleType:
+    """``benchmarks/NAME.py`` imported as module ``NAME`` (its folder on sys.path, so that a
+    benchmark may import another beside it)."""
+    folder = str(ROOT / "benchmarks")
+    if folder not in sys.path:
+        sys.path.insert(0, folder)
+    spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
+    assert spec is not None
+    assert spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    return module

@@ -17,15 +17,13 @@ do not support either pair.
 
 from __future__ import annotations
 
-import os
 import signal
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from tests.dropin import ROOT, as_reimpl
+from tests.dropin import ROOT, as_reimpl, run_python
 
 SCRIPT = (ROOT / "tests" / "data" / "fcl_epa_abort.py").read_text()
 #: FCL's text in the message of both builds (Drake's vendored FCL and python-fcl's).
@@ -44,16 +42,7 @@ PYTHON_FCL_MESSAGE = (
 
 
 def _run(script: str, scene: str, cwd: Path) -> subprocess.CompletedProcess[str]:
-    path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH")) if p)
-    return subprocess.run(
-        [sys.executable, "-c", script, scene],
-        capture_output=True,
-        text=True,
-        cwd=cwd,
-        env=dict(os.environ, PYTHONPATH=path),
-        timeout=120,
-        check=False,
-    )
+    return run_python(script, scene, cwd=cwd)
 
 
 def test_the_reimpl_variant_imports_only_reimpl() -> None:

@@ -10,31 +10,19 @@ jaco finger against a sphere 2e-9 m inside, gives MPR depths 5.2e-9 (pydrake) an
 
 from __future__ import annotations
 
-import importlib.util
-import sys
 from types import ModuleType
 from typing import Any
 
 import pytest
 
 from conformance._tolerances import HULL
-from tests.dropin import ROOT
+from tests.dropin import benchmark_module
 
 pytest.importorskip("pydrake")
 
 
 def _script() -> ModuleType:
-    folder = str(ROOT / "benchmarks")  # the script imports measure_tolerances beside it
-    if folder not in sys.path:
-        sys.path.insert(0, folder)
-    path = ROOT / "benchmarks" / "measure_hull_tolerances.py"
-    spec = importlib.util.spec_from_file_location("measure_hull_tolerances", path)
-    assert spec is not None
-    assert spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
+    return benchmark_module("measure_hull_tolerances")
 
 
 def _scene(index: int) -> dict[str, Any]:

@@ -9,26 +9,17 @@ closed-form pairs of the first 30 scenes agree to rounding.
 
 from __future__ import annotations
 
-import importlib.util
-import sys
 from types import ModuleType
 
 import pytest
 
-from tests.dropin import ROOT
+from tests.dropin import benchmark_module
 
 pytest.importorskip("pydrake")
 
 
 def _script() -> ModuleType:
-    path = ROOT / "benchmarks" / "measure_tolerances.py"
-    spec = importlib.util.spec_from_file_location("measure_tolerances", path)
-    assert spec is not None
-    assert spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
+    return benchmark_module("measure_tolerances")
 
 
 def test_the_closed_form_pairs_agree_to_rounding_on_near_touching_scenes() -> None:
