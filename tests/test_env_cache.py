@@ -12,11 +12,14 @@ import io
 import os
 import re
 import sys
+import threading
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
 
+import conformance
 from conformance._backends.env_cache import (
     TYPICAL_ENVIRONMENT_BYTES,
     cached_environments,
@@ -31,6 +34,7 @@ from conformance._backends.environments import (
     cache_dir,
     ensure_environment,
     find_uv,
+    harness_path,
     requirements_for,
 )
 from conformance.cli.main import main
@@ -228,3 +232,20 @@ def test_without_uv_the_environments_are_built_with_pip(monkeypatch: pytest.Monk
     monkeypatch.setitem(sys.modules, "uv", None)  # the import fails
     monkeypatch.setenv("PATH", "")
     assert find_uv() is None
+
+
+def test_threads_that_make_the_harness_link_at_once_all_get_it(tmp_path: Path) -> None:
+    """Releases start at once in threads, each making the same link (a CI run once failed
+    with "[Errno 17] File exists" when two made it together)."""
+    start = threading.Barrier(8)
+
+    def make() -> Path:
+        start.wait()
+        return harness_path(tmp_path)
+
+    with ThreadPoolExecutor(max_workers=8) as pool:
+        folders = list(pool.map(lambda _: make(), range(8)))
+    assert len(set(folders)) == 1
+    link = folders[0] / "conformance"
+    assert link.resolve() == Path(conformance.__file__).resolve().parent
+    assert sorted(p.name for p in folders[0].iterdir()) == ["conformance"]

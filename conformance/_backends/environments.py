@@ -54,6 +54,7 @@ import fcntl
 import os
 import shutil
 import subprocess
+import threading
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -305,9 +306,14 @@ def harness_path(cache: Path | None = None) -> Path:
     folder = (cache or cache_dir()) / "harness" / _slug(str(package))
     link = folder / "conformance"
     if not link.is_symlink() or link.resolve() != package:
+        # Made under a name of this thread's, then renamed over ``link`` (atomic): releases
+        # that start at once (matrix and models columns, in threads) each make it, and an
+        # unlink-then-symlink raced (measured: "[Errno 17] File exists" in a CI run).
         folder.mkdir(parents=True, exist_ok=True)
-        link.unlink(missing_ok=True)
-        link.symlink_to(package, target_is_directory=True)
+        mine = folder / f".conformance-{os.getpid()}-{threading.get_ident()}"
+        mine.unlink(missing_ok=True)
+        mine.symlink_to(package, target_is_directory=True)
+        mine.replace(link)
     return folder
 
 
