@@ -215,7 +215,9 @@ class LocationState:
     ``filtered``: ``CollisionFiltered`` of the ``sample_pairs`` (a bool, or
     ``"error: <normalised message>"``). ``counts``: the inspector's counts
     (``num_sources``, ``num_frames``, ``num_geometries``, anchored, dynamic,
-    per role, per frame, per source; an int or ``"error: ..."``).
+    per role, per frame, per source; an int or ``"error: ..."``; and under
+    ``"GetCollisionCandidates"`` its error, when it raises, with ``candidates``
+    then empty: a failed parse can leave a geometry that Drake's engine lacks).
     ``filter_groups``: at the model, the last Parser's
     ``GetCollisionFilterGroups()`` as the ``collision_filter_groups`` op
     returns it. Each is None when the backend does not report it.
