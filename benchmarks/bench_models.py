@@ -10,11 +10,17 @@ Printed: the wall time (target: under 2 minutes on 2 cores), each release's
 seconds, and the changes found from release to release.
 
 Usage: python benchmarks/bench_models.py [--drake V ...] [--files N] [--jobs J] [--build]
+                                         [--json FILE]
+
+``--json FILE`` writes the measurement too (the committed one is
+``docs/reports/bench_models.json``, which docs/models.md quotes).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import sys
 import time
 from pathlib import Path
@@ -45,6 +51,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--files", type=int, default=100)
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--build", action="store_true", help="only build the environments")
+    parser.add_argument("--json", type=Path, metavar="FILE", help="write the results to this file")
     args = parser.parse_args(argv)
     cases = _cases(args.files)
     if args.build:
@@ -68,6 +75,21 @@ def main(argv: list[str] | None = None) -> int:
             f"  {comparison.older} -> {comparison.newer}: {len(comparison.files)} file(s) changed"
         )
     print(f"  wall time {seconds:.1f} s (target < 120 s)")
+    if args.json is not None:
+        report = {
+            "files": files,
+            "cases": len(cases),
+            "releases": list(args.drake),
+            "jobs": args.jobs,
+            "cores": os.cpu_count(),
+            "seconds": round(seconds, 1),
+            "release_seconds": {v: round(matrix.runs[v].seconds, 1) for v in args.drake},
+            "changed_files": {
+                f"{c.older} -> {c.newer}": len(c.files)
+                for c in comparisons(matrix, cases, reference=None)
+            },
+        }
+        args.json.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     return 1 if matrix.broken_releases else 0
 
 

@@ -499,6 +499,17 @@ def bench_matrix_summary() -> str:
     )
 
 
+def bench_models_summary() -> str:
+    """docs/reports/bench_models.json (benchmarks/bench_models.py): models across releases."""
+    data = _report("bench_models.json")
+    return (
+        f"{data['files']} model files ({data['cases']} cases) on the {len(data['releases'])} "
+        f"releases {_and(data['releases'])} took {_seconds(data['seconds'])} with `--jobs "
+        f"{data['jobs']}` on {data['cores']} cores (target: under 2 minutes; "
+        f"{_met(data['seconds'] < 120)})"
+    )
+
+
 def _met(ok: bool) -> str:
     return "within its target" if ok else "**over its target**"
 
