@@ -40,8 +40,10 @@ table. A guided campaign draws differently from the same seed without it.
 from __future__ import annotations
 
 import argparse
+import faulthandler
 import json
 import signal
+import sys
 import threading
 import time
 from collections import Counter
@@ -276,6 +278,11 @@ def _interrupts() -> Iterator[None]:
     KeyboardInterrupt that Python swallowed (raised inside a gc callback) is
     raised again when the next example begins. Only the main thread can handle
     signals: elsewhere the block runs with the handlers as they were.
+
+    A SIGTERM first prints every thread's stack to stderr (``faulthandler``, from
+    C, so it works while the main thread is stuck inside a backend's C++ call and
+    Python's handler cannot run yet): a run killed by a CI timeout shows where it
+    was.
     """
     if threading.current_thread() is not threading.main_thread():
         yield
@@ -287,12 +294,26 @@ def _interrupts() -> Iterator[None]:
 
     interrupt_requested.clear()
     previous = {sig: signal.signal(sig, interrupt) for sig in (signal.SIGTERM, signal.SIGINT)}
+    stacks = _stack_printing_on_sigterm()
     try:
         yield
     finally:
+        if stacks:
+            faulthandler.unregister(signal.SIGTERM)
         for sig, handler in previous.items():
             signal.signal(sig, handler)
         interrupt_requested.clear()
+
+
+def _stack_printing_on_sigterm() -> bool:
+    """Has ``faulthandler`` print every thread's stack on SIGTERM, then call the Python
+    handler; False when stderr is not a file (a caller capturing it in memory)."""
+    try:
+        sys.stderr.fileno()
+    except (AttributeError, OSError, ValueError):  # io.UnsupportedOperation is an OSError
+        return False
+    faulthandler.register(signal.SIGTERM, file=sys.stderr, all_threads=True, chain=True)
+    return True
 
 
 def _guide(args: argparse.Namespace, campaign: Campaign) -> BranchCoverage | None:
