@@ -151,6 +151,14 @@ class _Builder:
             return Diagnostics(None, self.context.strict).error(message)
         return self._diagnostics(element).error(message, self._line(element))
 
+    def thrown(self, element: XmlElement, message: str) -> ModelParseError:
+        """An error that Drake up to 1.13 threw as a plain exception: the bare message then
+        (sdf-errors-located-since-1.14: measured on pydrake 1.12.0, 1.13.0 and 1.14.0 with
+        a file of neither a model nor a world), ``error`` since."""
+        if not _LOCATED:
+            return ModelParseError(message)
+        return self.error(element, message)
+
     def warn(self, element: XmlElement, message: str) -> None:
         if not _LOCATED:
             Diagnostics(None, self.context.strict).warning(message)
@@ -195,13 +203,13 @@ class _Builder:
             if model is None and len(document.worlds) == 1 and len(document.worlds[0].models) == 1:
                 model = document.worlds[0].models[0]
             if model is None:
-                raise self.error(root, "File must have a single <model> element.")
+                raise self.thrown(root, "File must have a single <model> element.")
             name = self._model_name(model_name or model.name, parent_scope)
             self._add_model(model, name, RigidTransform(), model.name, _ROOT)
             return self.instances[:1]
         models = 1 if document.model is not None else 0
         if models + len(document.worlds) != 1:
-            raise self.error(
+            raise self.thrown(
                 root,
                 "File must have exactly one <model> or exactly one <world>, but instead has "
                 f"{models} models and {len(document.worlds)} worlds",
@@ -242,7 +250,7 @@ class _Builder:
             self._add_frame(frame, scope, self.plant.world_frame())
         kinds = {self.joints.add(joint, scope) for joint in world.joints}
         if kinds - {"fixed"}:
-            raise self.error(world.element, "Only fixed joints are permitted in world joints.")
+            raise self.thrown(world.element, "Only fixed joints are permitted in world joints.")
 
     # -------------------------------------------------------------- model
     def _add_model(
@@ -286,7 +294,9 @@ class _Builder:
             self.joints.add_drake_joint(drake_joint, scope)
         if model.static:
             if kinds - {"fixed"}:
-                raise self.error(model.element, "Only fixed joints are permitted in static models.")
+                raise self.thrown(
+                    model.element, "Only fixed joints are permitted in static models."
+                )
             self._weld_static(bodies)
         if self.context.has_scene_graph():
             saved = self.diagnostics

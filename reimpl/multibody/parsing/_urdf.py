@@ -49,7 +49,11 @@ from __future__ import annotations
 import os
 from typing import Any
 
+import numpy as np
+import numpy.typing as npt
+
 from reimpl._release import release
+from reimpl.math import RigidTransform
 from reimpl.multibody.parsing import _scoped_name as scoped
 from reimpl.multibody.parsing._diagnostics import Diagnostics, literal_string_name
 from reimpl.multibody.parsing._group_tags import GroupSyntax, read_group
@@ -58,6 +62,7 @@ from reimpl.multibody.parsing._parse_context import ModelSource, ParseContext
 from reimpl.multibody.parsing._urdf_constraints import ConstraintReader
 from reimpl.multibody.parsing._urdf_geometry import GeometryReader
 from reimpl.multibody.parsing._urdf_inertia import inertia_warning
+from reimpl.multibody.parsing._urdf_inertia_until_1_15 import inertia_error
 from reimpl.multibody.parsing._urdf_joints import JointReader
 from reimpl.multibody.parsing._urdf_materials import MaterialMap
 from reimpl.multibody.parsing._urdf_transmissions import TransmissionReader
@@ -128,6 +133,18 @@ def _warn_unsupported_attribute(d: Diagnostics, element: XmlElement, attribute: 
 
 def _or_zero(value: float | None) -> float:
     return 0.0 if value is None else value
+
+
+def _matrix(moments: dict[str, float]) -> npt.NDArray[np.float64]:
+    """RotationalInertia(ixx, iyy, izz, ixy, ixz, iyz) as a symmetric matrix."""
+    m = moments
+    return np.array(
+        [
+            [m["ixx"], m["ixy"], m["ixz"]],
+            [m["ixy"], m["iyy"], m["iyz"]],
+            [m["ixz"], m["iyz"], m["izz"]],
+        ]
+    )
 
 
 def _ignored(element: XmlElement) -> bool:
@@ -256,14 +273,20 @@ class _Robot:
         reimpl keeps no mass properties; absent numbers are 0.
         """
         origins = children(inertial, "origin")
-        if origins:
-            origin(origins[0])
+        X_BBi = origin(origins[0]) if origins else RigidTransform()
         mass = 0.0
         for node in children(inertial, "mass")[:1]:
             mass = _or_zero(self.values.scalar(node, "value"))
         moments = dict.fromkeys(_INERTIA, 0.0)
         for node in children(inertial, "inertia")[:1]:
             moments = {m: _or_zero(self.values.scalar(node, m)) for m in _INERTIA}
+        if release.has("urdf-implausible-inertia-error-until-1.15"):
+            R = np.asarray(X_BBi.rotation().matrix(), dtype=float)
+            com = tuple(float(v) for v in X_BBi.translation())
+            error = inertia_error(mass, (com[0], com[1], com[2]), R @ _matrix(moments) @ R.T)
+            if error is not None:
+                raise error
+            return
         warning = inertia_warning(mass, moments)
         if warning is not None:
             self.diagnostics.warning(warning, inertial.line)
