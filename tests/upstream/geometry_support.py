@@ -55,12 +55,13 @@ class Scene:
     scene_graph: Any = None
     source: Any = None
     frames: list[Any] = field(default_factory=list)
+    source_name: str = "source"
 
     def __post_init__(self) -> None:
         if self.scene_graph is None:
             self.scene_graph = self.drake.geometry.SceneGraph_[float]()
         if self.source is None:
-            self.source = self.scene_graph.RegisterSource("source")
+            self.source = self.scene_graph.RegisterSource(self.source_name)
 
     @property
     def g(self) -> ModuleType:

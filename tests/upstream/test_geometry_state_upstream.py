@@ -1,0 +1,529 @@
+# Ported from Drake: geometry/test/geometry_state_test.cc
+# (https://github.com/RobotLocomotion/drake, at v1.51.1), the tests about collision filters,
+# candidates and roles, re-expressed through SceneGraph's public API as pytest functions
+# that run unchanged on pydrake and on reimpl. Expected values are upstream's.
+#
+# Drake's license (BSD 3-Clause), which covers the upstream test this file is ported from:
+#
+#   Copyright 2012-2022, Robot Locomotion Group @ CSAIL, Massachusetts Institute of Technology
+#   All rights reserved.
+#
+#   Redistribution and use in source and binary forms, with or without modification, are
+#   permitted provided that the following conditions are met:
+#
+#   1. Redistributions of source code must retain the above copyright notice, this list of
+#      conditions and the following disclaimer.
+#   2. Redistributions in binary form must reproduce the above copyright notice, this list of
+#      conditions and the following disclaimer in the documentation and/or other materials
+#      provided with the distribution.
+#   3. Neither the name of the copyright holder nor the names of its contributors may be used
+#      to endorse or promote products derived from this software without specific prior
+#      written permission.
+#
+#   THIS SOFTWARE IS PROVIDED BY THE COPYRIGHT HOLDERS AND CONTRIBUTORS "AS IS" AND ANY
+#   EXPRESS OR IMPLIED WARRANTIES, INCLUDING, BUT NOT LIMITED TO, THE IMPLIED WARRANTIES OF
+#   MERCHANTABILITY AND FITNESS FOR A PARTICULAR PURPOSE ARE DISCLAIMED. IN NO EVENT SHALL THE
+#   COPYRIGHT HOLDER OR CONTRIBUTORS BE LIABLE FOR ANY DIRECT, INDIRECT, INCIDENTAL, SPECIAL,
+#   EXEMPLARY, OR CONSEQUENTIAL DAMAGES (INCLUDING, BUT NOT LIMITED TO, PROCUREMENT OF
+#   SUBSTITUTE GOODS OR SERVICES; LOSS OF USE, DATA, OR PROFITS; OR BUSINESS INTERRUPTION)
+#   HOWEVER CAUSED AND ON ANY THEORY OF LIABILITY, WHETHER IN CONTRACT, STRICT LIABILITY, OR
+#   TORT (INCLUDING NEGLIGENCE OR OTHERWISE) ARISING IN ANY WAY OUT OF THE USE OF THIS
+#   SOFTWARE, EVEN IF ADVISED OF THE POSSIBILITY OF SUCH DAMAGE.
+"""Upstream GeometryState tests about collision filters and roles, on pydrake and reimpl.
+
+GeometryState is not bound; SceneGraph's public calls reach the same code (SceneGraph
+forwards each to its model GeometryState, or to a context's copy), so each test runs
+on SceneGraph's model (``model_inspector``, ``collision_filter_manager()``) or, where a
+query needs poses, on a context whose source pose port is fixed. Where upstream looks
+at an ``InternalGeometry`` (``gs_tester_.GetGeometry(id)``), the inspector's
+``Get*Properties`` and ``GetAllGeometryIds`` give the same facts.
+
+``SetUpSingleSourceTree``: source "default_source"; frames f0, f1 (on the world) and
+f2 (on f1); two unit spheres on each frame, g0..g5, where gi sits at <i + 1, 0, 0>
+rotated iπ/2 about x in its frame; an anchored 100 x 100 x 2 box at <0, 0, -1>.
+f0 is at <1, 2, 3> turned 90° about x, f1 at <10, 20, 30> turned 90° about y, f2 at
+the inverse of f1's pose in f1. Posed, only (a, g4) and (a, g5) collide.
+
+Left out: CollisionFilterRespectsScope (it needs deformable geometry and
+ComputeDeformableContact, which reimpl does not model), the renderer tests, and all
+tests with no collision filter or role in them.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from types import ModuleType
+from typing import Any
+
+import pytest
+
+from tests.upstream.geometry_support import Scene, pair
+
+NUM_FRAMES = 3
+GEOMETRIES_PER_FRAME = 2
+
+
+@dataclass
+class Tree:
+    """SetUpSingleSourceTree's scene and ids."""
+
+    scene: Scene
+    frames: list[Any] = field(default_factory=list)
+    geometries: list[Any] = field(default_factory=list)
+    X_PFs: list[Any] = field(default_factory=list)
+    anchored: Any = None
+
+    @property
+    def g(self) -> ModuleType:
+        return self.scene.g
+
+    @property
+    def sg(self) -> Any:
+        return self.scene.scene_graph
+
+    @property
+    def source(self) -> Any:
+        return self.scene.source
+
+    @property
+    def inspector(self) -> Any:
+        return self.scene.model_inspector
+
+    @property
+    def manager(self) -> Any:
+        return self.sg.collision_filter_manager()
+
+    def all_geometry_ids(self) -> list[Any]:
+        return [*self.geometries, self.anchored]
+
+    def assign(self, properties: Any, geometry_id: Any) -> None:
+        self.sg.AssignRole(source_id=self.source, geometry_id=geometry_id, properties=properties)
+
+    def assign_to_all(self, properties: Any) -> None:
+        for geometry_id in self.all_geometry_ids():
+            self.assign(properties, geometry_id)
+
+    def posed_query(self) -> Any:
+        """A context with every frame at its default pose; its QueryObject."""
+        context = self.sg.CreateDefaultContext()
+        poses = self.g.FramePoseVector_[float]()
+        for frame_id, X_PF in zip(self.frames, self.X_PFs, strict=True):
+            poses.set_value(id=frame_id, value=X_PF)
+        self.sg.get_source_pose_port(self.source).FixValue(context=context, value=poses)
+        return self.scene.query_object(context)
+
+
+def single_source_tree(drake: ModuleType, *roles: str) -> Tree:
+    """SetUpSingleSourceTree(roles), roles among "proximity", "perception", "illustration"."""
+    g = drake.geometry
+    m = drake.math
+    RigidTransform = m.RigidTransform_[float]
+    scene = Scene(drake, source_name="default_source")
+    tree = Tree(scene)
+    sg = scene.scene_graph
+    source = scene.source
+
+    RotationMatrix = m.RotationMatrix_[float]
+
+    X_WF0 = RigidTransform(R=RotationMatrix.MakeXRotation(theta=math.pi / 2), p=[1, 2, 3])
+    X_WF1 = RigidTransform(R=RotationMatrix.MakeYRotation(theta=math.pi / 2), p=[10, 20, 30])
+    X_F1F2 = X_WF1.inverse()
+    f0 = sg.RegisterFrame(source_id=source, frame=g.GeometryFrame("f0"))
+    f1 = sg.RegisterFrame(source_id=source, frame=g.GeometryFrame("f1"))
+    f2 = sg.RegisterFrame(source_id=source, parent_id=f1, frame=g.GeometryFrame("f2"))
+    tree.frames = [f0, f1, f2]
+    tree.X_PFs = [X_WF0, X_WF1, X_F1F2]
+    for frame_id in tree.frames:
+        for i in range(GEOMETRIES_PER_FRAME):
+            count = len(tree.geometries)
+            X_FG = RigidTransform(
+                R=RotationMatrix.MakeXRotation(theta=count * math.pi / 2), p=[count + 1.0, 0, 0]
+            )
+            name = f"{frame_id.get_value()}_g{i}"
+            instance = g.GeometryInstance(X_PG=X_FG, shape=g.Sphere(1), name=name)
+            tree.geometries.append(
+                sg.RegisterGeometry(source_id=source, frame_id=frame_id, geometry=instance)
+            )
+    X_WA = RigidTransform(p=[0, 0, -1])
+    tree.anchored = sg.RegisterAnchoredGeometry(
+        source_id=source,
+        geometry=g.GeometryInstance(X_PG=X_WA, shape=g.Box(100, 100, 2), name="anchored"),
+    )
+    if "proximity" in roles:
+        properties = g.ProximityProperties()
+        properties.AddProperty("test", "value", 17)
+        tree.assign_to_all(properties)
+    if "perception" in roles:
+        properties = g.PerceptionProperties()
+        properties.AddProperty("test", "value", 17)
+        tree.assign_to_all(properties)
+    if "illustration" in roles:
+        properties = g.IllustrationProperties()
+        properties.AddProperty("test", "value", 17)
+        tree.assign_to_all(properties)
+    return tree
+
+
+def test_removing_anchored_geometry(drake: ModuleType) -> None:
+    """RemoveAnchoredGeometry: with a second anchored (half space) proximity geometry."""
+    g = drake.geometry
+    tree = single_source_tree(drake, "proximity")
+    X_WB = g.HalfSpace.MakePose(Hz_dir_F=[0, 1, 0], p_FB=[1, 1, 1])
+    anchored_id_1 = tree.sg.RegisterAnchoredGeometry(
+        source_id=tree.source,
+        geometry=g.GeometryInstance(X_PG=X_WB, shape=g.HalfSpace(), name="anchored1"),
+    )
+    tree.assign(g.ProximityProperties(), anchored_id_1)
+    assert tree.inspector.BelongsToSource(geometry_id=anchored_id_1, source_id=tree.source)
+    tree.sg.RemoveGeometry(source_id=tree.source, geometry_id=tree.anchored)
+    assert tree.anchored not in tree.inspector.GetAllGeometryIds()
+    assert anchored_id_1 in tree.inspector.GetAllGeometryIds()
+
+
+def test_removing_geometry_keeps_the_other_filters(drake: ModuleType) -> None:
+    """RemoveGeometryWithCollisionFilters: siblings stay filtered, the rest do not."""
+    tree = single_source_tree(drake, "proximity")
+    gs = tree.geometries
+
+    def is_filtered(i: int, j: int) -> bool:
+        return bool(tree.inspector.CollisionFiltered(geometry_id1=gs[i], geometry_id2=gs[j]))
+
+    siblings = {(0, 1), (2, 3), (4, 5)}
+    for i in range(6):
+        for j in range(i + 1, 6):
+            assert is_filtered(i, j) == ((i, j) in siblings), (i, j)
+
+    tree.sg.RemoveGeometry(source_id=tree.source, geometry_id=tree.anchored)
+    tree.sg.RemoveGeometry(source_id=tree.source, geometry_id=gs[1])
+    for i in (0, 2, 3, 4, 5):
+        for j in (0, 2, 3, 4, 5):
+            if i < j:
+                assert is_filtered(i, j) == ((i, j) in siblings), (i, j)
+
+
+def test_collision_candidates_shrink_one_filtered_pair_at_a_time(drake: ModuleType) -> None:
+    """TestCollisionCandidates: every pair but the siblings, then ExcludeBetween each.
+
+    Upstream compares ``set<pair<GeometryId, GeometryId>>``, so the order within a pair
+    counts: the lower id first (here the ids grow in registration order).
+    """
+    g = drake.geometry
+    tree = single_source_tree(drake, "proximity")
+    gs, a = tree.geometries, tree.anchored
+    expected = {
+        (gs[i], gs[j]) for i in range(6) for j in range(i + 1, 6) if (i // 2) != (j // 2)
+    } | {(x, a) for x in gs}
+    assert len(expected) == 18
+    assert set(tree.inspector.GetCollisionCandidates()) == expected
+
+    for first, second in sorted(expected, key=lambda p: (p[0].get_value(), p[1].get_value())):
+        tree.manager.Apply(
+            g.CollisionFilterDeclaration().ExcludeBetween(
+                g.GeometrySet(geometry_id=first), g.GeometrySet(geometry_id=second)
+            )
+        )
+        expected.discard((first, second))
+        assert set(tree.inspector.GetCollisionCandidates()) == expected
+    # pydrake returns GetCollisionCandidates() as a Python set (of id tuples).
+    assert tree.inspector.GetCollisionCandidates() == set()
+
+
+def test_filtering_a_geometry_without_proximity_role_does_nothing(drake: ModuleType) -> None:
+    """NonProximityRoleInCollisionFilter: a declaration naming a geometry that has no
+    proximity role leaves it out; once it has the role, it collides until filtered."""
+    g = drake.geometry
+    RigidTransform = drake.math.RigidTransform_[float]
+    tree = single_source_tree(drake, "proximity")
+
+    def collisions() -> int:
+        return len(tree.posed_query().ComputePointPairPenetration())
+
+    expected_collisions = 2  # (a, g4), (a, g5)
+    assert collisions() == expected_collisions
+    added_id = tree.sg.RegisterGeometry(
+        source_id=tree.source,
+        frame_id=tree.frames[2],
+        geometry=g.GeometryInstance(
+            X_PG=RigidTransform(p=[5.5, 0, 0]), shape=g.Sphere(1), name="added_sphere"
+        ),
+    )
+    assert collisions() == expected_collisions
+
+    def exclude_added_and_anchored() -> None:
+        tree.manager.Apply(
+            g.CollisionFilterDeclaration().ExcludeBetween(
+                g.GeometrySet(geometry_id=added_id), g.GeometrySet(geometry_id=tree.anchored)
+            )
+        )
+
+    exclude_added_and_anchored()
+    assert collisions() == expected_collisions
+    tree.assign(g.ProximityProperties(), added_id)
+    assert collisions() == expected_collisions + 1
+    exclude_added_and_anchored()
+    assert collisions() == expected_collisions
+
+
+def test_collision_filtered_error_messages(drake: ModuleType) -> None:
+    """CollisionFilteredExceptions. pydrake's messages in full (upstream matches them with
+    regexes); note the two spaces before "neither id has a proximity role"."""
+    g = drake.geometry
+    tree = single_source_tree(drake)
+    gs = tree.geometries
+    tree.assign(g.ProximityProperties(), gs[0])
+
+    def message(a: Any, b: Any, tail: str) -> str:
+        text = (
+            f"Can't report collision filter status between geometries "
+            f"{a.get_value()} and {b.get_value()}; {tail}"
+        )
+        return "^" + re.escape(text) + "$"
+
+    def collision_filtered(a: Any, b: Any) -> bool:
+        return bool(tree.inspector.CollisionFiltered(geometry_id1=a, geometry_id2=b))
+
+    no_role = f"{gs[1].get_value()} does not have a proximity role"
+    with pytest.raises(RuntimeError, match=message(gs[1], gs[0], no_role)):
+        collision_filtered(gs[1], gs[0])
+    with pytest.raises(RuntimeError, match=message(gs[0], gs[1], no_role)):
+        collision_filtered(gs[0], gs[1])
+    with pytest.raises(
+        RuntimeError, match=message(gs[1], gs[2], " neither id has a proximity role")
+    ):
+        collision_filtered(gs[1], gs[2])
+
+    tree.assign(g.ProximityProperties(), gs[1])
+    assert collision_filtered(gs[0], gs[1])
+
+    bad_id = g.GeometryId.get_new_id()
+    invalid = f"{bad_id.get_value()} is not a valid geometry"
+    with pytest.raises(RuntimeError, match=message(bad_id, gs[0], invalid)):
+        collision_filtered(bad_id, gs[0])
+    with pytest.raises(RuntimeError, match=message(gs[0], bad_id, invalid)):
+        collision_filtered(gs[0], bad_id)
+    with pytest.raises(
+        RuntimeError, match=message(bad_id, bad_id, "neither id is a valid geometry")
+    ):
+        collision_filtered(bad_id, bad_id)
+
+
+def _roles(tree: Tree, geometry_id: Any) -> tuple[bool, bool, bool]:
+    """(proximity, perception, illustration): which roles the geometry has."""
+    inspector = tree.inspector
+    return (
+        inspector.GetProximityProperties(geometry_id=geometry_id) is not None,
+        inspector.GetPerceptionProperties(geometry_id=geometry_id) is not None,
+        inspector.GetIllustrationProperties(geometry_id=geometry_id) is not None,
+    )
+
+
+def test_each_combination_of_roles_is_assigned(drake: ModuleType) -> None:
+    """AssignRolesToGeometry: eight geometries get the eight combinations of roles.
+
+    Upstream's perception properties come from its dummy renderer; with no renderer,
+    plain PerceptionProperties with a label (as GeometryStateNoRendererTest does)."""
+    g = drake.geometry
+    tree = single_source_tree(drake)
+    for i in range(8 - len(tree.geometries)):
+        tree.geometries.append(
+            tree.sg.RegisterGeometry(
+                source_id=tree.source,
+                frame_id=tree.frames[0],
+                geometry=g.GeometryInstance(
+                    X_PG=drake.math.RigidTransform_[float](), shape=g.Sphere(1), name=f"new_geom{i}"
+                ),
+            )
+        )
+
+    def set_roles(geometry_id: Any, proximity: bool, perception: bool, illustration: bool) -> None:
+        if proximity:
+            tree.assign(g.ProximityProperties(), geometry_id)
+        if perception:
+            tree.assign(g.PerceptionProperties(), geometry_id)
+        if illustration:
+            tree.assign(g.IllustrationProperties(), geometry_id)
+
+    for i in range(8):
+        proximity, illustration, perception = bool(i & 1), bool(i & 2), bool(i & 4)
+        geometry_id = tree.geometries[i]
+        assert _roles(tree, geometry_id) == (False, False, False), i
+        set_roles(geometry_id, proximity, perception, illustration)
+        assert _roles(tree, geometry_id) == (proximity, perception, illustration), i
+
+    assert _roles(tree, tree.anchored) == (False, False, False)
+    set_roles(tree.anchored, True, False, True)
+    assert _roles(tree, tree.anchored) == (True, False, True)
+
+
+def test_role_counts_per_frame(drake: ModuleType) -> None:
+    """ChildGeometryRoleCount: NumGeometriesForFrameWithRole after each assignment."""
+    g = drake.geometry
+    tree = single_source_tree(drake)
+    Role = g.Role
+
+    def counts(frame_id: Any) -> tuple[int, int, int]:
+        return tuple(  # type: ignore[return-value]
+            tree.inspector.NumGeometriesForFrameWithRole(frame_id=frame_id, role=role)
+            for role in (Role.kProximity, Role.kPerception, Role.kIllustration)
+        )
+
+    f_id = tree.frames[0]
+    g_id1, g_id2 = tree.geometries[0], tree.geometries[1]
+    assert tree.inspector.GetFrameId(geometry_id=g_id1) == f_id
+    assert tree.inspector.GetFrameId(geometry_id=g_id2) == f_id
+    perception = g.PerceptionProperties()
+    steps = [
+        (g_id1, g.ProximityProperties(), (1, 0, 0)),
+        (g_id2, g.IllustrationProperties(), (1, 0, 1)),
+        (g_id1, g.IllustrationProperties(), (1, 0, 2)),
+        (g_id1, perception, (1, 1, 2)),
+        (g_id2, perception, (1, 2, 2)),
+        (g_id2, g.ProximityProperties(), (2, 2, 2)),
+    ]
+    assert counts(f_id) == (0, 0, 0)
+    for geometry_id, properties, expected in steps:
+        tree.assign(properties, geometry_id)
+        assert counts(f_id) == expected
+
+    world_id = tree.sg.world_frame_id()
+    assert counts(world_id) == (0, 0, 0)
+    for properties, expected in (
+        (g.ProximityProperties(), (1, 0, 0)),
+        (perception, (1, 1, 0)),
+        (g.IllustrationProperties(), (1, 1, 1)),
+    ):
+        tree.assign(properties, tree.anchored)
+        assert counts(world_id) == expected
+
+
+ALL_ROLES = ("proximity", "perception", "illustration")
+
+
+def test_removing_the_unassigned_role_does_nothing(drake: ModuleType) -> None:
+    """RemoveUnassignedRole."""
+    Role = drake.geometry.Role
+    tree = single_source_tree(drake, *ALL_ROLES)
+    assert (
+        tree.sg.RemoveRole(
+            source_id=tree.source, geometry_id=tree.geometries[0], role=Role.kUnassigned
+        )
+        == 0
+    )
+    assert (
+        tree.sg.RemoveRole(source_id=tree.source, frame_id=tree.frames[0], role=Role.kUnassigned)
+        == 0
+    )
+    for geometry_id in tree.geometries:
+        assert _roles(tree, geometry_id) == (True, True, True)
+
+
+ROLE_INDEX = {"kProximity": 0, "kPerception": 1, "kIllustration": 2}
+
+
+def _expect_all_roles_except(tree: Tree, without: set[Any], role_name: str) -> None:
+    for geometry_id in tree.geometries:
+        expected = [True, True, True]
+        expected[ROLE_INDEX[role_name]] = geometry_id not in without
+        assert _roles(tree, geometry_id) == tuple(expected), geometry_id
+
+
+@pytest.mark.parametrize("role_name", list(ROLE_INDEX))
+def test_remove_role_from_geometry(drake: ModuleType, role_name: str) -> None:
+    """RemoveRoleTests.RemoveRoleFromGeometry (no renderer; upstream adds two)."""
+    role = getattr(drake.geometry.Role, role_name)
+    tree = single_source_tree(drake, *ALL_ROLES)
+    g0 = tree.geometries[0]
+    _expect_all_roles_except(tree, set(), role_name)
+    assert tree.sg.RemoveRole(source_id=tree.source, geometry_id=g0, role=role) == 1
+    _expect_all_roles_except(tree, {g0}, role_name)
+    assert tree.sg.RemoveRole(source_id=tree.source, geometry_id=g0, role=role) == 0
+    _expect_all_roles_except(tree, {g0}, role_name)
+
+
+@pytest.mark.parametrize("role_name", list(ROLE_INDEX))
+def test_remove_role_from_frame(drake: ModuleType, role_name: str) -> None:
+    """RemoveRoleTests.RemoveRoleFromFrame."""
+    role = getattr(drake.geometry.Role, role_name)
+    tree = single_source_tree(drake, *ALL_ROLES)
+    gs, fs, sg, source = tree.geometries, tree.frames, tree.sg, tree.source
+    without: set[Any] = set()
+    _expect_all_roles_except(tree, without, role_name)
+
+    without |= {gs[0], gs[1]}
+    assert sg.RemoveRole(source_id=source, frame_id=fs[0], role=role) == 2
+    _expect_all_roles_except(tree, without, role_name)
+    assert sg.RemoveRole(source_id=source, frame_id=fs[0], role=role) == 0
+    _expect_all_roles_except(tree, without, role_name)
+
+    sg.RemoveRole(source_id=source, geometry_id=gs[2], role=role)
+    without.add(gs[2])
+    _expect_all_roles_except(tree, without, role_name)
+    assert sg.RemoveRole(source_id=source, frame_id=fs[1], role=role) == 1
+    without.add(gs[3])
+    _expect_all_roles_except(tree, without, role_name)
+
+    source_id_2 = sg.RegisterSource("source2")
+    assert sg.RemoveRole(source_id=source_id_2, frame_id=sg.world_frame_id(), role=role) == 0
+    _expect_all_roles_except(tree, without, role_name)
+    assert sg.RemoveRole(source_id=source, frame_id=sg.world_frame_id(), role=role) == 1
+    anchored_roles = [True, True, True]
+    anchored_roles[ROLE_INDEX[role_name]] = False
+    assert _roles(tree, tree.anchored) == tuple(anchored_roles)
+
+
+def test_remove_role_error_messages(drake: ModuleType) -> None:
+    """RemoveRoleTests.RemoveRoleExceptions (upstream's regexes, pydrake's full text)."""
+    g = drake.geometry
+    tree = single_source_tree(drake, *ALL_ROLES)
+    sg, source, unassigned = tree.sg, tree.source, g.Role.kUnassigned
+    invalid_source_id = g.SourceId.get_new_id()
+    invalid_frame_id = g.FrameId.get_new_id()
+    invalid_geometry_id = g.GeometryId.get_new_id()
+
+    def raises(pattern: str) -> Any:
+        return pytest.raises(RuntimeError, match=pattern)
+
+    source_unknown = (
+        rf"^Referenced geometry source {invalid_source_id.get_value()} is not registered.$"
+    )
+    with raises(source_unknown):
+        sg.RemoveRole(source_id=invalid_source_id, frame_id=invalid_frame_id, role=unassigned)
+    with raises(source_unknown):
+        sg.RemoveRole(source_id=invalid_source_id, geometry_id=invalid_geometry_id, role=unassigned)
+    with raises("^Referenced .* frame doesn't belong to the source.$"):
+        sg.RemoveRole(source_id=source, frame_id=invalid_frame_id, role=unassigned)
+    with raises(
+        rf"^Referenced geometry {invalid_geometry_id.get_value()} has not been registered.$"
+    ):
+        sg.RemoveRole(source_id=source, geometry_id=invalid_geometry_id, role=unassigned)
+
+    source_id_2 = sg.RegisterSource("second_source")
+    with raises("^Referenced .* frame doesn't belong to the source.$"):
+        sg.RemoveRole(source_id=source_id_2, frame_id=tree.frames[0], role=unassigned)
+    with raises("^.*the geometry doesn't belong to that source.$"):
+        sg.RemoveRole(source_id=source_id_2, geometry_id=tree.geometries[0], role=unassigned)
+
+
+def test_perception_role_without_renderer(drake: ModuleType) -> None:
+    """GeometryStateNoRendererTest.PerceptionRoleWithoutRenderer."""
+    Role = drake.geometry.Role
+    tree = single_source_tree(drake, "perception")
+    g0 = tree.geometries[0]
+    # Upstream asserts RendererCount() == 0; SceneGraph here never gets a renderer (and
+    # reimpl binds no renderer API).
+    assert _roles(tree, g0)[1]
+    assert tree.sg.RemoveRole(source_id=tree.source, geometry_id=g0, role=Role.kPerception) == 1
+    assert not _roles(tree, g0)[1]
+    assert tree.sg.RemoveRole(source_id=tree.source, geometry_id=g0, role=Role.kPerception) == 0
+
+
+def test_sibling_pairs_are_filtered_in_the_tree(drake: ModuleType) -> None:
+    """The tree's comment: (g0, g1), (g2, g3), (g4, g5) are filtered as siblings; the
+    anchored box collides with nothing else anchored (it is alone)."""
+    tree = single_source_tree(drake, "proximity")
+    gs = tree.geometries
+    candidates = {pair(a, b) for a, b in tree.inspector.GetCollisionCandidates()}
+    for i in (0, 2, 4):
+        assert pair(gs[i], gs[i + 1]) not in candidates
