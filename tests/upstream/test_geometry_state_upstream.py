@@ -44,6 +44,8 @@ rotated iπ/2 about x in its frame; an anchored 100 x 100 x 2 box at <0, 0, -1>.
 f0 is at <1, 2, 3> turned 90° about x, f1 at <10, 20, 30> turned 90° about y, f2 at
 the inverse of f1's pose in f1. Posed, only (a, g4) and (a, g5) collide.
 
+GetGeometryIds (the GeometrySet resolution under every declaration) is included.
+
 Left out: CollisionFilterRespectsScope (it needs deformable geometry and
 ComputeDeformableContact, which reimpl does not model), the renderer tests, and all
 tests with no collision filter or role in them.
@@ -527,3 +529,47 @@ def test_sibling_pairs_are_filtered_in_the_tree(drake: ModuleType) -> None:
     candidates = {pair(a, b) for a, b in tree.inspector.GetCollisionCandidates()}
     for i in (0, 2, 4):
         assert pair(gs[i], gs[i + 1]) not in candidates
+
+
+def test_geometry_set_resolution_by_role(drake: ModuleType) -> None:
+    """GetGeometryIds: a GeometrySet resolves to geometries (frames expand to their
+    geometries, redundant ids appear once), optionally only those with a role. This is
+    the resolution every collision filter declaration goes through."""
+    g = drake.geometry
+    Role = g.Role
+    tree = single_source_tree(drake, "proximity")
+    gs, fs = tree.geometries, tree.frames
+    perception = g.PerceptionProperties()
+    perception.AddProperty("phong", "diffuse", g.Rgba(0.8, 0.8, 0.8, 1.0))
+    for geometry_id in (gs[2], gs[3]):
+        tree.assign(perception, geometry_id)
+    illustration = g.IllustrationProperties()
+    illustration.AddProperty("phong", "diffuse", g.Rgba(0.8, 0.8, 0.8, 1.0))
+    tree.assign(illustration, gs[4])
+    tree.assign(illustration, gs[5])
+    tree.assign(perception, gs[5])
+
+    all_geometries = {*gs, tree.anchored}
+    perception_geometries = {gs[2], gs[3], gs[5]}
+    illustration_geometries = {gs[4], gs[5]}
+
+    def ids(geometry_set: Any, role: Any = None) -> Any:
+        return tree.inspector.GetGeometryIds(geometry_set=geometry_set, role=role)
+
+    all_frames = [*fs, tree.sg.world_frame_id()]
+    for geometry_set in (
+        g.GeometrySet(frame_ids=all_frames),
+        g.GeometrySet(geometry_ids=list(all_geometries)),
+    ):
+        assert ids(geometry_set) == all_geometries
+        assert ids(geometry_set, Role.kProximity) == all_geometries
+        assert ids(geometry_set, Role.kPerception) == perception_geometries
+        assert ids(geometry_set, Role.kIllustration) == illustration_geometries
+
+    assert tree.inspector.GetFrameId(geometry_id=gs[2]) == fs[1]
+    assert tree.inspector.GetFrameId(geometry_id=gs[3]) == fs[1]
+    redundant_set = g.GeometrySet(geometry_ids=[gs[2]], frame_ids=[fs[1]])
+    assert ids(redundant_set) == {gs[2], gs[3]}
+    assert ids(redundant_set, Role.kProximity) == {gs[2], gs[3]}
+    assert ids(redundant_set, Role.kPerception) == {gs[2], gs[3]}
+    assert ids(redundant_set, Role.kIllustration) == set()
