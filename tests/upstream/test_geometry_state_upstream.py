@@ -44,11 +44,17 @@ rotated iπ/2 about x in its frame; an anchored 100 x 100 x 2 box at <0, 0, -1>.
 f0 is at <1, 2, 3> turned 90° about x, f1 at <10, 20, 30> turned 90° about y, f2 at
 the inverse of f1's pose in f1. Posed, only (a, g4) and (a, g5) collide.
 
-GetGeometryIds (the GeometrySet resolution under every declaration) is included.
+Ported: RemoveAnchoredGeometry, RemoveGeometry, RemoveGeometryWithCollisionFilters,
+TestCollisionCandidates, NonProximityRoleInCollisionFilter, CollisionFilteredExceptions,
+GetGeometryIds (the GeometrySet resolution under every declaration),
+AssignRolesToGeometry, InstanceRoleAssignment, ModifyProximityProperties (without the
+hydroelastic representation), RoleAssignExceptions, ChildGeometryRoleCount,
+RemoveUnassignedRole, RemoveRoleTests, PerceptionRoleWithoutRenderer,
+GeometryVersionCopies and GeometryVersionUpdate (without renderers).
 
 Left out: CollisionFilterRespectsScope (it needs deformable geometry and
 ComputeDeformableContact, which reimpl does not model), the renderer tests, and all
-tests with no collision filter or role in them.
+tests with no collision filter, candidate or role in them.
 """
 
 from __future__ import annotations
@@ -766,3 +772,141 @@ def test_geometry_versions_compare_per_role(drake: ModuleType) -> None:
         RuntimeError, match=r"^Trying to compare the version of unassigned roles\.$"
     ):
         a.IsSameAs(other=a, role=g.Role.kUnassigned)
+
+
+def test_removing_a_proximity_geometry_and_adding_another(drake: ModuleType) -> None:
+    """RemoveGeometry: counts drop by one, the posed queries still run, and a new
+    proximity sphere on the same frame is filtered against its sibling (upstream asks
+    only that nothing throws; the candidates are what that means here)."""
+    g = drake.geometry
+    tree = single_source_tree(drake, "proximity", "perception")
+    gs, fs = tree.geometries, tree.frames
+    inspector = tree.inspector
+    assert inspector.GetFrameId(geometry_id=gs[0]) == fs[0]
+    assert inspector.num_geometries() == 7
+    assert inspector.NumDynamicGeometries() == 6
+    tree.sg.RemoveGeometry(source_id=tree.source, geometry_id=gs[0])
+    assert inspector.num_geometries() == 6
+    assert inspector.NumDynamicGeometries() == 5
+    assert gs[0] not in inspector.GetGeometries(frame_id=fs[0])
+    assert gs[0] not in inspector.GetAllGeometryIds()
+    assert len(tree.posed_query().ComputePointPairPenetration()) == 2
+
+    added_id = tree.sg.RegisterGeometry(
+        source_id=tree.source, frame_id=fs[0], geometry=sphere(drake, "newest")
+    )
+    tree.assign(g.ProximityProperties(), added_id)
+    assert inspector.CollisionFiltered(geometry_id1=added_id, geometry_id2=gs[1])
+    assert pair(added_id, gs[2]) in {pair(a, b) for a, b in inspector.GetCollisionCandidates()}
+    tree.sg.RemoveGeometry(source_id=tree.source, geometry_id=added_id)
+    assert len(tree.posed_query().ComputePointPairPenetration()) == 2
+
+
+def test_instance_properties_become_roles(drake: ModuleType) -> None:
+    """InstanceRoleAssignment: the properties an instance carries become its roles."""
+    g = drake.geometry
+    scene = Scene(drake)
+    f_id = scene.frame("frame")
+    cases = {
+        "instance1": (False, False, False),
+        "instance2": (True, False, False),
+        "instance3": (False, False, True),
+        "instance4": (False, True, False),
+        "instance5": (True, True, True),
+    }
+    tree = Tree(scene)
+    for name, (proximity, perception, illustration) in cases.items():
+        instance = sphere(drake, name)
+        if proximity:
+            instance.set_proximity_properties(g.ProximityProperties())
+        if perception:
+            instance.set_perception_properties(g.PerceptionProperties())
+        if illustration:
+            instance.set_illustration_properties(g.IllustrationProperties())
+        g_id = scene.scene_graph.RegisterGeometry(
+            source_id=scene.source, frame_id=f_id, geometry=instance
+        )
+        assert _roles(tree, g_id) == (proximity, perception, illustration), name
+
+
+def test_replacing_proximity_properties(drake: ModuleType) -> None:
+    """ModifyProximityProperties, without the hydroelastic representation (internal):
+    kReplace before a first assignment throws; after one, the new properties replace
+    the old (no group of the old is left) and the filter keeps one entry."""
+    g = drake.geometry
+    tree = single_source_tree(drake)
+    g0 = tree.geometries[0]
+    props1 = g.ProximityProperties()
+    props1.AddProperty("prop1", "value", 1)
+    props2 = g.ProximityProperties()
+    props2.AddProperty("prop2", "value", 2)
+    with pytest.raises(
+        RuntimeError,
+        match=r"^Trying to replace the properties on geometry id \d+ for the 'proximity' role.*",
+    ):
+        tree.sg.AssignRole(
+            source_id=tree.source,
+            geometry_id=g0,
+            properties=g.ProximityProperties(),
+            assign=g.RoleAssign.kReplace,
+        )
+    tree.assign(props1, g0)
+    assert tree.inspector.NumGeometriesWithRole(role=g.Role.kProximity) == 1
+    props = tree.inspector.GetProximityProperties(geometry_id=g0)
+    assert props.HasGroup("prop1")
+    assert props.GetProperty("prop1", "value") == 1
+    tree.sg.AssignRole(
+        source_id=tree.source, geometry_id=g0, properties=props2, assign=g.RoleAssign.kReplace
+    )
+    assert tree.inspector.NumGeometriesWithRole(role=g.Role.kProximity) == 1
+    props = tree.inspector.GetProximityProperties(geometry_id=g0)
+    assert props.HasGroup("prop2")
+    assert not props.HasGroup("prop1")
+    assert props.GetProperty("prop2", "value") == 2
+
+
+def test_role_assignment_error_messages(drake: ModuleType) -> None:
+    """RoleAssignExceptions (upstream's regexes)."""
+    g = drake.geometry
+    tree = single_source_tree(drake)
+    sg, source, g0 = tree.sg, tree.source, tree.geometries[0]
+
+    def assign(source_id: Any, geometry_id: Any, properties: Any) -> None:
+        sg.AssignRole(source_id=source_id, geometry_id=geometry_id, properties=properties)
+
+    with pytest.raises(RuntimeError, match=r"^Referenced geometry source \d+ is not registered.$"):
+        assign(g.SourceId.get_new_id(), g0, g.ProximityProperties())
+    with pytest.raises(RuntimeError, match=r"^Referenced geometry \d+ has not been registered.$"):
+        assign(source, g.GeometryId.get_new_id(), g.ProximityProperties())
+    other_source = sg.RegisterSource("alt_source")
+    with pytest.raises(
+        RuntimeError, match=r"^Given geometry id \d+ does not belong to the given source .*"
+    ):
+        assign(other_source, g0, g.ProximityProperties())
+
+    for role, make in (
+        ("proximity", g.ProximityProperties),
+        ("perception", g.PerceptionProperties),
+        ("illustration", g.IllustrationProperties),
+    ):
+        assign(source, g0, make())
+        with pytest.raises(
+            RuntimeError,
+            match=rf"^Trying to assign the '{role}' role to geometry id \d+ for the first time.*",
+        ):
+            assign(source, g0, make())
+
+    name = tree.inspector.GetName(geometry_id=g0)
+    new_id = sg.RegisterGeometry(
+        source_id=source, frame_id=tree.frames[0], geometry=sphere(drake, name)
+    )
+    for role, make in (
+        ("proximity", g.ProximityProperties),
+        ("illustration", g.IllustrationProperties),
+        ("perception", g.PerceptionProperties),
+    ):
+        with pytest.raises(
+            RuntimeError,
+            match=rf"^The name .* has already been used by a geometry with the '{role}' role.$",
+        ):
+            assign(source, new_id, make())
