@@ -315,3 +315,134 @@ def test_transient_declarations(drake: ModuleType) -> None:
     assert manager.has_transient_history()
     for filter_id in (id0, id1, id4, id5):
         assert manager.IsActive(filter_id)
+
+
+# The tests below are upstream's at Drake v1.56.0+ (this file's C++ source gained them
+# with the activation feature; ApplyWithUnknownGeometryIdThrows holds on 1.51.1 too).
+
+
+def test_apply_with_an_unknown_geometry_id_throws(drake: ModuleType) -> None:
+    """ApplyWithUnknownGeometryIdThrows: Apply and ApplyTransient reject an id that
+    was never registered, in set A or set B. Upstream's regex ".*not been registered.*"
+    is the internal CollisionFilter's message; through SceneGraph the GeometrySet is
+    resolved first, and pydrake (1.51.1 and 1.58.0) says what is asserted here. The
+    rejected transient declaration leaves no history."""
+    g = drake.geometry
+    filters, (id_A, _, _) = three(drake, "own_frames")
+    unknown_id = g.GeometryId.get_new_id()
+    message = (
+        "^Geometry set includes a geometry id that doesn't belong to the SceneGraph: "
+        f"{unknown_id.get_value()}$"
+    )
+    with pytest.raises(RuntimeError, match=message):
+        filters.manager.Apply(
+            g.CollisionFilterDeclaration().ExcludeBetween(
+                g.GeometrySet(unknown_id), g.GeometrySet(id_A)
+            )
+        )
+    with pytest.raises(RuntimeError, match=message):
+        filters.manager.ApplyTransient(
+            g.CollisionFilterDeclaration().ExcludeBetween(
+                g.GeometrySet(id_A), g.GeometrySet(unknown_id)
+            )
+        )
+    assert not filters.manager.has_transient_history()
+
+
+def _needs_activation(drake: ModuleType) -> None:
+    if not hasattr(drake.geometry.CollisionFilterManager, "Deactivate"):
+        pytest.skip("CollisionFilterManager.Deactivate is bound since 1.55 (activation-since-1.55)")
+
+
+def test_activation(drake: ModuleType) -> None:
+    """Activation, its properties (1)-(5); (6), MakeClearCopy, is internal.
+
+    (1) an inactive geometry collides with nothing; (2) nor with geometry added
+    later; (3) Allow* does not reactivate it; (4) filters declared while inactive take
+    effect on reactivation; (5) (de)activating an (in)active geometry is a no-op.
+    Geometry D of (2) is registered and given the proximity role in the context."""
+    _needs_activation(drake)
+    g = drake.geometry
+    Decl = g.CollisionFilterDeclaration
+    GeometrySet = g.GeometrySet
+    scene = Scene(drake)
+    id_A, id_B, id_C = scene.spheres_on_own_frames(3)
+    frame_D = scene.frame("frame_D")
+    filters = Filters(scene, scene.context())
+    manager = filters.manager
+
+    assert filters.can_collide(id_A, id_B)
+    assert filters.can_collide(id_A, id_C)
+    assert filters.can_collide(id_B, id_C)
+
+    for _ in range(2):  # (1), then (5): deactivating an inactive geometry
+        manager.Deactivate(GeometrySet(id_A))
+        assert not filters.can_collide(id_A, id_B)
+        assert not filters.can_collide(id_A, id_C)
+        assert filters.can_collide(id_B, id_C)
+
+    # (2)
+    id_D = scene.scene_graph.RegisterGeometry(
+        context=filters.context,
+        source_id=scene.source,
+        frame_id=frame_D,
+        geometry=sphere(drake, "D"),
+    )
+    scene.proximity(id_D, context=filters.context)
+    assert not filters.can_collide(id_A, id_D)
+    assert filters.can_collide(id_B, id_D)
+
+    # (3)
+    manager.Apply(Decl().AllowBetween(GeometrySet(id_A), GeometrySet([id_B, id_C, id_D])))
+    assert not filters.can_collide(id_A, id_B)
+    assert not filters.can_collide(id_A, id_D)
+
+    # (4)
+    manager.Apply(Decl().ExcludeWithin(GeometrySet([id_A, id_B])))
+    manager.Activate(GeometrySet(id_A))
+    assert not filters.can_collide(id_A, id_B)
+    assert filters.can_collide(id_A, id_C)
+    assert filters.can_collide(id_A, id_D)
+
+    # (5)
+    manager.Activate(GeometrySet([id_A, id_C]))
+    assert filters.can_collide(id_A, id_C)
+
+
+def test_active_status_change_end_state(drake: ModuleType) -> None:
+    """ActiveStatusChange: the change reports are internal (a callback); the end state
+    is public: (*, B) blocked because B is inactive, (A, C) collidable."""
+    _needs_activation(drake)
+    g = drake.geometry
+    GeometrySet = g.GeometrySet
+    filters, (id_A, id_B, id_C) = three(drake, "own_frames")
+    manager = filters.manager
+    manager.Apply(g.CollisionFilterDeclaration().ExcludeWithin(GeometrySet([id_A, id_B])))
+    manager.Deactivate(GeometrySet([id_A, id_B]))
+    manager.Deactivate(GeometrySet(id_A))
+    manager.Activate(GeometrySet([id_A, id_C]))
+    assert not filters.can_collide(id_A, id_B)
+    assert filters.can_collide(id_A, id_C)
+    assert not filters.can_collide(id_B, id_C)
+
+
+def test_manager_activation_resolves_frames(drake: ModuleType) -> None:
+    """collision_filter_manager_test.cc Activation (Drake >= 1.55): the manager passes
+    its id extraction on, so a set naming a frame (de)activates that frame's geometry.
+    Also its Apply, whose set names g_id2 by its frame."""
+    _needs_activation(drake)
+    g = drake.geometry
+    GeometrySet = g.GeometrySet
+    filters, (id_1, id_2, id_3) = three(drake, "own_frames")
+    frame_2 = filters.inspector.GetFrameId(geometry_id=id_2)
+    filters.manager.Apply(
+        g.CollisionFilterDeclaration().ExcludeWithin(GeometrySet([id_1], [frame_2]))
+    )
+    assert not filters.can_collide(id_1, id_2)
+    assert filters.can_collide(id_1, id_3)
+    filters.manager.Deactivate(GeometrySet(frame_2))
+    assert not filters.can_collide(id_2, id_3)
+    assert filters.can_collide(id_1, id_3)
+    filters.manager.Activate(GeometrySet(frame_2))
+    assert filters.can_collide(id_2, id_3)
+    assert not filters.can_collide(id_1, id_2)
