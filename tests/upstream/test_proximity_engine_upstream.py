@@ -218,3 +218,78 @@ def test_collision_candidates_come_in_the_same_order_twice(drake: ModuleType) ->
     assert {frozenset(p) for p in posed.query().FindCollisionCandidates()} == ring - {
         frozenset(posed.ids[:2])
     }
+
+
+# The tests below are upstream's at Drake v1.56.0+ (geometry activation, bound since 1.55).
+
+
+def _needs_activation(drake: ModuleType) -> None:
+    if not hasattr(drake.geometry.CollisionFilterManager, "Deactivate"):
+        pytest.skip("CollisionFilterManager.Deactivate is bound since 1.55 (activation-since-1.55)")
+
+
+def _manager(posed: Posed) -> Any:
+    return posed.scene.scene_graph.collision_filter_manager(posed.context)
+
+
+def test_inactive_geometry_is_in_distance_to_point(drake: ModuleType) -> None:
+    """InactiveGeometryInDistanceToPoint: (de)activation is about pairs; a point query
+    still finds the inactive geometry."""
+    _needs_activation(drake)
+    posed = posed_spheres(drake, [[0, 0, 0]])
+    (id_A,) = posed.ids
+    for deactivate in (False, True):
+        if deactivate:
+            _manager(posed).Deactivate(drake.geometry.GeometrySet(id_A))
+        results = posed.query().ComputeSignedDistanceToPoint(p_WQ=[0, 0, 1])
+        assert [r.id_G for r in results] == [id_A]
+
+
+def test_active_status_changes_reach_the_queries(drake: ModuleType) -> None:
+    """ApplyActiveStatusChange (1)-(4), seen through FindCollisionCandidates: A and B
+    touch; deactivating A (twice) removes the pair, activating it (twice) restores it."""
+    _needs_activation(drake)
+    GeometrySet = drake.geometry.GeometrySet
+    posed = posed_spheres(drake, [[0, 0, 0], [1, 0, 0]])
+    id_A, id_B = posed.ids
+    touching = [frozenset((id_A, id_B))]
+
+    def candidates() -> list[frozenset[Any]]:
+        return [frozenset(p) for p in posed.query().FindCollisionCandidates()]
+
+    assert candidates() == touching
+    for _ in range(2):
+        _manager(posed).Deactivate(GeometrySet(id_A))
+        assert candidates() == []
+    for _ in range(2):
+        _manager(posed).Activate(GeometrySet(id_A))
+        assert candidates() == touching
+
+
+def test_a_geometry_moved_while_inactive_is_found_where_it_is(drake: ModuleType) -> None:
+    """InactiveGeometryStaleSemantics' public face: the engine keeps an inactive
+    geometry's bounding box stale while it moves, and refreshes it on Activate. So A,
+    deactivated far from B, moved onto B while inactive (with queries in between) and
+    then activated, collides with B; moved away again while inactive, it does not."""
+    _needs_activation(drake)
+    GeometrySet = drake.geometry.GeometrySet
+    posed = posed_spheres(drake, [[5, 0, 0], [0, 0, 0]])
+    id_A, id_B = posed.ids
+    manager = _manager(posed)
+    assert posed.query().FindCollisionCandidates() == []
+
+    manager.Deactivate(GeometrySet(id_A))
+    posed.move(id_A, [COLLIDING_X, 0, 0])
+    assert posed.query().FindCollisionCandidates() == []
+    assert len(posed.query().ComputeSignedDistanceToPoint(p_WQ=[0, 0, 3])) == 2
+    manager.Activate(GeometrySet(id_A))
+    (penetration,) = posed.query().ComputePointPairPenetration()
+    assert {penetration.id_A, penetration.id_B} == {id_A, id_B}
+    assert penetration.depth == pytest.approx(2 * RADIUS - COLLIDING_X, abs=1e-15)
+
+    manager.Deactivate(GeometrySet(id_A))
+    posed.move(id_A, [-5, 0, 0])
+    assert posed.query().FindCollisionCandidates() == []
+    manager.Activate(GeometrySet(id_A))
+    assert posed.query().FindCollisionCandidates() == []
+    assert not posed.query().HasCollisions()
