@@ -638,6 +638,11 @@ def test_a_context_backfills_the_proximity_defaults(
     1.58.0: a ProximityProperties with only ("test", "value") gains hydroelastic
     resolution_hint 0.02 and hydroelastic_modulus 1e7 among others.
 
+    Drake's docs (scene_graph.h, "Detecting changes") say the model's version "is the
+    same as the version in the Context provided by SceneGraph::CreateDefaultContext()";
+    with proximity geometry that lacks the defaults it is not (the proximity versions
+    differ), as asserted here.
+
     reimpl has no SceneGraphConfig and does not backfill: a known gap, not a filter
     rule (the filter and candidates are the same either way)."""
     if drake.__name__ == "reimpl":
