@@ -50,7 +50,8 @@ GetGeometryIds (the GeometrySet resolution under every declaration),
 AssignRolesToGeometry, InstanceRoleAssignment, ModifyProximityProperties (without the
 hydroelastic representation), RoleAssignExceptions, ChildGeometryRoleCount,
 RemoveUnassignedRole, RemoveRoleTests, PerceptionRoleWithoutRenderer,
-GeometryVersionCopies and GeometryVersionUpdate (without renderers).
+GeometryVersionCopies and GeometryVersionUpdate (without renderers), and from Drake
+v1.56.0+ DeactivateReachesProximityEngine (skipped before 1.55).
 
 Left out: CollisionFilterRespectsScope (it needs deformable geometry and
 ComputeDeformableContact, which reimpl does not model), the renderer tests, and all
@@ -915,3 +916,28 @@ def test_role_assignment_error_messages(drake: ModuleType) -> None:
             match=rf"^The name .* has already been used by a geometry with the '{role}' role.$",
         ):
             assign(source, new_id, make())
+
+
+def test_deactivation_reaches_the_proximity_engine(drake: ModuleType) -> None:
+    """DeactivateReachesProximityEngine (Drake v1.56.0+; Deactivate is bound since 1.55):
+    deactivating g0 through the model's manager takes its pairs out of the candidates
+    and the posed queries of a new context; activating brings them back. (Upstream
+    counts the engine's inactive geometries, an internal.) Anchored geometry is left
+    alone: deactivating it aborts Drake (known divergence deactivate-anchored-aborts)."""
+    g = drake.geometry
+    if not hasattr(g.CollisionFilterManager, "Deactivate"):
+        pytest.skip("CollisionFilterManager.Deactivate is bound since 1.55 (activation-since-1.55)")
+    tree = single_source_tree(drake, "proximity")
+    gs = tree.geometries
+
+    def candidates_with_g0() -> set[frozenset[Any]]:
+        return {pair(a, b) for a, b in tree.inspector.GetCollisionCandidates() if gs[0] in (a, b)}
+
+    with_g0 = candidates_with_g0()
+    assert len(with_g0) == 5  # g2..g5 and the anchored box
+    tree.manager.Deactivate(g.GeometrySet(gs[0]))
+    assert candidates_with_g0() == set()
+    assert tree.inspector.CollisionFiltered(geometry_id1=gs[0], geometry_id2=gs[2])
+    assert len(tree.posed_query().ComputePointPairPenetration()) == 2
+    tree.manager.Activate(g.GeometrySet(gs[0]))
+    assert candidates_with_g0() == with_g0
