@@ -32,6 +32,7 @@ import itertools
 from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of
+from reimpl.common._pybind_text import cannot_pickle
 from reimpl.geometry.geometry_roles import Role
 
 __all__ = ["GeometryVersion"]
@@ -84,6 +85,9 @@ class GeometryVersion:
 
     def __deepcopy__(self, memo: dict[int, Any]) -> GeometryVersion:
         return GeometryVersion(self)
+
+    def __reduce__(self) -> Any:
+        raise cannot_pickle(_OWNER)  # copies, yes; pickles, no (pydrake 1.51.1, 1.58.0)
 
 
 #: The constructor's overloads, in pydrake's order: a new version, or a copy of ``other``.

@@ -62,6 +62,7 @@ from __future__ import annotations
 
 import copy
 import math
+import pickle
 import re
 from dataclasses import dataclass, field
 from types import ModuleType
@@ -778,6 +779,11 @@ def test_geometry_versions_compare_per_role(drake: ModuleType) -> None:
         RuntimeError, match=r"^Trying to compare the version of unassigned roles\.$"
     ):
         a.IsSameAs(other=a, role=g.Role.kUnassigned)
+    # Not upstream: a version copies but does not pickle (pydrake 1.51.1 and 1.58.0).
+    with pytest.raises(
+        TypeError, match=f"^cannot pickle '{drake.__name__}.geometry.GeometryVersion' object$"
+    ):
+        pickle.dumps(a)
 
 
 def test_removing_a_proximity_geometry_and_adding_another(drake: ModuleType) -> None:
