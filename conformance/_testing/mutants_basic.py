@@ -10,7 +10,6 @@ builds on this module, and ``conformance._testing.mutants`` lists both.
 
 from __future__ import annotations
 
-import copy
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from types import ModuleType
@@ -83,6 +82,13 @@ class Statement:
         return Statement(self.method, a, a if self.within else edit(self.set_B))
 
 
+def _copied(geometry_set: GeometrySet) -> GeometrySet:
+    """A copy of ``geometry_set`` (GeometrySet, like pydrake's, refuses ``copy.copy``)."""
+    return GeometrySet(
+        geometry_ids=list(geometry_set.geometry_ids()), frame_ids=list(geometry_set.frame_ids())
+    )
+
+
 class RecordingDeclaration(CollisionFilterDeclaration):
     """reimpl's declaration, which also keeps its statements where a mutant can read them."""
 
@@ -92,7 +98,7 @@ class RecordingDeclaration(CollisionFilterDeclaration):
         self.recorded: list[Statement] = []
 
     def record(self, method: str, set_A: GeometrySet, set_B: GeometrySet) -> None:
-        self.recorded.append(Statement(method, copy.copy(set_A), copy.copy(set_B)))
+        self.recorded.append(Statement(method, _copied(set_A), _copied(set_B)))
 
     def AllowBetween(self, set_A: GeometrySet, set_B: GeometrySet) -> Self:
         result = super().AllowBetween(set_A=set_A, set_B=set_B)

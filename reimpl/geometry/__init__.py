@@ -19,6 +19,7 @@ from reimpl.geometry.geometry_roles import (
     RoleAssign,
 )
 from reimpl.geometry.geometry_set import GeometrySet
+from reimpl.geometry.geometry_version import GeometryVersion
 from reimpl.geometry.identifier import FilterId, FrameId, GeometryId, SourceId
 from reimpl.geometry.mesh import Convex, Mesh, MeshSource
 from reimpl.geometry.polygon_surface_mesh import PolygonSurfaceMesh, SurfacePolygon
@@ -69,6 +70,7 @@ __all__ = [
     "GeometryInstance",
     "GeometryProperties",
     "GeometrySet",
+    "GeometryVersion",
     "HalfSpace",
     "IllustrationProperties",
     "Mesh",

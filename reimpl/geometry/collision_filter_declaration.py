@@ -22,6 +22,7 @@ from typing import Any, ClassVar, NamedTuple, Self
 from reimpl._overload import Overload, Param, dispatch, instance_of
 from reimpl._release import release
 from reimpl.common._pybind_enum import PybindEnum
+from reimpl.common._pybind_text import cannot_pickle
 from reimpl.geometry.geometry_set import GeometrySet
 
 __all__ = [
@@ -121,7 +122,7 @@ class CollisionFilterDeclaration:
                     f"expected reimpl.geometry.GeometrySet, got {type(value).__name__}"
                 )
         # Sets are copied: editing a GeometrySet later does not edit the statement.
-        self._statements.append(Statement(op, set_A.__copy__(), set_B.__copy__()))  # type: ignore[attr-defined]
+        self._statements.append(Statement(op, set_A._copy(), set_B._copy()))  # type: ignore[attr-defined]
         return self
 
     def AllowBetween(self, set_A: GeometrySet, set_B: GeometrySet) -> Self:
@@ -142,3 +143,6 @@ class CollisionFilterDeclaration:
 
     def scope(self) -> CollisionFilterScope:
         return self._scope
+
+    def __reduce__(self) -> Any:
+        raise cannot_pickle(_OWNER)

@@ -8,10 +8,10 @@ GeometryState or one context's copy of it.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
 from reimpl._release import release
-from reimpl.common._pybind_text import no_constructor
+from reimpl.common._pybind_text import cannot_pickle, no_constructor
 from reimpl.geometry.collision_filter_declaration import CollisionFilterDeclaration
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FilterId
@@ -65,6 +65,9 @@ class CollisionFilterManager:
     def RemoveDeclaration(self, filter_id: FilterId) -> bool:
         """Removes a transient declaration; True iff ``IsActive(filter_id)`` was True."""
         return self._state.collision_filter.remove_declaration(filter_id)
+
+    def __reduce__(self) -> NoReturn:
+        raise cannot_pickle("reimpl.geometry.CollisionFilterManager")
 
     def IsActive(self, filter_id: FilterId) -> bool:
         return self._state.collision_filter.is_active(filter_id)

@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from reimpl._overload import Overload, Param, dispatch, instance_of, list_of
+from reimpl.common._pybind_text import cannot_pickle
 from reimpl.geometry.identifier import FrameId, GeometryId
 
 __all__ = ["GeometrySet"]
@@ -76,8 +77,12 @@ class GeometrySet:
     def num_frames(self) -> int:
         return len(self._frame_ids)
 
-    def __copy__(self) -> GeometrySet:
+    def _copy(self) -> GeometrySet:
+        """A copy for reimpl's own use (a declaration keeps copies of its sets)."""
         copy = object.__new__(GeometrySet)
         copy._geometry_ids = dict(self._geometry_ids)
         copy._frame_ids = dict(self._frame_ids)
         return copy
+
+    def __reduce__(self) -> Any:
+        raise cannot_pickle(_OWNER)

@@ -43,6 +43,7 @@ from reimpl.geometry.geometry_roles import (
     role_name,
 )
 from reimpl.geometry.geometry_set import GeometrySet
+from reimpl.geometry.geometry_version import GeometryVersion
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
 from reimpl.geometry.mesh import _MeshShape
 from reimpl.geometry.shape import Shape
@@ -99,6 +100,10 @@ class _Geometry:
         return Role.kProximity in self.properties
 
 
+#: The roles whose changes GeometryState records in its GeometryVersion.
+_VERSIONED_ROLES = frozenset({Role.kProximity, Role.kIllustration})
+
+
 class GeometryState:
     """Sources, frames, geometries, roles and the collision filter of one state."""
 
@@ -116,6 +121,8 @@ class GeometryState:
         }
         self._geometries: dict[GeometryId, _Geometry] = {}
         self.collision_filter = CollisionFilter()
+        #: Per-role revisions (geometry_version.py says which calls change which role).
+        self.version = GeometryVersion()
         # Frames whose registration failed on a duplicate name; see register_frame.
         self.ghost_frames = 0
         # Bumped by every change to the frames or the proximity geometries, so a
@@ -148,6 +155,7 @@ class GeometryState:
             for g, r in self._geometries.items()
         }
         other.collision_filter = self.collision_filter.copy()
+        other.version = GeometryVersion(self.version)
         other.ghost_frames = self.ghost_frames
         other.revision = self.revision
         other.unengined = set(self.unengined)
@@ -312,6 +320,7 @@ class GeometryState:
                     f"{geometry_id.get_value()} for the '{name}' role; it has not had the "
                     "role initially assigned"
                 )
+            self.touch(role)
             geometry.properties[role] = type(properties)(properties)
             return
         if has_role:
@@ -329,6 +338,7 @@ class GeometryState:
                 f"The name '{geometry.name}' has already been used by a geometry with the "
                 f"'{name}' role."
             )
+        self.touch(role)
         if role is Role.kProximity and isinstance(geometry.shape, _MeshShape):
             try:
                 geometry.shape._check_proximity()
@@ -343,6 +353,15 @@ class GeometryState:
         if role is Role.kProximity:
             self.revision += 1
             self._assign_proximity(geometry)
+
+    def touch(self, role: Role) -> None:
+        """Marks ``role``'s data changed in ``version`` if a change of it is versioned here.
+
+        Proximity and illustration are; perception changes only when a renderer takes
+        or drops a geometry, and reimpl has none (measured on pydrake 1.51.1 and 1.58.0:
+        AssignRole and RemoveRole of perception leave every version alone)."""
+        if role in _VERSIONED_ROLES:
+            self.version._modify(role)
 
     def _assign_proximity(self, geometry: _Geometry) -> None:
         """V ← V ∪ {(g, h) : h ∈ Gₚ, frame(h) = frame(g)}.
@@ -382,6 +401,7 @@ class GeometryState:
             raise UnenginedGeometryError(_MAP_AT)
         if geometry.properties.pop(role, None) is None:
             return 0
+        self.touch(role)
         if role is Role.kProximity:
             self.revision += 1
             self.collision_filter.remove_geometry(geometry.id)

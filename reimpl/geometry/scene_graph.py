@@ -206,11 +206,12 @@ class SceneGraph(LeafSystem):
 
     # ------------------------------------------------------------ contexts
     def _model_manager(self) -> CollisionFilterManager:
-        self._edit_model()
+        # Handing out a manager counts as a proximity change (Drake's GeometryState).
+        self._edit_model().touch(Role.kProximity)
         return CollisionFilterManager._view(lambda: self._model)
 
     def _context_manager(self, context: Context) -> CollisionFilterManager:
-        self._state_of(context)
+        self._state_of(context).touch(Role.kProximity)
         return CollisionFilterManager._view(lambda: context._geometry_state)
 
     def _new_context(self) -> Context:

@@ -25,6 +25,7 @@ from reimpl.geometry.geometry_roles import (
 )
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.geometry_state import WORLD_FRAME_ID
+from reimpl.geometry.geometry_version import GeometryVersion
 from reimpl.geometry.identifier import FrameId, GeometryId, SourceId
 from reimpl.geometry.shape import Shape
 from reimpl.math import RigidTransform
@@ -64,6 +65,11 @@ class SceneGraphInspector:
     def CollisionFiltered(self, geometry_id1: GeometryId, geometry_id2: GeometryId) -> bool:
         """True iff the pair is not in C; raises unless both are proximity geometries."""
         return self._state.collision_filtered(geometry_id1, geometry_id2)
+
+    def geometry_version(self) -> GeometryVersion:
+        """The state's GeometryVersion itself, a live object as pydrake's reference is
+        (later changes show in it); keep ``GeometryVersion(other=...)`` to compare."""
+        return self._state.version
 
     # ------------------------------------------------------------- counts
     def num_sources(self) -> int:

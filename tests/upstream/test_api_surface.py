@@ -124,7 +124,6 @@ MESH_DATA = (
 )
 BOUNDING = "bounding volumes (AABB/OBB)"
 DEFORMABLE = "deformable bodies and geometries"
-VERSIONING = "geometry version tracking (for render and proximity caches)"
 SHAPE_CHANGE = "changing a registered geometry's shape"
 DYNAMICS = "dynamics: mass, inertia, Jacobians, forces, energies, velocities, accelerations"
 VELOCITIES = "velocities and accelerations of joints, bodies and frames (reimpl tracks q only)"
@@ -203,7 +202,6 @@ LEFT_OUT: tuple[Entry, ...] = (
         None,
     ),
     (DEFORMABLE, ("geometry",), "GeometryConfigurationVector GeometryConfigurationVector_", None),
-    (VERSIONING, ("geometry",), "GeometryVersion", None),
     (
         RENDERING,
         ("geometry.SceneGraph",),
@@ -224,7 +222,6 @@ LEFT_OUT: tuple[Entry, ...] = (
     (MESH_DATA, ("geometry.SceneGraphInspector",), "GetConvexHull", None),
     (HYDROELASTIC, ("geometry.SceneGraphInspector",), "maybe_get_hydroelastic_mesh", None),
     (BOUNDING, ("geometry.SceneGraphInspector",), "GetObbInGeometryFrame", None),
-    (VERSIONING, ("geometry.SceneGraphInspector",), "geometry_version", None),
     (BOUNDING, ("geometry.QueryObject",), "ComputeAabbInWorld ComputeObbInWorld", None),
     (
         HYDROELASTIC,
