@@ -41,6 +41,7 @@ import numpy.typing as npt
 
 from reimpl.common._drake_demand import demand_failure
 from reimpl.multibody.parsing._diagnostics import ModelParseError
+from reimpl.multibody.parsing._mesh_inertia import _point_mass
 from reimpl.multibody.parsing._urdf_inertia import _eigen_eigenvalues, _invalidity, _matrix_text
 
 __all__ = ["inertia_error"]
@@ -87,15 +88,3 @@ def _moments(inertia: _Matrix) -> list[float]:
     if inertia[1, 0] == 0 and inertia[2, 0] == 0 and inertia[2, 1] == 0:
         return sorted(float(v) for v in np.diag(inertia))
     return _eigen_eigenvalues(inertia.tolist())
-
-
-def _point_mass(p: _Matrix) -> _Matrix:
-    """UnitInertia::PointMass(p): [p]×ᵀ[p]×."""
-    x, y, z = (float(v) for v in p)
-    return np.array(
-        [
-            [y * y + z * z, -x * y, -x * z],
-            [-x * y, x * x + z * z, -y * z],
-            [-x * z, -y * z, x * x + y * y],
-        ]
-    )
