@@ -128,9 +128,7 @@ def _along_x_turned(drake: ModuleType, center_distance: float) -> Any:
     """CalcBoxPoseInSphereBox and its cylinder and capsule twins: turned 0.2 about z, its
     origin ``center_distance`` along the turned x axis."""
     R_WB = drake.math.RotationMatrix_[float].MakeZRotation(0.2)
-    # Upstream's R_WB * (center_distance x̂), as numpy's product of R_WB.matrix(): reimpl's
-    # RotationMatrix has no multiply(v_B) overload (pydrake's overloads 2 and 3).
-    p_WBo = R_WB.matrix() @ np.array([center_distance, 0.0, 0.0])
+    p_WBo = R_WB.multiply(np.array([center_distance, 0.0, 0.0]))
     return drake.math.RigidTransform_[float](R=R_WB, p=p_WBo)
 
 
@@ -140,7 +138,7 @@ def _half_space_pose(drake: ModuleType) -> tuple[Any, float]:
     RotationMatrix = drake.math.RotationMatrix_[float]
     R_WB = RotationMatrix.MakeZRotation(0.1) @ RotationMatrix.MakeXRotation(0.5)
     p_WBo = np.array([0.5, -0.2, 0.9])
-    target_depth = 0.0 + float((R_WB.inverse().matrix() @ p_WBo)[2]) + K_RADIUS
+    target_depth = 0.0 + float(R_WB.inverse().multiply(p_WBo)[2]) + K_RADIUS
     return drake.math.RigidTransform_[float](R=R_WB, p=p_WBo), target_depth
 
 
