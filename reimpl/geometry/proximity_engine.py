@@ -53,7 +53,7 @@ from reimpl.geometry.proximity.narrowphase import (
     point_signed_distance,
 )
 from reimpl.geometry.proximity.sphere_sphere import sphere_sphere
-from reimpl.geometry.proximity.tight_aabb import local_box, overlapping_pairs
+from reimpl.geometry.proximity.tight_aabb import HALF_SPACE, local_box, overlapping_pairs
 from reimpl.geometry.proximity.transforms import EPS, Array, Pose, Vec, compose_poses
 from reimpl.geometry.shape import Box, Capsule, Cylinder, Ellipsoid, HalfSpace, Shape, Sphere
 
@@ -592,7 +592,8 @@ class ProximityEngine:
             for body in self._bodies
         ]
         dynamic = [body.dynamic for body in self._bodies]
-        return overlapping_pairs(met, boxes, dynamic, self._R_WG, self._p_WG)
+        spaces = [body.kind == HALF_SPACE for body in self._bodies]
+        return overlapping_pairs(met, boxes, dynamic, self._R_WG, self._p_WG, half_spaces=spaces)
 
     def distance_pairs(self, max_distance: float) -> list[_Met]:
         """Pairs FCL's distance traversal visits when it prunes at ``max(max_distance, ε/10)``

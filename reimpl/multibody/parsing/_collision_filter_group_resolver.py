@@ -13,7 +13,14 @@ where a and b stand for every geometry of the member bodies. → may have
 cycles: every group of a cycle gets the union of the cycle's members.
 
 Names are fully scoped: a name read inside model instance ``top::inner``
-means ``top::inner::<name>``. A group's own name must not be scoped. Bodies
+means ``top::inner::<name>``, in Drake's canonical form since 1.14
+(``_scoped_name.qualify``: ``::a`` and ``a::`` mean ``top::inner::a``); a name
+read in the global scope (model directives without a namespace) is itself.
+Up to 1.13 a group, body or ignored group name that begins or ends with ``:``
+is an error, ``group name '::g' can neither begin nor end with '::'`` (or
+``body name``), checked before anything else about it
+(scoped-names-canonical-since-1.14; measured on pydrake 1.13.0, 1.14.0 and
+1.51.1). A group's own name must not be scoped. Bodies
 must come from model instances this parse created (the parse-scope rule);
 groups must be declared in this parse, but a pair or member_group may name a
 group declared later. The checks and messages are Drake 1.51.1's (measured):
@@ -52,6 +59,27 @@ from reimpl.multibody.parsing._instanced_name import InstancedName, instanced, o
 
 __all__ = ["CollisionFilterGroupResolver"]
 
+#: Since 1.14 names are canonical ScopedNames; up to 1.13 a name with a delimiter
+#: at either end is refused (scoped-names-canonical-since-1.14).
+_CANONICAL_NAMES = release.has("scoped-names-canonical-since-1.14")
+
+
+def _canonical(name: str) -> str:
+    """``name`` as Drake's ScopedName::Parse leaves it (since 1.14), else unchanged."""
+    return scoped.parse(name) if _CANONICAL_NAMES else name
+
+
+def _qualify(scope: str, name: str) -> str:
+    """``name`` read in model instance ``scope``: Drake's FullyQualify (since 1.14 a
+    canonical ScopedName), else ``scope::name``."""
+    return scoped.qualify(scope, name) if _CANONICAL_NAMES else scoped.join(scope, name)
+
+
+def _check_legal(diagnostics: Diagnostics, line: int | None, name: str, what: str) -> None:
+    """Up to 1.13 (CheckLegalName): a name may neither begin nor end with ``:``."""
+    if not _CANONICAL_NAMES and (name.startswith(":") or name.endswith(":")):
+        raise diagnostics.error(f"{what} '{name}' can neither begin nor end with '::'", line)
+
 
 class CollisionFilterGroupResolver:
     """Collects one parse's groups and pairs, then applies them to the plant."""
@@ -78,8 +106,9 @@ class CollisionFilterGroupResolver:
     ) -> None:
         """Declares group ``scope::group_name``; names are relative to ``scope``."""
         self._check_scope(scope)
-        name = scoped.join(scope, group_name)
-        if scoped.is_scoped(group_name):
+        _check_legal(diagnostics, line, group_name, "group name")
+        name = _qualify(scope, group_name)
+        if scoped.is_scoped(_canonical(group_name)):
             raise diagnostics.error(f"group name '{name}' cannot be a scoped name", line)
         redefined = name in self._bodies
         if redefined and release.has("group-redefinition-error-since-1.27"):
@@ -88,13 +117,15 @@ class CollisionFilterGroupResolver:
             member_group_names = set()  # up to 1.26 a group's member groups add nothing
         if not body_names and not member_group_names:  # so up to 1.26 they are no members
             raise diagnostics.error(f"group '{name}' has no members", line)
+        for body_name in sorted(body_names):
+            _check_legal(diagnostics, line, body_name, "body name")
         bodies = {}
-        for body_name in sorted(scoped.join(scope, b) for b in body_names):
+        for body_name in sorted(_canonical(_qualify(scope, b)) for b in body_names):
             bodies[body_name] = self._find_body(diagnostics, line, body_name)
         if redefined:  # up to 1.26 the first definition stays (its bodies were checked)
             return
         self._bodies[name] = bodies
-        self._member_groups[name] = {scoped.join(scope, g) for g in member_group_names}
+        self._member_groups[name] = {_qualify(scope, g) for g in member_group_names}
 
     def _check_scope(self, scope: str) -> None:
         """A group's model instance must be one this parse made (Drake's DRAKE_DEMAND;
@@ -104,9 +135,14 @@ class CollisionFilterGroupResolver:
         if outside and int(plant.GetModelInstanceByName(scope)) < self._first_new_instance:
             raise failed_demand("CollisionFilterGroupResolver.AddGroup.instance")
 
-    def add_pair(self, group_a: str, group_b: str, scope: str) -> None:
-        """Declares that the two groups (relative to ``scope``) do not collide."""
-        a, b = sorted((scoped.join(scope, group_a), scoped.join(scope, group_b)))
+    def add_pair(
+        self, diagnostics: Diagnostics, line: int | None, group_a: str, group_b: str, scope: str
+    ) -> None:
+        """Declares that the two groups (relative to ``scope``) do not collide; the
+        errors carry ``line``."""
+        _check_legal(diagnostics, line, group_a, "group name")
+        _check_legal(diagnostics, line, group_b, "group name")
+        a, b = sorted((_qualify(scope, group_a), _qualify(scope, group_b)))
         self._pairs.add((a, b))
 
     def _find_body(self, diagnostics: Diagnostics, line: int | None, name: str) -> Any:

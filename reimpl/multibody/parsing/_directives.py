@@ -315,7 +315,7 @@ class _Run:
             scope=scope,
         )
         for other in group.ignored_collision_filter_groups:
-            resolver.add_pair(group.name, other, scope)
+            resolver.add_pair(self.diagnostics, None, group.name, other, scope)
 
     def add_directives(self, sub: AddDirectives, namespace: str) -> None:
         inner = scoped.join(namespace, sub.model_namespace or "")

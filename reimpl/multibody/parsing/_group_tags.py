@@ -78,4 +78,4 @@ def read_group(
         scope=scope,
     )
     for other in _values(group, "drake:ignored_collision_filter_group", "name", syntax):
-        resolver.add_pair(name, other, scope)
+        resolver.add_pair(diagnostics, line, name, other, scope)
