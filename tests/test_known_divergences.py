@@ -66,6 +66,34 @@ def test_the_failed_apply_entry_acts_against_drake_1_52_on_for_backends_that_fol
     assert not matches(BackendId("pydrake", "1.58.0"), "1.58.0")
 
 
+def test_an_entry_for_reimpl_also_excuses_reimpl_following_a_release() -> None:
+    """``backends: ["reimpl"]`` names reimpl however it runs: in-process (``reimpl``) or in a
+    release's worker (``reimpl==1.58.0``), where it failed as an unexcused divergence."""
+    entry = next(e for e in ENTRIES if e.id == "sphere-distance-last-bits")
+    assert entry.xfail is not None
+    assert entry.xfail.backends == frozenset({"reimpl"})
+    command = Command("compute_signed_distance_pairwise_closest_points", {"max_distance": 2.5})
+    at_the_boundary = Result(
+        value=[{"pair": ["a", "b"], "shapes": ["sphere", "sphere"], "distance": 2.5}]
+    )
+
+    def matches(blamed: BackendId) -> bool:
+        assert entry.xfail is not None
+        return entry.xfail.matches_step(
+            command,
+            at_the_boundary,
+            Result(value=[]),
+            blamed=blamed,
+            release="1.58.0",
+            case=entry.xfail.cases[0],
+        )
+
+    assert matches(BackendId("reimpl", "1.58.0"))
+    assert matches(BackendId("reimpl==1.58.0", "1.58.0"))
+    assert not matches(BackendId("drake==1.58.0", "1.58.0"))
+    assert not matches(BackendId("mutant:reimpl", "1.58.0"))
+
+
 APPLY = Command("apply", {"declaration": {"statements": []}})
 UNKNOWN = Result(error=ErrorInfo(ErrorKind.UNKNOWN_FRAME, "Referenced frame # has not been"))
 

@@ -121,6 +121,13 @@ class StepPattern:
         )
 
 
+def _names(backend: str, pattern: str) -> bool:
+    """Whether ``pattern`` names the backend: its name, or the implementation a release
+    spec runs (``reimpl`` names ``reimpl==1.58.0`` too: the same reimpl, following 1.58.0)."""
+    implementation = backend.split("==", 1)[0]
+    return fnmatch.fnmatchcase(backend, pattern) or fnmatch.fnmatchcase(implementation, pattern)
+
+
 @dataclass(frozen=True)
 class XfailMatcher:
     """When a failure is this divergence (see the module doc)."""
@@ -135,9 +142,7 @@ class XfailMatcher:
         return (
             release in self.releases
             and blamed.version in self.backend_releases
-            and (
-                not self.backends or any(fnmatch.fnmatchcase(blamed.name, b) for b in self.backends)
-            )
+            and (not self.backends or any(_names(blamed.name, b) for b in self.backends))
         )
 
     def matches_step(
