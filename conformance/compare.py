@@ -288,9 +288,10 @@ def diff_results(reference: Result, other: Result, *, op: str = "command") -> li
 def _errors_agree(op: str, a: Result, b: Result) -> bool:
     if a.error is None or b.error is None or a.error.kind != b.error.kind:
         return False
-    return a.error.kind is ErrorKind.BINDING or comparable_message(
-        op, a.error.message
-    ) == comparable_message(op, b.error.message)
+    return a.error.kind is ErrorKind.BINDING or (
+        comparable_message(op, a.error.message) == comparable_message(op, b.error.message)
+        and a.error.detail == b.error.detail
+    )
 
 
 def _observation_differences(reference: Observation, other: Observation) -> Iterator[Difference]:

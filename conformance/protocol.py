@@ -137,27 +137,38 @@ def classify_assertion(exception: SystemExit) -> ErrorInfo | None:
 
 
 def classify_error(exception: BaseException) -> ErrorInfo:
-    """Maps an exception from any backend to its (kind, normalised message)."""
-    message = normalise_message(str(exception).splitlines()[0] if str(exception) else "")
+    """Maps an exception from any backend to its (kind, normalised first line, normalised
+    further lines)."""
+    first, _, rest = str(exception).partition("\n")
+    message, detail = normalise_message(first), normalise_message(rest)
     if isinstance(exception, TypeError):
         return ErrorInfo(ErrorKind.BINDING, message)
     for prefix, kind in _KIND_BY_PREFIX:
         if message.startswith(prefix):
-            return ErrorInfo(kind, message)
-    return ErrorInfo(ErrorKind.OTHER, message)
+            return ErrorInfo(kind, message, detail)
+    return ErrorInfo(ErrorKind.OTHER, message, detail)
 
 
 @dataclass(frozen=True)
 class ErrorInfo:
+    """An error: its kind, its message's first line (what reports show and what a case's
+    expectation matches), and its further lines (``detail``: Drake's report of what was
+    wrong, e.g. both definitions of a redefined material), each with ids written ``#``.
+    Two backends' errors agree when all three do (``compare``)."""
+
     kind: ErrorKind
     message: str
+    detail: str = ""
 
     def to_json(self) -> dict[str, str]:
-        return {"kind": self.kind.value, "message": self.message}
+        data = {"kind": self.kind.value, "message": self.message}
+        if self.detail:
+            data["detail"] = self.detail
+        return data
 
     @classmethod
     def from_json(cls, data: Mapping[str, str]) -> ErrorInfo:
-        return cls(ErrorKind(data["kind"]), data.get("message", ""))
+        return cls(ErrorKind(data["kind"]), data.get("message", ""), data.get("detail", ""))
 
 
 @dataclass(frozen=True)

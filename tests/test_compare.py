@@ -21,7 +21,14 @@ from conformance.compare import (
     diff_results,
     value_differences,
 )
-from conformance.protocol import ErrorInfo, ErrorKind, LocationState, Observation, Result
+from conformance.protocol import (
+    ErrorInfo,
+    ErrorKind,
+    LocationState,
+    Observation,
+    Result,
+    classify_error,
+)
 
 
 def state(*pairs: tuple[str, str], history: bool = False, **active: bool) -> Observation:
@@ -45,6 +52,21 @@ def test_errors_agree_only_with_the_same_kind_and_message() -> None:
     assert diff_results(a, error(ErrorKind.UNKNOWN_GEOMETRY, "other words")) != []
     assert diff_results(a, error(ErrorKind.OTHER, a.error.message if a.error else "")) != []
     assert diff_results(a, Result()) != []
+
+
+def test_errors_that_share_a_first_line_differ_in_their_further_lines() -> None:
+    """Drake 1.13.0 and 1.51.1 word a redefined material's report differently after the same
+    first line (measured: 6 significant digits, then the file's 11)."""
+    first = "robot.urdf:6: error: Material 'brown' was previously defined."
+    old = RuntimeError(f"{first}\n  - existing definition: RGBA: 0.933333 0.796078 0.678431 1")
+    new = RuntimeError(f"{first}\n  - existing definition: RGBA: 0.93333333333 0.79607843137 1")
+    a, b = classify_error(old), classify_error(new)
+    assert a.message == b.message == first
+    assert a.detail == "- existing definition: RGBA: #.# #.# #.# #"
+    assert diff_results(Result(error=a), Result(error=a)) == []
+    assert diff_results(Result(error=a), Result(error=b)) != []
+    assert ErrorInfo.from_json(a.to_json()) == a
+    assert "detail" not in classify_error(RuntimeError(first)).to_json()
 
 
 def test_binding_errors_agree_by_kind_whatever_pybind11_says() -> None:

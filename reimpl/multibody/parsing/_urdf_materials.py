@@ -80,9 +80,15 @@ class Material:
 
 def _rgba_text(values: tuple[float, ...]) -> str:
     """Since 1.52 fmt's column vector (``eigen_vector``); up to 1.51 Eigen's
-    ``operator<<`` of a row, without eigen_row's brackets."""
+    ``operator<<`` of a row, without eigen_row's brackets; up to 1.13 that row at a C++
+    stream's default 6 significant digits (urdf-material-rgba-digits-since-1.14:
+    ``0.933333 0.796078 0.678431        1``, measured on 1.12.0, 1.13.0 and 1.14.0)."""
     if release.has("eigen-vector-wording-since-1.52"):
         return eigen_vector(values)
+    if not release.has("urdf-material-rgba-digits-since-1.14"):
+        cells = [f"{v:.6g}" for v in values]
+        width = max(len(c) for c in cells)
+        return " ".join(c.rjust(width) for c in cells)
     return eigen_row(values)[1:-1]
 
 
