@@ -20,6 +20,7 @@ import pytest
 
 import conformance._testing.mutants
 import conformance._testing.mutants_basic
+import conformance._testing.mutants_blind
 import conformance._testing.mutants_boundary
 import conformance._testing.mutants_order
 import conformance._testing.mutants_report
@@ -622,6 +623,162 @@ WITNESSES = [
         pydrake=0,
         mutated=1,
     ),
+    # A blind audit (mutants_blind, issue 31): values measured on pydrake 1.51.1.
+    Witness(
+        "allow_within_clears_rows",
+        [
+            *on_own_frames("a", "b", "c"),
+            apply(exclude_within(gset("a", "b", "c"))),
+            apply(allow_within(gset("a", "b"))),
+        ],
+        candidates(),
+        pydrake={"a-b"},
+        mutated={"a-b", "a-c", "b-c"},
+    ),
+    Witness(
+        "between_skips_overlap",
+        [*on_own_frames("a", "b", "c"), apply(exclude_between(gset("a", "b"), gset("b", "c")))],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "anchored_invariant_per_source",
+        [
+            Command("register_source", {"name": "s2"}),
+            geometry("a", "world"),
+            Command(
+                "register_geometry",
+                {"name": "b", "frame": "world", "source": "s2", "roles": ["proximity"]},
+            ),
+        ],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "context_registration_misses_invariant",
+        [
+            frame("f"),
+            geometry("a", "f"),
+            Command("create_context", {"name": "c"}),
+            in_context("c", geometry("b", "f")),
+        ],
+        candidates("c"),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "slot_reuse_inherits_filters",
+        [
+            *on_own_frames("a", "b"),
+            apply(exclude_between(gset("a"), gset("b"))),
+            Command("remove_role", {"geometry": "a", "role": "proximity"}),
+            *on_own_frames("d"),
+        ],
+        candidates(),
+        pydrake={"b-d"},
+        mutated=set(),
+    ),
+    Witness(
+        "world_role_removal_crosses_sources",
+        [
+            Command("register_source", {"name": "s2"}),
+            geometry("a", "world"),
+            Command(
+                "register_geometry",
+                {"name": "b", "frame": "world", "source": "s2", "roles": ["proximity"]},
+            ),
+            Command("remove_role", {"frame": "world", "role": "proximity"}),
+        ],
+        last_value,
+        pydrake=1,
+        mutated=2,
+    ),
+    Witness(
+        "remove_role_counts_all",
+        [
+            frame("f"),
+            geometry("a", "f"),
+            geometry("b", "f", roles=["illustration"]),
+            Command("remove_role", {"frame": "f", "role": "proximity"}),
+        ],
+        last_value,
+        pydrake=1,
+        mutated=2,
+    ),
+    Witness(
+        "replace_proximity_resets_filters",
+        [
+            *on_own_frames("a", "b"),
+            apply(exclude_within(gset("a", "b"))),
+            Command("assign_role", {"geometry": "a", "role": "proximity", "assign": "replace"}),
+        ],
+        candidates(),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "set_default_context_keeps_filters",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            in_context("c", apply(exclude_within(gset("a", "b")))),
+            Command("set_default_context", {"context": "c"}),
+        ],
+        candidates("c"),
+        pydrake={"a-b"},
+        mutated=set(),
+    ),
+    Witness(
+        "context_managers_share_first",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            Command("create_context", {"name": "d"}),
+            in_context("c", apply(allow_within(gset("a", "b")))),
+            in_context("d", apply(exclude_within(gset("a", "b")))),
+        ],
+        lambda r: (candidates("c")(r), candidates("d")(r)),
+        pydrake=({"a-b"}, set()),
+        mutated=(set(), {"a-b"}),
+    ),
+    Witness(
+        "clone_drops_history",
+        [
+            *on_own_frames("a", "b"),
+            Command("create_context", {"name": "c"}),
+            in_context("c", apply_transient("t1", exclude_within(gset("a", "b")))),
+            Command("clone_context", {"name": "d", "from": "c"}),
+        ],
+        candidates("d"),
+        pydrake=set(),
+        mutated={"a-b"},
+    ),
+    Witness(
+        "remove_declaration_twice_true",
+        [
+            *on_own_frames("a", "b"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            remove_declaration("t1"),
+            remove_declaration("t1"),
+        ],
+        last_value,
+        pydrake=False,
+        mutated=True,
+    ),
+    Witness(
+        "remove_declaration_off_by_one",
+        [
+            *on_own_frames("a", "b", "c"),
+            apply_transient("t1", exclude_within(gset("a", "b"))),
+            apply_transient("t2", exclude_within(gset("b", "c"))),
+            remove_declaration("t1"),
+        ],
+        candidates(),
+        pydrake={"a-b", "a-c"},
+        mutated={"a-c", "b-c"},
+    ),
 ]
 
 
@@ -709,6 +866,7 @@ def test_a_mutant_replaces_public_classes_by_subclasses_only(name: str) -> None:
     [
         conformance._testing.mutants,
         conformance._testing.mutants_basic,
+        conformance._testing.mutants_blind,
         conformance._testing.mutants_boundary,
         conformance._testing.mutants_order,
         conformance._testing.mutants_report,

@@ -262,18 +262,37 @@ def reassign_proximity(m: Machine, picks: bytes) -> None:
     """Removes the proximity role and assigns it again: the geometry starts unfiltered.
 
     One time in two the role is removed from every geometry on the geometry's
-    frame (RemoveRole by frame), and each of them gets it back.
+    frame (RemoveRole by frame), and each of them gets it back. Then, one time
+    in two (``picks[3]``), the geometry is excluded from another one and its
+    proximity properties are replaced (``_replace_keeps_filters``).
     """
     name, where = m.name("geometry", picks[0]), m.name("context", picks[1])
     placed = m.poses.geometries.get(name or "")
     if placed is None or not picks[2] & 1:
         m.step("remove_role", geometry=name, role="proximity", context=where)
         m.step("assign_role", geometry=name, role="proximity", context=where)
-        return
-    m.step("remove_role", frame=placed.frame, role="proximity", context=where)
-    for other, at in list(m.poses.geometries.items()):
-        if at.frame == placed.frame:
-            m.step("assign_role", geometry=other, role="proximity", context=where)
+    else:
+        m.step("remove_role", frame=placed.frame, role="proximity", context=where)
+        for other, at in list(m.poses.geometries.items()):
+            if at.frame == placed.frame:
+                m.step("assign_role", geometry=other, role="proximity", context=where)
+    if picks[3] & 1:
+        _replace_keeps_filters(m, name, m.name("geometry", picks[3] >> 1), where)
+
+
+def _replace_keeps_filters(
+    m: Machine, name: str | None, other: str | None, where: str | None
+) -> None:
+    """A persistent ExcludeBetween of ``name`` and ``other``, then AssignRole(kReplace) of
+    ``name``'s proximity properties: the pair must stay filtered (a replacement is no
+    removal). Found missing by the blind audit's ``replace_proximity_resets_filters``:
+    ``assign_role`` draws kReplace of proximity, but seldom on a geometry that has a
+    filtered partner on another frame, with its owner and no transient history there.
+    """
+    if other is not None and other != name:
+        pair = {"op": "exclude_between", "a": {"geometries": [name]}, "b": {"geometries": [other]}}
+        m.step("apply", declaration={"statements": [pair]}, context=where)
+    m.step("assign_role", geometry=name, role="proximity", assign="replace", context=where)
 
 
 def remove_geometry(m: Machine, picks: bytes) -> None:
@@ -841,7 +860,7 @@ HAND_WRITTEN: dict[str, Operation] = {
     "reassign_proximity": Operation(
         reassign_proximity,
         enabled=_has("geometries"),
-        issues=frozenset({"remove_role", "assign_role"}),
+        issues=frozenset({"remove_role", "assign_role", "apply"}),
     ),
     "remove_geometry": Operation(remove_geometry, enabled=_has("geometries")),
     "apply": Operation(apply, (_DECLARATION,)),

@@ -82,6 +82,8 @@ class FuzzStats:
     best: Divergence | None = None
     #: When (``time.perf_counter()``) this batch's first divergence was seen.
     best_since: float | None = None
+    #: The example (counted from 1 over the campaign) in which a divergence was first seen.
+    first_example: int | None = None
     #: Seconds shrinking may take after the first divergence; None: no bound.
     shrink_seconds: float | None = None
     #: The state-space features reached (``conformance._fuzz.coverage``).
@@ -95,6 +97,8 @@ class FuzzStats:
     def record(self, divergence: Divergence) -> None:
         """Counts ``divergence``; it becomes ``best`` if no longer than the best so far."""
         self.divergences_seen += 1
+        if self.first_example is None:
+            self.first_example = self.examples
         if self.best is None or len(divergence.trace) <= len(self.best.trace):
             if self.best is None:
                 self.best_since = time.perf_counter()

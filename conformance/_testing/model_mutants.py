@@ -305,6 +305,67 @@ def _welds_unfiltered(plant_module: ModuleType) -> Mapping[str, type]:
     return {"MultibodyPlant": MultibodyPlant}
 
 
+def _welded_direct_only(plant_module: ModuleType) -> Mapping[str, type]:
+    """A MultibodyPlant whose Finalize filters only bodies a weld joins directly (an
+    implementer who walks the weld joints instead of the weld subgraphs): after reimpl's
+    Finalize, the pairs of bodies of one weld subgraph that no joint joins are allowed
+    back, through the SceneGraph's public filters.
+
+    N.B. Allowed back whatever else filtered them (a collision filter group pair too).
+    """
+
+    class MultibodyPlant(plant_module.MultibodyPlant):  # type: ignore[name-defined,misc]
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            super().__init__(*args, **kwargs)
+            self.mutant_scene_graph: Any = None
+
+        def RegisterAsSourceForSceneGraph(self, scene_graph: Any) -> Any:
+            self.mutant_scene_graph = scene_graph
+            return super().RegisterAsSourceForSceneGraph(scene_graph=scene_graph)
+
+        def Finalize(self) -> None:
+            super().Finalize()
+            if self.mutant_scene_graph is None:
+                return
+            from reimpl import geometry  # noqa: PLC0415 (the mutant's own SceneGraph API)
+            from reimpl.multibody.tree import BodyIndex, JointIndex  # noqa: PLC0415
+
+            joints = [self.get_joint(JointIndex(i)) for i in range(self.num_joints())]
+            ends = [(int(j.parent_body().index()), int(j.child_body().index())) for j in joints]
+            joined = {frozenset(e) for e in ends}
+            root = list(range(self.num_bodies()))
+
+            def find(b: int) -> int:
+                while root[b] != b:
+                    b = root[b]
+                return b
+
+            for joint, (a, b) in zip(joints, ends, strict=True):
+                if joint.type_name() == "weld":
+                    root[find(a)] = find(b)
+            declaration = geometry.CollisionFilterDeclaration()
+            for a in range(self.num_bodies()):
+                for b in range(a + 1, self.num_bodies()):
+                    if find(a) != find(b) or frozenset((a, b)) in joined:
+                        continue
+                    try:
+                        frames = [
+                            self.GetBodyFrameIdOrThrow(
+                                body_index=self.get_body(BodyIndex(i)).index()
+                            )
+                            for i in (a, b)
+                        ]
+                    except RuntimeError:
+                        continue
+                    declaration.AllowBetween(
+                        set_A=geometry.GeometrySet(frame_ids=[frames[0]]),
+                        set_B=geometry.GeometrySet(frame_ids=[frames[1]]),
+                    )
+            self.mutant_scene_graph.collision_filter_manager().Apply(declaration=declaration)
+
+    return {"MultibodyPlant": MultibodyPlant}
+
+
 def _report_without_self_pairs(parsing: ModuleType) -> Mapping[str, type]:
     """A Parser whose group report leaves out a group's exclusion of itself."""
 
@@ -528,6 +589,16 @@ MODEL_MUTANTS: dict[str, ModelMutant] = {
             witness="An anchored sphere w0, directives adding d0 (link d0l0 with a sphere) and "
             "add_weld world to d0::d0l0, Finalize: pydrake 1.51.1 has no candidate pairs (the "
             "mutant: d0::d0l0/Sphere with w0).",
+        ),
+        ModelMutant(
+            "welded_subgraph_direct_only",
+            "Finalize filters the bodies one weld joins, not every pair of a weld subgraph "
+            "(A welded to B welded to C leaves A and C unfiltered).",
+            "plant",
+            _welded_direct_only,
+            witness="URDF m with links l0 and l1 (a sphere each) both welded to the world, "
+            "Finalize: pydrake 1.51.1 has no candidate pairs (the mutant: m::l0/Sphere with "
+            "m::l1/Sphere).",
         ),
         ModelMutant(
             "group_report_drops_self_exclusion",

@@ -2,7 +2,8 @@
 
 This module is the registry; the mutants are in ``mutants_basic``, ``mutants_state``, and
 (issue 30) ``mutants_order`` (an order across locations), ``mutants_boundary`` (a query's
-edges) and ``mutants_report`` (what only ``observe`` reports).
+edges) and ``mutants_report`` (what only ``observe`` reports), and ``mutants_blind``
+(bugs from a blind audit of reimpl).
 
 Mutation testing of the harness: a differential fuzzer that cannot tell these
 backends from real pydrake cannot be trusted to catch a real regression either.
@@ -33,6 +34,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from conformance._testing.mutants_basic import BASIC_MUTANTS, Mutant, MutantBackend
+from conformance._testing.mutants_blind import BLIND_MUTANTS
 from conformance._testing.mutants_boundary import BOUNDARY_MUTANTS
 from conformance._testing.mutants_order import ORDER_MUTANTS
 from conformance._testing.mutants_report import REPORT_MUTANTS
@@ -43,10 +45,18 @@ __all__ = ["MUTANTS", "Mutant", "MutantBackend", "mutant_backend"]
 #: Every mutant by name: the basic ones (``mutants_basic``), then those whose bug
 #: needs a reached state (``mutants_state``), then an order across locations
 #: (``mutants_order``), then the edges of a query (``mutants_boundary``: ``fuzz --poses``),
-#: then reports no command asks for (``mutants_report``).
+#: then reports no command asks for (``mutants_report``), then those of a blind audit
+#: (``mutants_blind``: written from reimpl's code before this table was read).
 MUTANTS: dict[str, Mutant] = {
     m.name: m
-    for m in (*BASIC_MUTANTS, *STATE_MUTANTS, *ORDER_MUTANTS, *BOUNDARY_MUTANTS, *REPORT_MUTANTS)
+    for m in (
+        *BASIC_MUTANTS,
+        *STATE_MUTANTS,
+        *ORDER_MUTANTS,
+        *BOUNDARY_MUTANTS,
+        *REPORT_MUTANTS,
+        *BLIND_MUTANTS,
+    )
 }
 
 

@@ -178,6 +178,8 @@ def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
         f"{progress.found} divergence(s)"
         f"{'; interrupted' if result.interrupted else ''}\n"
     )
+    if stats.first_example is not None:
+        out.write(f"fuzz: the first divergence was seen in example {stats.first_example}\n")
     for divergence, examples in sorted(stats.known.items()):
         out.write(f"fuzz: known divergence {divergence} met in {examples} example(s), set aside\n")
 
