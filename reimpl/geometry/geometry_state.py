@@ -50,6 +50,9 @@ from reimpl.math import RigidTransform
 
 #: What ``unordered_map::at`` says of a missing key (pydrake: IndexError), by release.
 _MAP_AT = MAP_AT_MESSAGE
+#: Whether the collision filter's queries raise IndexError for an unengined geometry
+#: (up to 1.51: Drake's dense filter has no entry for it); since 1.52 it is unfiltered.
+_UNENGINED_RAISES = not release.has("unengined-geometry-unfiltered-since-1.52")
 
 __all__ = ["WORLD_FRAME_ID", "GeometryState"]
 
@@ -338,6 +341,10 @@ class GeometryState:
                 geometry.properties[role] = type(properties)(properties)
                 self.unengined.add(geometry.id)
                 self.revision += 1
+                if not _UNENGINED_RAISES:
+                    # Since 1.52 the filter keeps pairs by id: unengined, the geometry
+                    # is still unfiltered against everything (no same-frame pairs).
+                    self.collision_filter.add_geometry(geometry.id, engined=False)
                 raise
         geometry.properties[role] = type(properties)(properties)
         if role is Role.kProximity:
@@ -514,16 +521,18 @@ class GeometryState:
             self._raise_unqueryable(a, b)
         if a == b:
             return True
-        if a in self.unengined or b in self.unengined:
+        if _UNENGINED_RAISES and (a in self.unengined or b in self.unengined):
             raise UnenginedGeometryError(_MAP_AT)
         return not self.collision_filter.can_collide_with(a, b)
 
     def collision_candidates(self) -> set[tuple[GeometryId, GeometryId]]:
         """C, each pair (a, b) with a.get_value() < b.get_value() (SceneGraphInspector).
 
-        Drake asks the filter about every pair of proximity geometries, so an
-        unengined one raises as soon as there is another."""
-        if self.unengined and sum(g.has_proximity for g in self._geometries.values()) > 1:
+        Drake asks the filter about every pair of proximity geometries, so up to 1.51 an
+        unengined one raises as soon as there is another; since 1.52 it is unfiltered
+        against the others (unengined-geometry-unfiltered-since-1.52)."""
+        proximity = sum(g.has_proximity for g in self._geometries.values())
+        if _UNENGINED_RAISES and self.unengined and proximity > 1:
             raise UnenginedGeometryError(_MAP_AT)
         return self.collision_filter.candidates()
 
