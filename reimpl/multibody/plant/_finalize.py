@@ -38,6 +38,18 @@ from reimpl.multibody.tree import FixedOffsetFrame, Joint, QuaternionFloatingJoi
 __all__ = ["Finalization"]
 
 
+#: The middle of Finalize's refusal of a loop, by release (loop-topology-wording-since-1.57).
+_LOOPS_UNSUPPORTED = (
+    "Automatic modeling of such systems is disabled by default; you can enable it by calling "
+    "MultibodyPlant::SetEnableLoopTopology(true) before Finalize() but: the feature is in "
+    "development and not yet functional even when enabled. For now, loops can be modeled "
+    "with some input changes."
+    if release.has("loop-topology-wording-since-1.57")
+    else "Drake currently does not support automatic modeling of such systems; however, they "
+    "can be modeled with some input changes."
+)
+
+
 class Finalization(CollisionFilters, Poses, ElementNames):
     """Finalize and the steps it takes."""
 
@@ -60,8 +72,7 @@ class Finalization(CollisionFilters, Poses, ElementNames):
         if graph.has_loop(n, self._edges()):
             raise TopologyError(
                 "The bodies and joints of this system form one or more loops in the system "
-                "graph. Drake currently does not support automatic modeling of such systems; "
-                "however, they can be modeled with some input changes. See "
+                f"graph. {_LOOPS_UNSUPPORTED} See "
                 "https://drake.mit.edu/troubleshooting.html#mbp-loops-in-graph for advice on how "
                 "to model systems with loops."
             )
