@@ -272,21 +272,25 @@ class CollisionFilter:
         self, statement: Statement, ids_A: Sequence[GeometryId], ids_B: Sequence[GeometryId]
     ) -> ResolvedStatement:
         """Drake demands that every pair it writes has both ids registered; with no pair to
-        write (one side empty), the statement does nothing."""
+        write (one side empty), the statement does nothing. The demand's line and words by
+        release: AddFilteredPair at line 184 up to 1.19, 185 since 1.20
+        (filter-demand-line-since-1.20); RemoveFilteredPair at 197, but 198 in 1.20.0
+        (filter-demand-remove-line-1.20); the condition with ``count(...) == 1`` up to 1.26
+        (filter-demand-contains-since-1.27)."""
         if ids_A and ids_B:
-            line, function = (
-                (185, "AddFilteredPair")
-                if statement.op.filters
-                else (
-                    197,
-                    "RemoveFilteredPair",
-                )
+            if statement.op.filters:
+                line = 185 if release.has("filter-demand-line-since-1.20") else 184
+                function = "AddFilteredPair"
+            else:
+                line = 198 if release.has("filter-demand-remove-line-1.20") else 197
+                function = "RemoveFilteredPair"
+            condition = (
+                "filter_state.contains(id_A) && filter_state.contains(id_B)"
+                if release.has("filter-demand-contains-since-1.27")
+                else "filter_state.count(id_A) == 1 && filter_state.count(id_B) == 1"
             )
             raise demand_failure(
-                "geometry/proximity/collision_filter.cc",
-                line,
-                function,
-                "filter_state.contains(id_A) && filter_state.contains(id_B)",
+                "geometry/proximity/collision_filter.cc", line, function, condition
             )
         empty = None if statement.op.pairing is Pairing.WITHIN else ()
         return ResolvedStatement.of(statement.op, (), empty)

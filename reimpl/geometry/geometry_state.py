@@ -23,6 +23,7 @@ from typing import NoReturn
 from reimpl._release import release
 from reimpl.common._drake_demand import failed_demand
 from reimpl.common._std_unordered_map import MAP_AT_MESSAGE, IdentifierUnorderedMap
+from reimpl.geometry._proximity_mesh import HullError
 from reimpl.geometry.collision_filter import CollisionFilter
 from reimpl.geometry.collision_filter_declaration import Statement, StatementOp
 from reimpl.geometry.errors import (
@@ -335,21 +336,29 @@ class GeometryState:
         if role is Role.kProximity and isinstance(geometry.shape, _MeshShape):
             try:
                 geometry.shape._check_proximity()
+            except HullError:
+                if release.has("hull-before-role-1.27"):
+                    raise  # 1.27 makes the hull before it stores the role
+                self._keep_unengined(geometry, properties)
+                raise
             except RuntimeError:
-                # N.B. Drake stores the properties before its proximity engine
-                # computes the hull: the geometry keeps the role, unengined.
-                geometry.properties[role] = type(properties)(properties)
-                self.unengined.add(geometry.id)
-                self.revision += 1
-                if not _UNENGINED_RAISES:
-                    # Since 1.52 the filter keeps pairs by id: unengined, the geometry
-                    # is still unfiltered against everything (no same-frame pairs).
-                    self.collision_filter.add_geometry(geometry.id, engined=False)
+                self._keep_unengined(geometry, properties)
                 raise
         geometry.properties[role] = type(properties)(properties)
         if role is Role.kProximity:
             self.revision += 1
             self._assign_proximity(geometry)
+
+    def _keep_unengined(self, geometry: _Geometry, properties: GeometryProperties) -> None:
+        """What a failed proximity engine entry leaves: Drake stores the properties before
+        its proximity engine computes the hull, so the geometry keeps the role, unengined."""
+        geometry.properties[Role.kProximity] = type(properties)(properties)
+        self.unengined.add(geometry.id)
+        self.revision += 1
+        if not _UNENGINED_RAISES:
+            # Since 1.52 the filter keeps pairs by id: unengined, the geometry is still
+            # unfiltered against everything (no same-frame pairs).
+            self.collision_filter.add_geometry(geometry.id, engined=False)
 
     def _assign_proximity(self, geometry: _Geometry) -> None:
         """V ← V ∪ {(g, h) : h ∈ Gₚ, frame(h) = frame(g)}.
