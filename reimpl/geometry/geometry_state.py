@@ -335,7 +335,7 @@ class GeometryState:
             )
         if role is Role.kProximity and isinstance(geometry.shape, _MeshShape):
             try:
-                geometry.shape._check_proximity()
+                geometry.shape._check_proximity(hydroelastic=properties.HasGroup("hydroelastic"))
             except HullError:
                 if release.has("hull-before-role-1.27"):
                     raise  # 1.27 makes the hull before it stores the role
