@@ -1,5 +1,5 @@
 """A collision mesh Drake cannot make a convex hull of keeps its proximity role, outside the
-collision filter (measured on pydrake 1.51.1; known divergence ``failed-hull-half-registers``).
+collision filter (known divergence ``failed-hull-half-registers``).
 
 GeometryState stores the properties before the proximity engine computes the hull, so the
 error (here: a ``.stl`` mesh) leaves a geometry that the inspector lists with the role but
@@ -9,10 +9,12 @@ fails: the filter's ``unordered_map::at`` (IndexError ``_Map_base::at``), a DRAK
 context creation re-applies (RuntimeError). Found on Gepetto/example-robot-data's URDFs,
 whose collision meshes are ``.stl``.
 
-pydrake 1.58.0 (after Drake #24892, which made the filter check its ids) answers the pair
-questions as if the mesh were unfiltered, and refuses any declaration that names it with a
-RuntimeError; removing the role still raises IndexError, in its newer library's words.
-reimpl follows 1.51.1.
+That is pydrake up to 1.51.1. Since 1.52 (the filter keeps filtered pairs by id) the pair
+questions answer as if the mesh were unfiltered (release fact
+unengined-geometry-unfiltered-since-1.52), and since 1.57 a declaration that names it raises
+a RuntimeError (unengined-declaration-error-since-1.57); removing the role still raises
+IndexError, in its newer library's words (clone-error-wording-since-1.52). Measured on
+1.51.1 and 1.52.0-1.58.0; reimpl follows the release it is set to.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ from typing import Any
 import pytest
 
 from conformance._backends.api import Api
-from conformance._policy.versions import parse_version
+from conformance._policy.release_facts import fact_holds
 
 #: Link ``a`` holds a box and then the ``.stl`` mesh; link ``b`` is never reached.
 URDF = (
@@ -66,14 +68,23 @@ def parsed(api: Api, tmp_path: Path) -> Parsed:
     return Parsed(api, tmp_path)
 
 
-def _checks_ids(api: Api) -> bool:
-    """Whether the release's filter checks ids (measured: 1.58.0 does, 1.51.1 does not)."""
-    return parse_version(api.version) >= (1, 58)
+def _unfiltered(api: Api) -> bool:
+    """Whether the release answers pair questions about the mesh (since 1.52)."""
+    return fact_holds("unengined-geometry-unfiltered-since-1.52", api.version)
+
+
+def _refuses_declarations(api: Api) -> bool:
+    """Whether a declaration naming the mesh raises RuntimeError (since 1.57)."""
+    return fact_holds("unengined-declaration-error-since-1.57", api.version)
 
 
 def _map_at(api: Api) -> str:
     """libstdc++'s message for a missing key, as the release's wheel was built with."""
-    return "unordered_map::at" if _checks_ids(api) else "_Map_base::at"
+    return (
+        "unordered_map::at"
+        if fact_holds("clone-error-wording-since-1.52", api.version)
+        else "_Map_base::at"
+    )
 
 
 def test_the_mesh_keeps_its_proximity_role_after_the_hull_error(
@@ -89,7 +100,7 @@ def test_the_mesh_keeps_its_proximity_role_after_the_hull_error(
 def test_filter_questions_about_a_pair_with_it_raise_index_error(api: Api, parsed: Parsed) -> None:
     inspector = parsed.inspector
     assert inspector.CollisionFiltered(geometry_id1=parsed.mesh, geometry_id2=parsed.mesh)
-    if _checks_ids(api):
+    if _unfiltered(api):
         assert inspector.GetCollisionCandidates() == {(parsed.box, parsed.mesh)}
         assert not inspector.CollisionFiltered(geometry_id1=parsed.box, geometry_id2=parsed.mesh)
         return
@@ -112,7 +123,14 @@ def test_a_declaration_writing_a_pair_with_it_fails_drakes_demand(api: Api, pars
     manager = parsed.scene_graph.collision_filter_manager()
     both = parsed.g.GeometrySet(geometry_ids=[parsed.box, parsed.mesh])
     empty = parsed.g.GeometrySet()
-    if _checks_ids(api):
+    if _unfiltered(api) and not _refuses_declarations(api):
+        # 1.52-1.56: a declaration filters the mesh like any other geometry.
+        manager.Apply(declaration=parsed.declaration().ExcludeBetween(set_A=both, set_B=both))
+        assert parsed.inspector.GetCollisionCandidates() == set()
+        manager.Apply(declaration=parsed.declaration().AllowWithin(geometry_set=both))
+        assert parsed.inspector.GetCollisionCandidates() == {(parsed.box, parsed.mesh)}
+        return
+    if _refuses_declarations(api):
         for declaration in (
             parsed.declaration().AllowWithin(geometry_set=both),
             parsed.declaration().ExcludeBetween(set_A=both, set_B=empty),

@@ -348,22 +348,24 @@ STL_ROBOT = (
 )
 
 
-def test_models_reports_a_file_that_breaks_a_backend_and_goes_on_exiting_one(
+def test_models_records_a_raising_candidates_answer_as_the_files_answer(
     tmp_path: Path,
 ) -> None:
     """pydrake 1.51.1 leaves the .stl geometry half-registered after its error (a proximity
     role, but no place in the collision filter): GetCollisionCandidates then raises
-    IndexError('_Map_base::at') as it pairs it with the box (a Drake bug, measured)."""
+    IndexError('_Map_base::at') as it pairs it with the box (a Drake bug, measured; since
+    1.52 it lists the pair). The observation records that error as the answer, so the file
+    is a case like any other and the run goes on (it broke the case before 77d8cab)."""
     (tmp_path / "a.stl").write_text("solid a\nendsolid a\n", encoding="utf-8")
     (tmp_path / "a_stl.urdf").write_text(STL_ROBOT, encoding="utf-8")
     (tmp_path / "b_box.urdf").write_text(STL_ROBOT.replace("a.stl", "b.obj"), encoding="utf-8")
     code, _, err = _models(
         str(tmp_path), "--backend", "pydrake", "-q", "--report", str(tmp_path / "report")
     )
-    assert code == EXIT_FAILURE
-    assert "1 case(s) broke an implementation; see the report" in err
+    assert code == EXIT_OK
+    assert "broke an implementation" not in err
     assert _report(tmp_path / "report")["files"] == {
-        "a_stl.urdf": {"pydrake": "error"},
+        "a_stl.urdf": {"pydrake": "pass"},
         "b_box.urdf": {"pydrake": "pass"},
     }
 

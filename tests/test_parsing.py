@@ -16,6 +16,9 @@ from __future__ import annotations
 
 import importlib
 import itertools
+import os
+import subprocess
+import sys
 from dataclasses import dataclass
 from importlib.metadata import version
 from pathlib import Path
@@ -30,6 +33,7 @@ from reimpl.common._demand_lines import site_in
 from tests.conftest import IMPLEMENTATIONS
 
 MODELS = Path(__file__).parent / "models"
+ROOT = Path(__file__).parent.parent
 
 
 @dataclass(frozen=True)
@@ -2177,6 +2181,78 @@ FIRST_ERRORS = {
 def test_the_first_urdf_error_in_drakes_order_is_raised(mb: Modules, case: str) -> None:
     text, message = FIRST_ERRORS[case]
     assert urdf_error(mb, text) == f"<literal-string>.urdf:{message}"
+
+
+#: A URDF whose joint j2 mimics a joint the file does not have (Gepetto's
+#: alex_psyonic_hands.urdf mimics 'index_q1', naming it 'Left_index_q1').
+MIMIC_OF_A_MISSING_JOINT = (
+    '<robot name="r"><link name="a"/><link name="b"/><link name="c"/>\n'
+    '<joint name="j1" type="revolute"><parent link="a"/><child link="b"/>'
+    '<axis xyz="0 0 1"/></joint>\n'
+    '<joint name="j2" type="revolute"><parent link="b"/><child link="c"/><axis xyz="0 0 1"/>'
+    '<mimic joint="nope" multiplier="2"/></joint></robot>'
+)
+
+
+@pytest.mark.parametrize("time_step", [0.0, 0.001])
+def test_a_mimic_of_a_missing_joint_is_an_error_where_the_release_reads_mimics(
+    mb: Modules, time_step: float
+) -> None:
+    """Measured: with time_step 0 the parse succeeds up to 1.50.0 and fails from 1.51.0;
+    with 0.001 it succeeds up to 1.36.0 and fails from 1.37.0."""
+    builder = mb.framework.DiagramBuilder()
+    plant, _ = mb.plant.AddMultibodyPlantSceneGraph(builder=builder, time_step=time_step)
+    parser = mb.parsing.Parser(plant=plant)
+    fact = (
+        "urdf-mimic-continuous-since-1.51" if time_step == 0.0 else "urdf-mimic-discrete-since-1.37"
+    )
+    if not holds(mb, fact):
+        assert len(parser.AddModelsFromString(MIMIC_OF_A_MISSING_JOINT, "urdf")) == 1
+        return
+    with pytest.raises(RuntimeError) as info:
+        parser.AddModelsFromString(MIMIC_OF_A_MISSING_JOINT, "urdf")
+    assert str(info.value) == (
+        "<literal-string>.urdf:3: error: Joint 'j2' mimic element specifies joint 'nope' "
+        "which does not exist."
+    )
+
+
+@pytest.mark.parametrize(
+    ("release", "time_step", "read"),
+    [
+        ("1.36.0", 0.001, False),
+        ("1.37.0", 0.001, True),
+        ("1.50.0", 0.0, False),
+        ("1.50.0", 0.001, True),
+        ("1.51.0", 0.0, True),
+    ],
+)
+def test_reimpl_reads_a_mimic_on_the_releases_drake_does(
+    release: str, time_step: float, read: bool
+) -> None:
+    """reimpl set to each boundary release, against what those releases of pydrake did
+    (measured with MIMIC_OF_A_MISSING_JOINT)."""
+    code = (
+        "from reimpl.multibody.plant import AddMultibodyPlantSceneGraph\n"
+        "from reimpl.multibody.parsing import Parser\n"
+        "from reimpl.systems.framework import DiagramBuilder\n"
+        f"plant, _ = AddMultibodyPlantSceneGraph(DiagramBuilder(), {time_step})\n"
+        "try:\n"
+        f"    Parser(plant).AddModelsFromString({MIMIC_OF_A_MISSING_JOINT!r}, 'urdf')\n"
+        "    print('ignored')\n"
+        "except RuntimeError as e:\n"
+        "    print(e)\n"
+    )
+    env = {**os.environ, "REIMPL_DRAKE_RELEASE": release, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=False
+    )
+    assert done.stdout.strip() == (
+        "<literal-string>.urdf:3: error: Joint 'j2' mimic element specifies joint 'nope' "
+        "which does not exist."
+        if read
+        else "ignored"
+    )
 
 
 def curvilinear_robot() -> str:

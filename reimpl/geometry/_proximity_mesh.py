@@ -36,6 +36,21 @@ mesh's path as given, ``ext`` its lowered extension):
    no face of three or more vertices raises ``A mesh must contain at least one
    triangle``.
 
+Earlier releases, each by its release fact (measured on 1.12.0-1.35.0 with a Mesh and
+a Convex of an ``.stl``, a ``.gltf`` and an ``.obj`` of two objects):
+
+- 1.27-1.33 word check 1 ``MakeConvexHull only applies to obj, vtk, and gltf meshes;
+  given file: D.`` (hull-extension-wording-since-1.34); 1.27 then refuses a ``.gltf``
+  as 1.23-1.26 do (gltf-mesh-proximity-since-1.28).
+- Up to 1.26 there is no hull step 1: the proximity engine refuses any file but an
+  ``.obj`` (and, since 1.23, a ``.vtk``: proximity-vtk-meshes-since-1.23) in
+  ``_engine_refusal``'s words (convex-hull-meshes-since-1.27,
+  engine-extension-wording-since-1.19).
+- Up to 1.31 an ``.obj`` whose faces fall into more than one object (``o`` or ``g``
+  sections) is ``The OBJ file contains multiple objects; only OBJs with a single object
+  are supported: File name: 'D'`` (obj-multiple-objects-refused-until-1.31), after
+  check 1.
+
 Not modelled (reimpl reads no more of the file): qhull's own failures on
 nearly degenerate clouds, a face index out of range (pydrake 1.51.1 ends with
 SystemExit), a binary or XML VTK file (taken as valid), a Mesh's ``.vtk`` whose
@@ -52,7 +67,9 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["check_proximity_mesh"]
+from reimpl._release import release
+
+__all__ = ["HullError", "check_proximity_mesh"]
 
 #: ‖·‖² below which Drake takes two vertices, or a cross product, as zero.
 _ZERO_SQUARED = 1e-24
@@ -207,23 +224,106 @@ def _check_plane(vertices: _Vertices, description: str) -> None:
         )
 
 
-def check_proximity_mesh(
-    path: str, extension: str, scale3: Sequence[float], *, is_convex: bool
-) -> None:
-    """Raises Drake's error where it cannot make the proximity representation (see module)."""
-    reader = _VERTEX_READERS.get(extension)
-    if reader is None:
-        raise RuntimeError(
+def _engine_refusal(extension: str, path: str, *, is_convex: bool) -> str:
+    """What the proximity engine of a release up to 1.27 says of a file type it refuses."""
+    shape = "Convex" if is_convex else "Mesh"
+    if release.has("proximity-vtk-meshes-since-1.23"):
+        if is_convex:
+            return (
+                "ProximityEngine: Convex shapes only support .obj or .vtk files; got "
+                f"({path}) instead."
+            )
+        return (
+            "ProximityEngine: Mesh shapes for non-hydroelastic contact only support .obj or "
+            f".vtk files; got ({path}) instead."
+        )
+    if release.has("engine-extension-wording-since-1.19"):
+        return (
+            f"ProximityEngine: {shape} shapes for non-hydroelastic contact only support .obj "
+            f"files; got ({path}) instead."
+        )
+    if is_convex:  # up to 1.18 a Convex's file is read as an OBJ, whatever its name
+        return (
+            "The file parsed contains no objects; only OBJs with a single object are "
+            "supported. The file could be corrupt, empty, or not an OBJ file. File name: "
+            f"'{path}'"
+        )
+    return (
+        f"ProximityEngine: expect an Obj file for non-hydroelastics but get {extension} file "
+        f"({path}) instead."
+    )
+
+
+def _extension_refusal(extension: str, path: str, *, is_convex: bool) -> str | None:
+    """Check 1, by release (see the module): the error for a file type refused, or None."""
+    if not release.has("convex-hull-meshes-since-1.27"):
+        # N.B. Up to 1.22 a .vtk is refused only without a hydroelastic compliance type,
+        # which reimpl's SDFormat parser does not record: reimpl takes every .vtk then.
+        accepted = {".obj", ".vtk"}
+        return (
+            None if extension in accepted else _engine_refusal(extension, path, is_convex=is_convex)
+        )
+    if extension not in _VERTEX_READERS:
+        if not release.has("hull-extension-wording-since-1.34"):
+            return f"MakeConvexHull only applies to obj, vtk, and gltf meshes; given file: {path}."
+        return (
             "MakeConvexHull only applies to .obj, .vtk, and .gltf meshes; unsupported "
             f"extension '{extension}' for geometry data: {path}."
         )
-    read = reader(path, path)
-    if len(read) < 3:
-        raise RuntimeError(
-            "MakeConvexHull() cannot be used on a mesh with fewer than three vertices; found "
-            f"{len(read)} vertices in geometry data: {path}."
-        )
-    _check_plane(np.asarray(read, dtype=float) * np.asarray(scale3, dtype=float), path)
+    return None
+
+
+def _obj_objects(path: str) -> int:
+    """How many objects tinyobjloader makes of an OBJ file: its ``o``/``g`` sections that
+    hold a face (the faces before any such line are one more)."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as file:
+            lines = file.read().splitlines()
+    except OSError:
+        return 0
+    objects, faces = 0, False
+    for line in lines:
+        keyword = line.split()[:1]
+        if keyword in (["o"], ["g"]):
+            objects, faces = objects + faces, False
+        elif keyword == ["f"]:
+            faces = True
+    return objects + faces
+
+
+class HullError(RuntimeError):
+    """An error of the convex hull step (Drake >= 1.27), not of the proximity engine: in
+    1.27 GeometryState makes the hull before it stores the role, so the geometry is left
+    without it (hull-before-role-1.27)."""
+
+
+def check_proximity_mesh(
+    path: str,
+    extension: str,
+    scale3: Sequence[float],
+    *,
+    is_convex: bool,
+    hydroelastic: bool = False,
+) -> None:
+    """Raises Drake's error where it cannot make the proximity representation (see module).
+
+    Up to 1.26 the engine checks the file type only of a geometry with no hydroelastic
+    compliance type (a hydroelastic one gets its own representation, not modelled);
+    reimpl's parsers record no compliance type, so ``hydroelastic`` (any property in the
+    hydroelastic group) stands for it (measured: drake_models' evo_bowl_compliant.urdf, a
+    compliant .vtk Mesh, parses on 1.12.0-1.22.0). Not modelled: up to 1.22 a .vtk of a
+    geometry with no compliance type is refused (reimpl takes it)."""
+    hull = release.has("convex-hull-meshes-since-1.27")
+    if hydroelastic and not hull:
+        return
+    try:
+        _check_hull(path, extension, scale3, is_convex=is_convex)
+    except RuntimeError as error:
+        if not hull:
+            raise
+        raise HullError(*error.args) from None
+    if hull and extension == ".gltf" and not release.has("gltf-mesh-proximity-since-1.28"):
+        raise RuntimeError(_engine_refusal(extension, path, is_convex=is_convex))
     if is_convex or extension != ".obj":
         return
     obj = _read_obj(path, path)
@@ -234,3 +334,28 @@ def check_proximity_mesh(
         )
     if not obj.has_polygon:
         raise RuntimeError("A mesh must contain at least one triangle")
+
+
+def _check_hull(path: str, extension: str, scale3: Sequence[float], *, is_convex: bool) -> None:
+    """Checks 1-4 (and the multiple objects of an old release)."""
+    refusal = _extension_refusal(extension, path, is_convex=is_convex)
+    if refusal is not None:
+        raise RuntimeError(refusal)
+    if (
+        extension == ".obj"
+        and release.has("obj-multiple-objects-refused-until-1.31")
+        and _obj_objects(path) > 1
+    ):
+        raise RuntimeError(
+            "The OBJ file contains multiple objects; only OBJs with a single object are "
+            f"supported: File name: '{path}'"
+        )
+    read = _VERTEX_READERS[extension](path, path)
+    if not release.has("convex-hull-meshes-since-1.27"):
+        return  # no hull: checks 3 and 4 are the hull's (measured: a two-vertex .obj on 1.26)
+    if len(read) < 3:
+        raise RuntimeError(
+            "MakeConvexHull() cannot be used on a mesh with fewer than three vertices; found "
+            f"{len(read)} vertices in geometry data: {path}."
+        )
+    _check_plane(np.asarray(read, dtype=float) * np.asarray(scale3, dtype=float), path)

@@ -69,7 +69,7 @@ from reimpl._release import release
 from reimpl.common._drake_demand import demand_failure
 from reimpl.geometry._pair_bits import PairBits, mask_of
 from reimpl.geometry.collision_filter_declaration import Pairing, Statement, StatementOp
-from reimpl.geometry.errors import TransientHistoryActiveError
+from reimpl.geometry.errors import TransientHistoryActiveError, UnregisteredFilterGeometryError
 from reimpl.geometry.geometry_set import GeometrySet
 from reimpl.geometry.identifier import FilterId, GeometryId
 
@@ -171,6 +171,8 @@ class CollisionFilter:
         self._active: set[FilterId] = set()  # the history's FilterIds
         # Slots whose rows in U may differ from the base's after a failed apply.
         self._leftover: set[int] = set()
+        # Geometries given a slot though their proximity engine entry failed.
+        self._unengined: set[GeometryId] = set()
 
     # ----------------------------------------------------------------- copies
     def copy(self) -> CollisionFilter:
@@ -190,16 +192,21 @@ class CollisionFilter:
         other._history = list(self._history)  # deltas are immutable
         other._active = set(self._active)
         other._leftover = set(self._leftover)
+        other._unengined = set(self._unengined)
         return other
 
     # ------------------------------------------------------------- geometries
     def has_geometry(self, geometry_id: GeometryId) -> bool:
         return geometry_id in self._slot_of
 
-    def add_geometry(self, geometry_id: GeometryId) -> None:
+    def add_geometry(self, geometry_id: GeometryId, *, engined: bool = True) -> None:
         """Registers g, unfiltered against everything and active.
 
         Declarations made earlier, transient ones included, never cover g.
+        ``engined=False``: g's proximity engine entry failed. Drake ≥ 1.52 keeps
+        filtered pairs by id, so g is unfiltered against everything all the same
+        (unengined-geometry-unfiltered-since-1.52); since 1.57 a declaration that
+        names g raises (unengined-declaration-error-since-1.57).
         """
         if geometry_id in self._slot_of:
             raise AssertionError(f"geometry {geometry_id.get_value()} is already registered")
@@ -215,6 +222,8 @@ class CollisionFilter:
         self._slot_of[geometry_id] = slot
         self._id_at[slot] = geometry_id
         self._registered[slot] = True
+        if not engined:
+            self._unengined.add(geometry_id)
 
     def remove_geometry(self, geometry_id: GeometryId) -> None:
         """Forgets g: every pair with g leaves the base, the history and V.
@@ -223,6 +232,7 @@ class CollisionFilter:
         statements that mention both of its geometries.
         """
         slot = self._slot_of.pop(geometry_id)
+        self._unengined.discard(geometry_id)
         for relation in (self._base, self._filtered, self._invariant):
             relation.clear_slot(slot)
         self._registered[slot] = False
@@ -239,31 +249,48 @@ class CollisionFilter:
     def _resolve(self, statement: Statement, resolve: Resolver) -> ResolvedStatement:
         ids_A = resolve(statement.set_A)
         ids_B = None if statement.op.pairing is Pairing.WITHIN else resolve(statement.set_B)
+        self._refuse_unengined(ids_A, ids_B or ())
         try:
             slots_B = None if ids_B is None else self._slots(ids_B)
             return ResolvedStatement.of(statement.op, self._slots(ids_A), slots_B)
         except KeyError:  # a proximity geometry this filter never got (GeometryState)
             return self._unregistered(statement, ids_A, ids_A if ids_B is None else ids_B)
 
+    def _refuse_unengined(self, ids_A: Sequence[GeometryId], ids_B: Sequence[GeometryId]) -> None:
+        """Since 1.57 a declaration naming an unengined geometry raises (before any write)."""
+        if not self._unengined or not release.has("unengined-declaration-error-since-1.57"):
+            return
+        for geometry_id in (*ids_A, *ids_B):
+            if geometry_id in self._unengined:
+                raise UnregisteredFilterGeometryError(
+                    f"Collision filter declaration references geometry id "
+                    f"{geometry_id.get_value()} which has not been registered with this "
+                    "filter system."
+                )
+
     def _unregistered(
         self, statement: Statement, ids_A: Sequence[GeometryId], ids_B: Sequence[GeometryId]
     ) -> ResolvedStatement:
         """Drake demands that every pair it writes has both ids registered; with no pair to
-        write (one side empty), the statement does nothing."""
+        write (one side empty), the statement does nothing. The demand's line and words by
+        release: AddFilteredPair at line 184 up to 1.19, 185 since 1.20
+        (filter-demand-line-since-1.20); RemoveFilteredPair at 197, but 198 in 1.20.0
+        (filter-demand-remove-line-1.20); the condition with ``count(...) == 1`` up to 1.26
+        (filter-demand-contains-since-1.27)."""
         if ids_A and ids_B:
-            line, function = (
-                (185, "AddFilteredPair")
-                if statement.op.filters
-                else (
-                    197,
-                    "RemoveFilteredPair",
-                )
+            if statement.op.filters:
+                line = 185 if release.has("filter-demand-line-since-1.20") else 184
+                function = "AddFilteredPair"
+            else:
+                line = 198 if release.has("filter-demand-remove-line-1.20") else 197
+                function = "RemoveFilteredPair"
+            condition = (
+                "filter_state.contains(id_A) && filter_state.contains(id_B)"
+                if release.has("filter-demand-contains-since-1.27")
+                else "filter_state.count(id_A) == 1 && filter_state.count(id_B) == 1"
             )
             raise demand_failure(
-                "geometry/proximity/collision_filter.cc",
-                line,
-                function,
-                "filter_state.contains(id_A) && filter_state.contains(id_B)",
+                "geometry/proximity/collision_filter.cc", line, function, condition
             )
         empty = None if statement.op.pairing is Pairing.WITHIN else ()
         return ResolvedStatement.of(statement.op, (), empty)

@@ -18,6 +18,7 @@ __all__ = [
     "UnknownGeometryError",
     "UnknownSourceError",
     "UnqueryableGeometryError",
+    "UnregisteredFilterGeometryError",
 ]
 
 
@@ -47,6 +48,11 @@ class TransientHistoryActiveError(CollisionFilterError):
 
 class UnqueryableGeometryError(CollisionFilterError):
     """Raised when CollisionFiltered() is asked about an invalid or non-proximity geometry."""
+
+
+class UnregisteredFilterGeometryError(CollisionFilterError):
+    """Raised (since Drake 1.57) when a declaration names a proximity geometry whose
+    proximity engine entry failed, so the filter never registered it."""
 
 
 class DuplicateRoleError(GeometryStateError):

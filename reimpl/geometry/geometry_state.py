@@ -23,6 +23,7 @@ from typing import NoReturn
 from reimpl._release import release
 from reimpl.common._drake_demand import failed_demand
 from reimpl.common._std_unordered_map import MAP_AT_MESSAGE, IdentifierUnorderedMap
+from reimpl.geometry._proximity_mesh import HullError
 from reimpl.geometry.collision_filter import CollisionFilter
 from reimpl.geometry.collision_filter_declaration import Statement, StatementOp
 from reimpl.geometry.errors import (
@@ -51,6 +52,9 @@ from reimpl.math import RigidTransform
 
 #: What ``unordered_map::at`` says of a missing key (pydrake: IndexError), by release.
 _MAP_AT = MAP_AT_MESSAGE
+#: Whether the collision filter's queries raise IndexError for an unengined geometry
+#: (up to 1.51: Drake's dense filter has no entry for it); since 1.52 it is unfiltered.
+_UNENGINED_RAISES = not release.has("unengined-geometry-unfiltered-since-1.52")
 
 __all__ = ["WORLD_FRAME_ID", "GeometryState"]
 
@@ -341,13 +345,14 @@ class GeometryState:
         self.touch(role)
         if role is Role.kProximity and isinstance(geometry.shape, _MeshShape):
             try:
-                geometry.shape._check_proximity()
+                geometry.shape._check_proximity(hydroelastic=properties.HasGroup("hydroelastic"))
+            except HullError:
+                if release.has("hull-before-role-1.27"):
+                    raise  # 1.27 makes the hull before it stores the role
+                self._keep_unengined(geometry, properties)
+                raise
             except RuntimeError:
-                # N.B. Drake stores the properties before its proximity engine
-                # computes the hull: the geometry keeps the role, unengined.
-                geometry.properties[role] = type(properties)(properties)
-                self.unengined.add(geometry.id)
-                self.revision += 1
+                self._keep_unengined(geometry, properties)
                 raise
         geometry.properties[role] = type(properties)(properties)
         if role is Role.kProximity:
@@ -362,6 +367,17 @@ class GeometryState:
         AssignRole and RemoveRole of perception leave every version alone)."""
         if role in _VERSIONED_ROLES:
             self.version._modify(role)
+
+    def _keep_unengined(self, geometry: _Geometry, properties: GeometryProperties) -> None:
+        """What a failed proximity engine entry leaves: Drake stores the properties before
+        its proximity engine computes the hull, so the geometry keeps the role, unengined."""
+        geometry.properties[Role.kProximity] = type(properties)(properties)
+        self.unengined.add(geometry.id)
+        self.revision += 1
+        if not _UNENGINED_RAISES:
+            # Since 1.52 the filter keeps pairs by id: unengined, the geometry is still
+            # unfiltered against everything (no same-frame pairs).
+            self.collision_filter.add_geometry(geometry.id, engined=False)
 
     def _assign_proximity(self, geometry: _Geometry) -> None:
         """V ← V ∪ {(g, h) : h ∈ Gₚ, frame(h) = frame(g)}.
@@ -534,16 +550,18 @@ class GeometryState:
             self._raise_unqueryable(a, b)
         if a == b:
             return True
-        if a in self.unengined or b in self.unengined:
+        if _UNENGINED_RAISES and (a in self.unengined or b in self.unengined):
             raise UnenginedGeometryError(_MAP_AT)
         return not self.collision_filter.can_collide_with(a, b)
 
     def collision_candidates(self) -> set[tuple[GeometryId, GeometryId]]:
         """C, each pair (a, b) with a.get_value() < b.get_value() (SceneGraphInspector).
 
-        Drake asks the filter about every pair of proximity geometries, so an
-        unengined one raises as soon as there is another."""
-        if self.unengined and sum(g.has_proximity for g in self._geometries.values()) > 1:
+        Drake asks the filter about every pair of proximity geometries, so up to 1.51 an
+        unengined one raises as soon as there is another; since 1.52 it is unfiltered
+        against the others (unengined-geometry-unfiltered-since-1.52)."""
+        proximity = sum(g.has_proximity for g in self._geometries.values())
+        if _UNENGINED_RAISES and self.unengined and proximity > 1:
             raise UnenginedGeometryError(_MAP_AT)
         return self.collision_filter.candidates()
 

@@ -204,13 +204,15 @@ class _MeshShape(Shape):
     def extension(self) -> str:
         return self._source.extension()
 
-    def _check_proximity(self) -> None:
-        """Raises what Drake raises making this shape's proximity representation."""
+    def _check_proximity(self, *, hydroelastic: bool = False) -> None:
+        """Raises what Drake raises making this shape's proximity representation
+        (``hydroelastic``: its properties have a hydroelastic group)."""
         check_proximity_mesh(
             self._source.description(),
             self.extension(),
             self._scale3,
             is_convex=isinstance(self, Convex),
+            hydroelastic=hydroelastic,
         )
 
     def _hull_data(self) -> Hull:

@@ -27,9 +27,12 @@ from dataclasses import dataclass
 __all__ = [
     "WORLD",
     "Edge",
+    "Mobod",
     "floating_bases",
+    "forest_mobods",
     "has_loop",
     "reversed_joints",
+    "unrooted_bodies",
     "welded_subgraphs",
 ]
 
@@ -112,17 +115,22 @@ def floating_bases(n: int, edges: Sequence[Edge]) -> list[int]:
     partition = _partition(n, edges)
     parent_count = [0] * n
     is_child = [False] * n
+    has_joint = [False] * n
     for edge in edges:
         parent_count[edge.parent] += 1
         is_child[edge.child] = True
+        has_joint[edge.parent] = has_joint[edge.child] = True
     joined = {partition.find(WORLD)}
     bases: list[int] = []
     while True:
         unjoined = [b for b in range(n) if partition.find(b) not in joined]
         if not unjoined:
             return bases
-        # N.B. Without loops every tree has a body that is no joint's child.
-        roots = [b for b in unjoined if not is_child[b]] or unjoined
+        # Bodies with joints come before lone ones; a tree that is a loop has no
+        # body that is no joint's child, and then any of its bodies may be the base
+        # (measured on 1.40.0: a loop b→c→a→b beside a lone x makes a the first base).
+        pool = [b for b in unjoined if has_joint[b]] or unjoined
+        roots = [b for b in pool if not is_child[b]] or pool
         base = min(roots, key=lambda b: (-parent_count[b], b))
         bases.append(base)
         joined.add(partition.find(base))
@@ -160,3 +168,81 @@ def reversed_joints(n: int, edges: Sequence[Edge], bases: Sequence[int]) -> list
     for root in (WORLD, *bases):
         walk(root)
     return found
+
+
+@dataclass(frozen=True)
+class Mobod:
+    """A mobilized body of the forest Drake 1.33-1.40 builds: the body a joint moves,
+    whether the joint is modeled reversed (child to parent), and whether the body had a
+    mobilizer already (a loop closed here: Drake adds a second inboard joint)."""
+
+    edge: int
+    body: int
+    reversed: bool
+    again: bool
+
+
+def forest_mobods(n: int, edges: Sequence[Edge], roots: Sequence[int]) -> list[Mobod]:
+    """The mobods of the joints, in the depth-first order Drake 1.33-1.40 makes mobilizers.
+
+    Each tree (rooted at ``roots`` in order) grows level by level: every body of a level
+    takes its joints not yet used, in joint order, and each makes a mobod for the body at
+    its other end, reversed if the body of the level is the joint's child; a body met
+    again (a loop) gets a mobod again. The mobods are then visited depth first, each
+    body's in the order they were made. Measured on 1.33.0 and 1.40.0 with loops
+    (Finalize reports the first reversed mobod, else the first body met again).
+    """
+    incident: list[list[int]] = [[] for _ in range(n)]
+    for index, edge in enumerate(edges):
+        incident[edge.parent].append(index)
+        incident[edge.child].append(index)
+    used = [False] * len(edges)
+    reached = [False] * n
+    #: body -> its joints' (edge, other body, reversed, whether the other body is first
+    #: reached here: its own outboard mobods hang under this one, not a loop's).
+    outboard: dict[int, list[tuple[int, int, bool, bool]]] = {}
+    for root in roots:
+        reached[root] = True
+        level = [root]
+        while level:
+            following: list[int] = []
+            for body in level:
+                for index in incident[body]:
+                    if used[index]:
+                        continue
+                    used[index] = True
+                    edge = edges[index]
+                    reverse = edge.child == body
+                    other = edge.parent if reverse else edge.child
+                    outboard.setdefault(body, []).append(
+                        (index, other, reverse, not reached[other])
+                    )
+                    if not reached[other]:
+                        reached[other] = True
+                        following.append(other)
+            level = following
+    mobods: list[Mobod] = []
+    mobilized = [False] * n
+
+    def visit(body: int) -> None:
+        for index, other, reverse, first_reached in outboard.get(body, []):
+            mobods.append(Mobod(index, other, reverse, mobilized[other]))
+            mobilized[other] = True
+            if first_reached:
+                visit(other)
+
+    for root in roots:
+        visit(root)
+    return mobods
+
+
+def unrooted_bodies(n: int, edges: Sequence[Edge]) -> set[int]:
+    """The bodies of the trees apart from the world in which every body is some joint's
+    child (a loop with no way in: Drake up to 1.32 gives them no mobilizer)."""
+    partition = _partition(n, edges)
+    is_child = [False] * n
+    for edge in edges:
+        is_child[edge.child] = True
+    world = partition.find(WORLD)
+    rooted = {partition.find(b) for b in range(n) if not is_child[b]} | {world}
+    return {b for b in range(n) if partition.find(b) not in rooted}

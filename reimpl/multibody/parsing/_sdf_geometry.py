@@ -34,6 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from reimpl._release import release
 from reimpl.geometry import (
     Box,
     Capsule,
@@ -50,6 +51,8 @@ from reimpl.geometry import (
     Sphere,
 )
 from reimpl.math import RigidTransform
+from reimpl.multibody.parsing._diagnostics import ModelParseError
+from reimpl.multibody.parsing._mesh_scale import ANISOTROPIC_MESH, refuses_mesh_scale
 from reimpl.multibody.parsing._sdf_document import material_color, sdformat_bool
 from reimpl.multibody.parsing._xml import XmlElement, children
 
@@ -121,6 +124,11 @@ def _mesh(element: XmlElement, context: _Context) -> Shape:
         )
     filename = context.resolve(uri)
     scale = _values(element, "scale", "1 1 1")
+    if refuses_mesh_scale(scale):
+        if not release.has("sdf-errors-located-since-1.14"):
+            # Up to 1.13 the geometry code throws it bare (measured on 1.12.0, 1.13.0).
+            raise ModelParseError(ANISOTROPIC_MESH)
+        raise context.error(element, ANISOTROPIC_MESH)
     kind = Convex if children(element, "drake:declare_convex") else Mesh
     return kind(filename=filename, scale3=scale)
 

@@ -59,6 +59,7 @@ from reimpl.geometry import (
 from reimpl.geometry._drake_text import shortest
 from reimpl.math import RigidTransform
 from reimpl.multibody.parsing._diagnostics import Diagnostics
+from reimpl.multibody.parsing._mesh_scale import ANISOTROPIC_MESH, refuses_mesh_scale
 from reimpl.multibody.parsing._urdf_materials import MaterialMap
 from reimpl.multibody.parsing._urdf_values import Values, origin, scan_double, vector
 from reimpl.multibody.parsing._xml import XmlElement, children
@@ -211,6 +212,8 @@ class GeometryReader:
             raise self.diagnostics.error("Mesh element has no filename tag", element.line)
         path = self.resolve(filename, element.line)
         scale = self.values.three_vector(element, "scale") or [1.0, 1.0, 1.0]
+        if refuses_mesh_scale(scale):
+            raise self.diagnostics.error(ANISOTROPIC_MESH, element.line)
         kind = Convex if _first(element, "drake:declare_convex") is not None else Mesh
         return kind(filename=path, scale3=scale)
 

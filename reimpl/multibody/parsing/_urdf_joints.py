@@ -50,7 +50,9 @@ document order (ignored or skipped joints included): the mimicked joint must
 exist and differ from this one, ``multiplier`` and ``offset`` are numbers; a
 joint that was not made (floating) or has several dofs is warned about and
 ignored; a mismatch of dofs is an error. (reimpl's plant has no coupler
-constraints: a valid mimic adds nothing.)
+constraints: a valid mimic adds nothing.) Up to 1.50 a ``<mimic>`` is read only on a
+discrete plant whose contact solver is SAP (the default since 1.37); elsewhere it is
+warned about and ignored (``mimic_ignored``).
 """
 
 from __future__ import annotations
@@ -493,6 +495,14 @@ class JointReader:
             return
         mimic, d = nodes[0], self.diagnostics
         name = element.get("name", "")
+        if mimic_ignored(self.plant.time_step()):
+            d.warning(
+                f"Joint '{name}' specifies a mimic element that will be ignored. Mimic "
+                "elements are currently only supported by MultibodyPlant with a discrete time "
+                "step and using DiscreteContactSolver::kSap.",
+                mimic.line,
+            )
+            return
         other = mimic.get("joint")
         if other is None:
             raise d.error(
@@ -578,3 +588,16 @@ def warn_unsupported_child(d: Diagnostics, element: XmlElement, tag: str) -> Non
             "will be ignored.",
             nodes[0].line,
         )
+
+
+def mimic_ignored(time_step: float) -> bool:
+    """Whether Drake ignores (with a warning) a ``<mimic>`` on a plant of ``time_step``.
+
+    Up to 1.50 Drake reads it only on a discrete plant using DiscreteContactSolver::kSap,
+    a discrete plant's default since 1.37 (reimpl's plant has no solver setting): a
+    continuous plant ignores it up to 1.50 (urdf-mimic-continuous-since-1.51) and a
+    discrete one up to 1.36 (urdf-mimic-discrete-since-1.37).
+    """
+    if time_step == 0.0:
+        return not release.has("urdf-mimic-continuous-since-1.51")
+    return not release.has("urdf-mimic-discrete-since-1.37")

@@ -38,6 +38,33 @@ from reimpl.multibody.tree import FixedOffsetFrame, Joint, QuaternionFloatingJoi
 __all__ = ["Finalization"]
 
 
+#: The middle of Finalize's refusal of a loop, by release (loop-topology-wording-since-1.57).
+_LOOPS_UNSUPPORTED = (
+    "Automatic modeling of such systems is disabled by default; you can enable it by calling "
+    "MultibodyPlant::SetEnableLoopTopology(true) before Finalize() but: the feature is in "
+    "development and not yet functional even when enabled. For now, loops can be modeled "
+    "with some input changes."
+    if release.has("loop-topology-wording-since-1.57")
+    else "Drake currently does not support automatic modeling of such systems; however, they "
+    "can be modeled with some input changes."
+)
+
+
+#: What Drake's MultibodyTree says of a body given a second mobilizer (up to 1.40, when a
+#: loop closes on it); 'the same body' and 'its base link' up to 1.24
+#: (rigid-body-wording-since-1.25).
+_RIGID = release.has("rigid-body-wording-since-1.25")
+_TWO_INBOARD = (
+    "When creating a model, an attempt was made to add two inboard joints to the same "
+    f"{'rigid body' if _RIGID else 'body'}; this is not allowed. One possible cause might be "
+    "attempting to weld a robot to World somewhere other than its base "
+    f"{'rigid body' if _RIGID else 'link'}; see Drake issue #17429 for discussion and "
+    "work-arounds, e.g., reversing some joint parent/child directions. Another possible "
+    "cause might be attempting to form a kinematic loop using joints; to create a loop, "
+    "consider using a LinearBushingRollPitchYaw instead of a joint."
+)
+
+
 class Finalization(CollisionFilters, Poses, ElementNames):
     """Finalize and the steps it takes."""
 
@@ -57,11 +84,21 @@ class Finalization(CollisionFilters, Poses, ElementNames):
                 else "MultibodyTreeSystem::Finalize(): repeated calls not allowed."
             )
         n = len(self._bodies)
+        if not release.has("reversed-joint-ordering-wording-since-1.33"):
+            children = [e.child for e in self._edges() if e.child != graph.WORLD]
+            if len(set(children)) < len(children):
+                # Up to 1.32 a body that is the child of two joints gets two mobilizers
+                # (measured on 1.12.0, 1.27.0, 1.32.0, loop or not).
+                raise TopologyError(_TWO_INBOARD)
         if graph.has_loop(n, self._edges()):
+            if not release.has("loop-refusal-since-1.41"):
+                self._refuse_loop_before_1_41(n)
+            if release.has("loop-refused-after-floating-joints-1.41-1.45"):
+                for base in graph.floating_bases(n, self._edges()):
+                    self._add_floating_joint(self._bodies[base])
             raise TopologyError(
                 "The bodies and joints of this system form one or more loops in the system "
-                "graph. Drake currently does not support automatic modeling of such systems; "
-                "however, they can be modeled with some input changes. See "
+                f"graph. {_LOOPS_UNSUPPORTED} See "
                 "https://drake.mit.edu/troubleshooting.html#mbp-loops-in-graph for advice on how "
                 "to model systems with loops."
             )
@@ -84,6 +121,39 @@ class Finalization(CollisionFilters, Poses, ElementNames):
                 "supported for discrete models. Refer to MultibodyPlant's documentation for "
                 "further details."
             )
+
+    def _refuse_loop_before_1_41(self, n: int) -> None:
+        """Up to 1.40 Drake has no loop check; a loop fails as the forest meets it.
+
+        1.33-1.40: the floating joints are added, then the mobilizers are made in the
+        forest's order (``graph.forest_mobods``): the first reversed one that cannot be
+        is refused as any reversed joint, else the first body given a second mobilizer
+        is ``_TWO_INBOARD``. Up to 1.32 (a body that is the child of two joints is
+        ``_TWO_INBOARD`` before this, in Finalize) the bodies of a tree whose
+        every body is a child get no floating joint, the others do, and the lowest such
+        body 'was not assigned a mobilizer'. Measured on 1.12.0, 1.20.0, 1.27.0,
+        1.32.0, 1.33.0 and 1.40.0 with eleven loops (loop-refusal-since-1.41). A loop
+        through the world as a joint's child is left to the loop refusal (pydrake 1.32.0
+        raises std::bad_alloc for it).
+        """
+        edges = self._edges()
+        if release.has("reversed-joint-ordering-wording-since-1.33"):
+            bases = graph.floating_bases(n, edges)
+            for base in bases:
+                self._add_floating_joint(self._bodies[base])
+            for mobod in graph.forest_mobods(n, edges, [graph.WORLD, *bases]):
+                if mobod.reversed:
+                    self._check_reversible(self._joints[mobod.edge])
+                if mobod.again:
+                    raise TopologyError(_TWO_INBOARD)
+            raise AssertionError("a loop always gives some body a second mobilizer")
+        unmobilized = graph.unrooted_bodies(n, edges)
+        if not unmobilized:
+            return  # a loop through the world as a child: pydrake 1.32 raises std::bad_alloc
+        for base in graph.floating_bases(n, edges):
+            if base not in unmobilized:
+                self._add_floating_joint(self._bodies[base])
+        raise TopologyError(f"Body with index {min(unmobilized)} was not assigned a mobilizer")
 
     def _check_reversible(self, joint: Joint) -> None:
         """Raises Drake's error unless a tree may model ``joint`` from child to parent."""
