@@ -26,7 +26,9 @@ re-expressed in the link frame (I_B = R·I·Rᵀ):
       [0.8999999999999999  1.0999999999999996  3.0]
 
 Scalars print as that release's fmt printed a double (Python's ``repr``: ``0.0``,
-``1e-05``), matrices as RotationalInertia's text (``_urdf_inertia._matrix_text``).
+``1e-05``), matrices as RotationalInertia's stream text at a C++ stream's default 6
+significant digits (``7.95654e-05``), right-aligned to the widest (measured with
+example-robot-data's allegro hand on 1.15.0).
 The principal moments are Eigen's eigenvalues as reimpl computes them for 1.51.1
 (Eigen 5.0.1); Drake 1.15's older Eigen can differ in the last digit when the
 products of inertia are not zero (measured: robotiq_simple.urdf's link prints
@@ -42,7 +44,7 @@ import numpy.typing as npt
 from reimpl.common._drake_demand import demand_failure
 from reimpl.multibody.parsing._diagnostics import ModelParseError
 from reimpl.multibody.parsing._mesh_inertia import _point_mass
-from reimpl.multibody.parsing._urdf_inertia import _eigen_eigenvalues, _invalidity, _matrix_text
+from reimpl.multibody.parsing._urdf_inertia import _eigen_eigenvalues, _invalidity
 
 __all__ = ["inertia_error"]
 
@@ -80,6 +82,13 @@ def inertia_error(
     a, b, c = _moments(central)
     report += f" Principal moments of inertia about Bcm (center of mass) =\n[{a!r}  {b!r}  {c!r}]\n"
     return ModelParseError(report)
+
+
+def _matrix_text(inertia: _Matrix) -> str:
+    """Rows ``[a  b  c]``, each entry ``%.6g``, right-aligned to the widest."""
+    cells = [[f"{float(v):.6g}" for v in row] for row in inertia]
+    width = max(len(cell) for row in cells for cell in row)
+    return "".join("[" + "  ".join(c.rjust(width) for c in row) + "]\n" for row in cells)
 
 
 def _moments(inertia: _Matrix) -> list[float]:
