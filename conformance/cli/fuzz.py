@@ -167,6 +167,11 @@ def _drake_log(lines: list[str], err: TextIO) -> None:
         err.write(f"  {count} x {line}\n")
 
 
+def _first_seen(example: int | None) -> str:
+    """Where the summary says how soon the campaign met its first divergence."""
+    return "" if example is None else f", the first seen in example {example}"
+
+
 def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
     stats = result.stats
     seconds = max(result.seconds, 1e-9)
@@ -176,10 +181,9 @@ def _summary(result: CampaignResult, out: TextIO, progress: Progress) -> None:
         f"in {result.seconds:.1f}s ({stats.examples / seconds:.1f} examples/s, "
         f"{stats.steps / seconds:.0f} steps/s; {share:.0%} of the time in backend calls); "
         f"{progress.found} divergence(s)"
+        f"{_first_seen(stats.first_example)}"
         f"{'; interrupted' if result.interrupted else ''}\n"
     )
-    if stats.first_example is not None:
-        out.write(f"fuzz: the first divergence was seen in example {stats.first_example}\n")
     for divergence, examples in sorted(stats.known.items()):
         out.write(f"fuzz: known divergence {divergence} met in {examples} example(s), set aside\n")
 
