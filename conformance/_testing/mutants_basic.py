@@ -628,10 +628,15 @@ class RoleReassignKeepsFilters(MutantSceneGraph):
         declaration = CollisionFilterDeclaration().ExcludeBetween(
             set_A=GeometrySet(geometry_id=g), set_B=GeometrySet(geometry_ids=partners)
         )
-        if manager.has_transient_history():
-            manager.lifting_history(lambda: manager.inner.Apply(declaration=declaration))
-        else:
-            manager.inner.Apply(declaration=declaration)
+        apply_persistent(manager, declaration)
+
+
+def apply_persistent(manager: Manager, declaration: CollisionFilterDeclaration) -> None:
+    """A persistent Apply at the manager's location, lifting its transient history if any."""
+    if manager.has_transient_history():
+        manager.lifting_history(lambda: manager.inner.Apply(declaration=declaration))
+    else:
+        manager.inner.Apply(declaration=declaration)
 
 
 class _StaleManager(Manager):

@@ -26,6 +26,7 @@ from conformance._testing.mutants_basic import (
     _SameFrameLedger,
     _SameFrameMutant,
     _statements,
+    apply_persistent,
 )
 from conformance._testing.mutants_state import (
     _LOOKUP_ERRORS,
@@ -49,14 +50,6 @@ from reimpl.geometry import (
 from reimpl.systems.framework import Context
 
 __all__ = ["BLIND_MUTANTS"]
-
-
-def _apply_persistent(manager: Manager, declaration: CollisionFilterDeclaration) -> None:
-    """A persistent Apply at the manager's location, lifting its transient history if any."""
-    if manager.has_transient_history():
-        manager.lifting_history(lambda: manager.inner.Apply(declaration=declaration))
-    else:
-        manager.inner.Apply(declaration=declaration)
 
 
 # ------------------------------------------------------------ statements
@@ -243,7 +236,7 @@ class SlotReuseInheritsFilters(MutantSceneGraph):
                     declaration = CollisionFilterDeclaration().ExcludeBetween(
                         set_A=GeometrySet(geometry_id=g), set_B=GeometrySet(geometry_ids=again)
                     )
-                    _apply_persistent(self.manager(context), declaration)
+                    apply_persistent(self.manager(context), declaration)
 
 
 class WorldRoleRemovalCrossesSources(MutantSceneGraph):
@@ -360,7 +353,7 @@ class SetDefaultContextKeepsFilters(MutantSceneGraph):
             else:
                 declaration.AllowBetween(set_A=one, set_B=two)
         if changed:
-            _apply_persistent(self.manager(context), declaration)
+            apply_persistent(self.manager(context), declaration)
 
 
 class _FirstContextGraph(MutantSceneGraph):
